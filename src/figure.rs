@@ -1,0 +1,716 @@
+//! The backend-free figure: panels, axes, series, markers, regions, arrows and fields.
+//!
+//! A scene's `run` returns a [`Figure`]; the PNG/SVG renderer, the terminal chart and the CSV/JSON
+//! exporters all draw or write the same `Figure`, so what a user sees and what a user loads into
+//! their own analysis are the same numbers. Nothing here knows about plotting libraries, terminals or files.
+//!
+//! Conventions (as in the dissertation's figures): stable equilibrium branches are solid,
+//! unstable ones dashed; pull-in instabilities are marked with triangles, pull-off instabilities
+//! with squares; analytic limits and reference curves are dotted.
+
+use serde::Serialize;
+
+/// A whole figure: one or more panels and the named scalar results of the run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Figure {
+    /// Scene id, e.g. `fig1.1`.
+    pub id: String,
+    /// Title drawn above the panels.
+    pub title: String,
+    /// Panels, drawn left to right, top to bottom.
+    pub panels: Vec<Panel>,
+    /// Named scalar results, in insertion order. Names carry their unit as a suffix
+    /// (`_N`, `_m`, `_J_per_m2`, ...) or `_norm` for non-dimensional values.
+    pub results: Vec<(String, f64)>,
+    /// Remarks worth keeping with the data (what differs from the dissertation and why).
+    pub notes: Vec<String>,
+}
+
+impl Figure {
+    /// An empty figure.
+    pub fn new(id: impl Into<String>, title: impl Into<String>) -> Self {
+        Self {
+            id: id.into(),
+            title: title.into(),
+            panels: Vec::new(),
+            results: Vec::new(),
+            notes: Vec::new(),
+        }
+    }
+
+    /// Add a panel and return `self` (builder style).
+    #[must_use]
+    pub fn with_panel(mut self, panel: Panel) -> Self {
+        self.panels.push(panel);
+        self
+    }
+
+    /// Record a named scalar result (replacing an earlier one of the same name).
+    pub fn result(&mut self, name: impl Into<String>, value: f64) {
+        let name = name.into();
+        if let Some(slot) = self.results.iter_mut().find(|(n, _)| *n == name) {
+            slot.1 = value;
+        } else {
+            self.results.push((name, value));
+        }
+    }
+
+    /// Look up a named result.
+    pub fn result_value(&self, name: &str) -> Option<f64> {
+        self.results.iter().find(|(n, _)| n == name).map(|(_, v)| *v)
+    }
+
+    /// Add a note.
+    pub fn note(&mut self, text: impl Into<String>) {
+        self.notes.push(text.into());
+    }
+
+    /// Number of data points over all panels (series, markers), a cheap size measure.
+    pub fn n_points(&self) -> usize {
+        self.panels
+            .iter()
+            .map(|p| p.series.iter().map(|s| s.points.len()).sum::<usize>() + p.markers.len())
+            .sum()
+    }
+}
+
+/// Linear or logarithmic axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Scale {
+    /// Linear axis.
+    Linear,
+    /// Base-10 logarithmic axis (non-positive values are not drawn).
+    Log,
+}
+
+/// One axis: label, unit, scale and an optional fixed range.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Axis {
+    /// Quantity, e.g. `P/P_C` or `Indentation depth h`.
+    pub label: String,
+    /// Unit, e.g. `nm`; empty for non-dimensional quantities.
+    pub unit: String,
+    /// Linear or log.
+    pub scale: Scale,
+    /// Fixed range; `None` fits the data.
+    pub range: Option<(f64, f64)>,
+}
+
+impl Axis {
+    /// A linear axis.
+    pub fn linear(label: impl Into<String>, unit: impl Into<String>) -> Self {
+        Self {
+            label: label.into(),
+            unit: unit.into(),
+            scale: Scale::Linear,
+            range: None,
+        }
+    }
+
+    /// A base-10 logarithmic axis.
+    pub fn log(label: impl Into<String>, unit: impl Into<String>) -> Self {
+        Self {
+            scale: Scale::Log,
+            ..Self::linear(label, unit)
+        }
+    }
+
+    /// Fix the range.
+    #[must_use]
+    pub fn with_range(mut self, lo: f64, hi: f64) -> Self {
+        self.range = Some((lo, hi));
+        self
+    }
+
+    /// `label [unit]`, or `label` for a non-dimensional quantity.
+    pub fn title(&self) -> String {
+        if self.unit.is_empty() {
+            self.label.clone()
+        } else {
+            format!("{} [{}]", self.label, self.unit)
+        }
+    }
+}
+
+/// How a series is drawn. The name is also the CSV `style` column.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Style {
+    /// Stable equilibrium branch or an ordinary curve: solid line.
+    Stable,
+    /// Unstable equilibrium branch: dashed line.
+    Unstable,
+    /// Analytic limit, asymptote or approximation: dotted line.
+    Reference,
+    /// Points without a line (measured data, FE points, exact points on a fit).
+    Scatter,
+    /// Error bars: points come in pairs (x, y_lo), (x, y_hi).
+    ErrorBar,
+    /// A contour line of a field.
+    Contour,
+    /// A jump at an instability: thin line between the states before and after.
+    Jump,
+}
+
+impl Style {
+    /// Lower-case name used in CSV and legends.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Style::Stable => "stable",
+            Style::Unstable => "unstable",
+            Style::Reference => "reference",
+            Style::Scatter => "scatter",
+            Style::ErrorBar => "errorbar",
+            Style::Contour => "contour",
+            Style::Jump => "jump",
+        }
+    }
+}
+
+/// A named line (or point set) in a panel.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Series {
+    /// Name shown in the legend; series with the same name share a colour and one legend entry
+    /// (e.g. the stable and unstable parts of one curve).
+    pub name: String,
+    /// Line style.
+    pub style: Style,
+    /// Palette index; `None` assigns colours by name in order of appearance.
+    pub color: Option<usize>,
+    /// Whether the series appears in the legend.
+    pub legend: bool,
+    /// Points (x, y) in data units.
+    pub points: Vec<(f64, f64)>,
+}
+
+impl Series {
+    /// A series with automatic colour that appears in the legend.
+    pub fn new(name: impl Into<String>, style: Style, points: Vec<(f64, f64)>) -> Self {
+        Self {
+            name: name.into(),
+            style,
+            color: None,
+            legend: true,
+            points,
+        }
+    }
+
+    /// Fix the palette colour.
+    #[must_use]
+    pub fn with_color(mut self, color: usize) -> Self {
+        self.color = Some(color);
+        self
+    }
+
+    /// Keep the series out of the legend.
+    #[must_use]
+    pub fn without_legend(mut self) -> Self {
+        self.legend = false;
+        self
+    }
+}
+
+/// Marker shapes. The name is the CSV `style` column of a marker row.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum MarkerShape {
+    /// Pull-in instability: triangle.
+    PullIn,
+    /// Pull-off instability: square.
+    PullOff,
+    /// A stable state: filled circle.
+    StableState,
+    /// An unstable state: open circle.
+    UnstableState,
+    /// A distinguished point (e.g. the adhesive-force point): filled diamond.
+    Point,
+    /// A data point: cross.
+    Cross,
+}
+
+impl MarkerShape {
+    /// Kebab-case name used in CSV.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            MarkerShape::PullIn => "pull-in",
+            MarkerShape::PullOff => "pull-off",
+            MarkerShape::StableState => "stable-state",
+            MarkerShape::UnstableState => "unstable-state",
+            MarkerShape::Point => "point",
+            MarkerShape::Cross => "cross",
+        }
+    }
+}
+
+/// A single marked point, optionally with a text label (e.g. the letters A-F of Fig. 1.1).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Marker {
+    /// Legend name, e.g. `JKR pull-off`.
+    pub name: String,
+    /// Shape.
+    pub shape: MarkerShape,
+    /// Position x.
+    pub x: f64,
+    /// Position y.
+    pub y: f64,
+    /// Palette index; `None` takes the colour of the series with the same name, else black.
+    pub color: Option<usize>,
+    /// Short text drawn next to the marker.
+    pub label: Option<String>,
+}
+
+impl Marker {
+    /// A marker with automatic colour and no label.
+    pub fn new(name: impl Into<String>, shape: MarkerShape, x: f64, y: f64) -> Self {
+        Self {
+            name: name.into(),
+            shape,
+            x,
+            y,
+            color: None,
+            label: None,
+        }
+    }
+
+    /// Fix the palette colour.
+    #[must_use]
+    pub fn with_color(mut self, color: usize) -> Self {
+        self.color = Some(color);
+        self
+    }
+
+    /// Attach a text label.
+    #[must_use]
+    pub fn with_label(mut self, label: impl Into<String>) -> Self {
+        self.label = Some(label.into());
+        self
+    }
+}
+
+/// A shaded polygon, e.g. a hysteresis loop.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Region {
+    /// Legend name.
+    pub name: String,
+    /// Palette index.
+    pub color: Option<usize>,
+    /// Closed polygon (the last point connects to the first).
+    pub points: Vec<(f64, f64)>,
+}
+
+/// An arrow, e.g. a snap-through jump.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Arrow {
+    /// Tail.
+    pub from: (f64, f64),
+    /// Head.
+    pub to: (f64, f64),
+    /// Palette index.
+    pub color: Option<usize>,
+}
+
+/// How a field is drawn.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum FieldKind {
+    /// Colour map with a colour bar.
+    Heat,
+    /// Contour lines at the given levels (a colour map underneath when `filled`).
+    Contour {
+        /// Levels to draw.
+        levels: Vec<f64>,
+        /// Draw a colour map under the lines.
+        filled: bool,
+    },
+}
+
+/// A scalar field on a rectangular grid: `values[j * x.len() + i]` is the value at `(x[i], y[j])`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Field {
+    /// Quantity name, e.g. `Loss per area`.
+    pub name: String,
+    /// Unit of the values.
+    pub unit: String,
+    /// Grid abscissae, strictly increasing (in data units, log axes included).
+    pub x: Vec<f64>,
+    /// Grid ordinates, strictly increasing.
+    pub y: Vec<f64>,
+    /// Values, row-major in y: `values[j * nx + i]`.
+    pub values: Vec<f64>,
+    /// Heat map or contours.
+    pub kind: FieldKind,
+    /// Levels drawn as emphasised, labelled contour lines (e.g. a measured value).
+    pub highlight: Vec<(f64, String)>,
+}
+
+impl Field {
+    /// A heat field.
+    ///
+    /// # Panics
+    /// If `values.len() != x.len() * y.len()`.
+    pub fn heat(
+        name: impl Into<String>,
+        unit: impl Into<String>,
+        x: Vec<f64>,
+        y: Vec<f64>,
+        values: Vec<f64>,
+    ) -> Self {
+        assert_eq!(values.len(), x.len() * y.len(), "field values must be nx * ny");
+        Self {
+            name: name.into(),
+            unit: unit.into(),
+            x,
+            y,
+            values,
+            kind: FieldKind::Heat,
+            highlight: Vec::new(),
+        }
+    }
+
+    /// Value at grid node (i, j).
+    pub fn at(&self, i: usize, j: usize) -> f64 {
+        self.values[j * self.x.len() + i]
+    }
+
+    /// Smallest and largest finite value.
+    pub fn value_range(&self) -> Option<(f64, f64)> {
+        let mut it = self.values.iter().copied().filter(|v| v.is_finite());
+        let first = it.next()?;
+        Some(it.fold((first, first), |(lo, hi), v| (lo.min(v), hi.max(v))))
+    }
+
+    /// The levels to draw as contour lines: the explicit levels, or for a heat field none.
+    pub fn contour_levels(&self) -> Vec<f64> {
+        let mut levels = match &self.kind {
+            FieldKind::Heat => Vec::new(),
+            FieldKind::Contour { levels, .. } => levels.clone(),
+        };
+        levels.extend(self.highlight.iter().map(|(l, _)| *l));
+        levels
+    }
+
+    /// Contour lines of the field at `level` by marching squares, as polylines in data units.
+    ///
+    /// Segments are joined into polylines where they share end points; saddle cells are
+    /// resolved by the cell-centre average.
+    pub fn contour(&self, level: f64) -> Vec<Vec<(f64, f64)>> {
+        let nx = self.x.len();
+        let ny = self.y.len();
+        let mut segments: Vec<((f64, f64), (f64, f64))> = Vec::new();
+        if nx < 2 || ny < 2 {
+            return Vec::new();
+        }
+        let lerp = |p0: (f64, f64), v0: f64, p1: (f64, f64), v1: f64| {
+            let t = if (v1 - v0).abs() > 0.0 {
+                (level - v0) / (v1 - v0)
+            } else {
+                0.5
+            };
+            (p0.0 + t * (p1.0 - p0.0), p0.1 + t * (p1.1 - p0.1))
+        };
+        for j in 0..ny - 1 {
+            for i in 0..nx - 1 {
+                let corners = [
+                    ((self.x[i], self.y[j]), self.at(i, j)),
+                    ((self.x[i + 1], self.y[j]), self.at(i + 1, j)),
+                    ((self.x[i + 1], self.y[j + 1]), self.at(i + 1, j + 1)),
+                    ((self.x[i], self.y[j + 1]), self.at(i, j + 1)),
+                ];
+                if corners.iter().any(|(_, v)| !v.is_finite()) {
+                    continue;
+                }
+                // Crossing points on the four edges, in order 0-1, 1-2, 2-3, 3-0.
+                let mut crossings = Vec::with_capacity(4);
+                for e in 0..4 {
+                    let (p0, v0) = corners[e];
+                    let (p1, v1) = corners[(e + 1) % 4];
+                    if (v0 >= level) != (v1 >= level) {
+                        crossings.push((e, lerp(p0, v0, p1, v1)));
+                    }
+                }
+                match crossings.len() {
+                    2 => segments.push((crossings[0].1, crossings[1].1)),
+                    4 => {
+                        let centre = corners.iter().map(|(_, v)| v).sum::<f64>() / 4.0;
+                        let corner0_above = corners[0].1 >= level;
+                        // Join so that the centre's side is connected.
+                        if (centre >= level) == corner0_above {
+                            segments.push((crossings[0].1, crossings[1].1));
+                            segments.push((crossings[2].1, crossings[3].1));
+                        } else {
+                            segments.push((crossings[3].1, crossings[0].1));
+                            segments.push((crossings[1].1, crossings[2].1));
+                        }
+                    }
+                    _ => {}
+                }
+            }
+        }
+        join_segments(segments)
+    }
+}
+
+/// Join line segments sharing end points into polylines.
+fn join_segments(mut segments: Vec<((f64, f64), (f64, f64))>) -> Vec<Vec<(f64, f64)>> {
+    let close = |a: (f64, f64), b: (f64, f64)| {
+        let scale = a.0.abs().max(a.1.abs()).max(b.0.abs()).max(b.1.abs()).max(1e-300);
+        (a.0 - b.0).abs() <= 1e-9 * scale && (a.1 - b.1).abs() <= 1e-9 * scale
+    };
+    // Grid nodes exactly on the level give zero-length segments; they join nothing.
+    segments.retain(|(a, b)| !close(*a, *b));
+    let mut lines = Vec::new();
+    while let Some((a, b)) = segments.pop() {
+        let mut line = std::collections::VecDeque::from(vec![a, b]);
+        loop {
+            let back = *line.back().expect("line has two points");
+            let front = *line.front().expect("line has two points");
+            let found = segments.iter().position(|(p, q)| {
+                close(*p, back) || close(*q, back) || close(*p, front) || close(*q, front)
+            });
+            let Some(k) = found else { break };
+            let (p, q) = segments.swap_remove(k);
+            if close(p, back) {
+                line.push_back(q);
+            } else if close(q, back) {
+                line.push_back(p);
+            } else if close(p, front) {
+                line.push_front(q);
+            } else {
+                line.push_front(p);
+            }
+        }
+        lines.push(line.into_iter().collect());
+    }
+    lines
+}
+
+/// Where the legend goes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Legend {
+    /// The corner that covers the fewest data points.
+    #[default]
+    Auto,
+    /// Upper left.
+    UpperLeft,
+    /// Upper right.
+    UpperRight,
+    /// Lower left.
+    LowerLeft,
+    /// Lower right.
+    LowerRight,
+    /// No legend.
+    Hidden,
+}
+
+/// One panel: axes and everything drawn in them.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Panel {
+    /// Panel letter, e.g. `(a)`; may be empty.
+    pub label: String,
+    /// Short title.
+    pub title: String,
+    /// Horizontal axis.
+    pub x: Axis,
+    /// Vertical axis.
+    pub y: Axis,
+    /// Lines and point sets.
+    pub series: Vec<Series>,
+    /// Marked points.
+    pub markers: Vec<Marker>,
+    /// Shaded polygons (drawn first).
+    pub regions: Vec<Region>,
+    /// Arrows.
+    pub arrows: Vec<Arrow>,
+    /// A scalar field (drawn under everything else).
+    pub field: Option<Field>,
+    /// Legend placement.
+    pub legend: Legend,
+}
+
+impl Panel {
+    /// An empty panel with the given axes.
+    pub fn new(x: Axis, y: Axis) -> Self {
+        Self {
+            label: String::new(),
+            title: String::new(),
+            x,
+            y,
+            series: Vec::new(),
+            markers: Vec::new(),
+            regions: Vec::new(),
+            arrows: Vec::new(),
+            field: None,
+            legend: Legend::Auto,
+        }
+    }
+
+    /// Set label and title.
+    #[must_use]
+    pub fn titled(mut self, label: impl Into<String>, title: impl Into<String>) -> Self {
+        self.label = label.into();
+        self.title = title.into();
+        self
+    }
+
+    /// Add a series.
+    pub fn add(&mut self, series: Series) -> &mut Self {
+        self.series.push(series);
+        self
+    }
+
+    /// Add a series from name, style and points.
+    pub fn line(&mut self, name: impl Into<String>, style: Style, points: Vec<(f64, f64)>) -> &mut Series {
+        self.series.push(Series::new(name, style, points));
+        self.series.last_mut().expect("just pushed")
+    }
+
+    /// Add a marker.
+    pub fn mark(&mut self, marker: Marker) -> &mut Self {
+        self.markers.push(marker);
+        self
+    }
+
+    /// Add a shaded region.
+    pub fn shade(
+        &mut self,
+        name: impl Into<String>,
+        points: Vec<(f64, f64)>,
+        color: Option<usize>,
+    ) -> &mut Self {
+        self.regions.push(Region {
+            name: name.into(),
+            color,
+            points,
+        });
+        self
+    }
+
+    /// Add an arrow.
+    pub fn arrow(&mut self, from: (f64, f64), to: (f64, f64), color: Option<usize>) -> &mut Self {
+        self.arrows.push(Arrow { from, to, color });
+        self
+    }
+
+    /// The palette index of every series, by the rule of [`Series::color`]: fixed where given,
+    /// else one colour per distinct name in order of appearance, skipping fixed colours.
+    pub fn series_colors(&self) -> Vec<usize> {
+        let fixed: Vec<usize> = self.series.iter().filter_map(|s| s.color).collect();
+        let mut by_name: Vec<(&str, usize)> = Vec::new();
+        let mut next = 0;
+        self.series
+            .iter()
+            .map(|s| {
+                if let Some(c) = s.color {
+                    return c;
+                }
+                if let Some((_, c)) = by_name.iter().find(|(n, _)| *n == s.name) {
+                    return *c;
+                }
+                while fixed.contains(&next) {
+                    next += 1;
+                }
+                by_name.push((&s.name, next));
+                next += 1;
+                next - 1
+            })
+            .collect()
+    }
+
+    /// Colour of a marker: its own, else that of the series with the same name, else `None`.
+    pub fn marker_color(&self, marker: &Marker, series_colors: &[usize]) -> Option<usize> {
+        marker.color.or_else(|| {
+            self.series
+                .iter()
+                .position(|s| s.name == marker.name)
+                .map(|k| series_colors[k])
+        })
+    }
+
+    /// Bounding box of everything drawn, in data units, honouring fixed ranges and skipping
+    /// non-positive values on log axes. `None` when there is nothing to draw.
+    pub fn data_bounds(&self) -> Option<((f64, f64), (f64, f64))> {
+        let ok_x = |v: f64| v.is_finite() && (self.x.scale == Scale::Linear || v > 0.0);
+        let ok_y = |v: f64| v.is_finite() && (self.y.scale == Scale::Linear || v > 0.0);
+        let mut xs = Vec::new();
+        let mut ys = Vec::new();
+        let mut push = |x: f64, y: f64| {
+            if ok_x(x) && ok_y(y) {
+                xs.push(x);
+                ys.push(y);
+            }
+        };
+        for s in &self.series {
+            for &(x, y) in &s.points {
+                push(x, y);
+            }
+        }
+        for m in &self.markers {
+            push(m.x, m.y);
+        }
+        for r in &self.regions {
+            for &(x, y) in &r.points {
+                push(x, y);
+            }
+        }
+        for a in &self.arrows {
+            push(a.from.0, a.from.1);
+            push(a.to.0, a.to.1);
+        }
+        if let Some(f) = &self.field {
+            for &x in [f.x.first(), f.x.last()].into_iter().flatten() {
+                for &y in [f.y.first(), f.y.last()].into_iter().flatten() {
+                    push(x, y);
+                }
+            }
+        }
+        let fold = |v: &[f64]| -> Option<(f64, f64)> {
+            let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
+            let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            (lo <= hi).then_some((lo, hi))
+        };
+        let xr = self.x.range.or_else(|| fold(&xs))?;
+        let yr = self.y.range.or_else(|| fold(&ys))?;
+        Some((xr, yr))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn series_with_one_name_share_a_colour_and_fixed_colours_are_skipped() {
+        let mut p = Panel::new(Axis::linear("h", "m"), Axis::linear("P", "N"));
+        p.line("JKR", Style::Stable, vec![(0.0, 0.0)]);
+        p.add(Series::new("Hertz", Style::Stable, vec![]).with_color(0));
+        p.line("JKR", Style::Unstable, vec![(1.0, 1.0)]);
+        p.line("DMT", Style::Stable, vec![]);
+        assert_eq!(p.series_colors(), vec![1, 0, 1, 2]);
+    }
+
+    #[test]
+    fn contour_of_a_cone_is_a_closed_circle_of_the_right_radius() {
+        let n = 41;
+        let g: Vec<f64> = (0..n).map(|i| -1.0 + 2.0 * i as f64 / (n - 1) as f64).collect();
+        let mut v = Vec::new();
+        for &y in &g {
+            for &x in &g {
+                v.push((x * x + y * y).sqrt());
+            }
+        }
+        let f = Field::heat("r", "", g.clone(), g, v);
+        let lines = f.contour(0.5);
+        assert_eq!(lines.len(), 1);
+        let line = &lines[0];
+        assert!(line.len() > 20);
+        for &(x, y) in line {
+            let r = (x * x + y * y).sqrt();
+            assert!((r - 0.5).abs() < 0.01, "r = {r}");
+        }
+        let first = line[0];
+        let last = line[line.len() - 1];
+        assert!((first.0 - last.0).abs() < 1e-9 && (first.1 - last.1).abs() < 1e-9);
+    }
+}

@@ -1,0 +1,330 @@
+//! Headless mode: list and describe scenes, export figures (PNG, SVG, CSV, JSON), and the
+//! reproduction report. Everything is validated before anything is computed, and every file is
+//! written atomically, so a bad input or a failed run leaves no (half-written) output.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+use anyhow::{Context, bail};
+
+use crate::cli::Cli;
+use crate::error::{Error, Result};
+use crate::figure::Figure;
+use crate::job::{Job, JobEvent};
+use crate::params::{ParamValues, fmt_float, value_text};
+use crate::render::{Format, data, plot, write_atomic};
+use crate::reproduction;
+use crate::scenes::{self, SceneDyn, chapter_title};
+
+/// Run the command line in headless mode (also `--list` and `--describe`).
+///
+/// # Errors
+/// Any problem, as one line of context and cause.
+pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
+    if cli.list {
+        print!("{}", list());
+        return Ok(ExitCode::SUCCESS);
+    }
+    if let Some(id) = &cli.describe {
+        print!("{}", describe(id)?);
+        return Ok(ExitCode::SUCCESS);
+    }
+    if let Some(id) = &cli.print_preset {
+        print!("{}", preset_text(scenes::find(id)?));
+        return Ok(ExitCode::SUCCESS);
+    }
+    let formats = parse_formats(&cli.format)?;
+    if cli.reproduce {
+        return reproduce_command(&cli.out);
+    }
+    if let Some(id) = &cli.figure {
+        let scene = scenes::find(id)?;
+        let values = resolve_values(scene, cli.preset.as_deref(), &cli.set, cli.quick)?;
+        let written = export_scene(scene, &values, &cli.out, &formats, &progress_job(id))?;
+        for p in written {
+            println!("{}", p.display());
+        }
+        return Ok(ExitCode::SUCCESS);
+    }
+    if cli.all {
+        let mut failed = 0;
+        for scene in scenes::all() {
+            let id = scene.info().id;
+            let outcome = resolve_values(scene, None, &[], cli.quick)
+                .and_then(|values| export_scene(scene, &values, &cli.out, &formats, &progress_job(id)));
+            match outcome {
+                Ok(paths) => {
+                    for p in paths {
+                        println!("{}", p.display());
+                    }
+                }
+                Err(e) => {
+                    failed += 1;
+                    eprintln!("error: {id}: {e}");
+                }
+            }
+        }
+        if failed > 0 {
+            bail!("{failed} scene(s) failed");
+        }
+        return Ok(ExitCode::SUCCESS);
+    }
+    bail!("nothing to do: give --figure ID, --all or --reproduce (see --help)")
+}
+
+/// Parse the `--format` list.
+///
+/// # Errors
+/// An unknown format name.
+pub fn parse_formats(names: &[String]) -> anyhow::Result<Vec<Format>> {
+    let mut formats = Vec::new();
+    for n in names {
+        let f =
+            Format::parse(n).with_context(|| format!("unknown format `{n}`: use png, svg, csv or json"))?;
+        if !formats.contains(&f) {
+            formats.push(f);
+        }
+    }
+    if formats.is_empty() {
+        bail!("no output format given");
+    }
+    Ok(formats)
+}
+
+/// The scene list, grouped by chapter.
+pub fn list() -> String {
+    let mut out = String::new();
+    let mut chapter = "";
+    for s in scenes::all() {
+        let info = s.info();
+        if info.chapter != chapter {
+            chapter = info.chapter;
+            out.push_str(&format!("\nChapter {chapter}: {}\n", chapter_title(chapter)));
+        }
+        out.push_str(&format!("  {:<18} {}\n", info.id, info.title));
+    }
+    out
+}
+
+/// A scene's description: caption, parameters and results.
+///
+/// # Errors
+/// Unknown scene.
+pub fn describe(id: &str) -> Result<String> {
+    let scene = scenes::find(id)?;
+    let info = scene.info();
+    let defaults = scene.defaults();
+    let mut out = format!(
+        "{} — {}\n\n{}\n\nParameters (SI units; set with --set NAME=VALUE):\n",
+        info.id, info.title, info.caption
+    );
+    out.push_str(&format!(
+        "  {:<24} {:>14}  {:<8} {:<16} {}\n",
+        "name", "default", "unit", "valid range", "meaning"
+    ));
+    for (s, v) in defaults.specs.iter().zip(&defaults.values) {
+        let range = match s.kind {
+            crate::params::ParamKind::Float
+            | crate::params::ParamKind::Int
+            | crate::params::ParamKind::FloatList => s.range.describe(),
+            crate::params::ParamKind::Bool => "true, false".into(),
+            crate::params::ParamKind::Choice(options) => options.join(", "),
+            crate::params::ParamKind::Text => "text".into(),
+        };
+        let unit = if s.unit.is_empty() { "-" } else { s.unit };
+        out.push_str(&format!(
+            "  {:<24} {:>14}  {:<8} {:<16} {}\n",
+            s.name,
+            value_text(v),
+            unit,
+            range,
+            s.help
+        ));
+    }
+    out.push_str("\nResults (JSON `results`):\n");
+    for (name, meaning) in info.results {
+        out.push_str(&format!("  {name:<36} {meaning}\n"));
+    }
+    Ok(out)
+}
+
+/// The scene's defaults as a commented preset file.
+pub fn preset_text(scene: &dyn SceneDyn) -> String {
+    let info = scene.info();
+    let header = format!(
+        "presets/{}.toml -- {}\n{}\nSI units; load with `adhesion --headless --figure {} --preset FILE`.",
+        info.id, info.title, info.caption, info.id
+    );
+    scene.defaults().to_preset_text(&header)
+}
+
+/// Defaults, then the preset, then the `--set` assignments; validated.
+///
+/// # Errors
+/// Preset problems, unknown names, bad values, failed cross-field checks.
+pub fn resolve_values(
+    scene: &dyn SceneDyn,
+    preset: Option<&Path>,
+    sets: &[String],
+    quick: bool,
+) -> Result<ParamValues> {
+    let mut values = scene.defaults();
+    if let Some(path) = preset {
+        values.apply_preset_file(path)?;
+    }
+    for s in sets {
+        values.set_assignment(s)?;
+    }
+    scene.validate(&values)?;
+    if quick {
+        values = scene.quick(&values)?;
+    }
+    Ok(values)
+}
+
+/// Run a scene and write its files. Nothing is written unless the run succeeds.
+///
+/// # Errors
+/// Run errors, rendering errors, I/O errors.
+pub fn export_scene(
+    scene: &dyn SceneDyn,
+    values: &ParamValues,
+    out: &Path,
+    formats: &[Format],
+    job: &Job,
+) -> Result<Vec<PathBuf>> {
+    let start = Instant::now();
+    let fig = scene.run(values, job)?;
+    let run_time = start.elapsed().as_secs_f64();
+    finish_progress();
+    write_figure(&fig, scene.info().caption, values, run_time, out, formats)
+}
+
+/// Write a computed figure in the given formats as `<out>/<id>.<ext>`. All files are rendered
+/// first (PNG to a temporary file), then moved into place.
+///
+/// # Errors
+/// Rendering and I/O errors; on error no new file is left behind.
+pub fn write_figure(
+    fig: &Figure,
+    caption: &str,
+    values: &ParamValues,
+    run_time_s: f64,
+    out: &Path,
+    formats: &[Format],
+) -> Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(out)?;
+    let path = |f: Format| out.join(format!("{}.{}", fig.id, f.extension()));
+    // Render the text formats in memory first: a failure there writes nothing.
+    let mut texts: Vec<(PathBuf, String)> = Vec::new();
+    for &f in formats {
+        match f {
+            Format::Svg => texts.push((path(f), plot::svg_string(fig)?)),
+            Format::Csv => texts.push((path(f), data::csv(fig))),
+            Format::Json => texts.push((path(f), data::json(fig, caption, values, run_time_s))),
+            Format::Png => {}
+        }
+    }
+    let mut written = Vec::new();
+    if formats.contains(&Format::Png) {
+        plot::write_png(fig, &path(Format::Png))?;
+        written.push(path(Format::Png));
+    }
+    for (p, text) in texts {
+        write_atomic(&p, text.as_bytes())?;
+        written.push(p);
+    }
+    Ok(written)
+}
+
+/// A job that draws a progress bar on stderr once a run has taken more than a second.
+pub fn progress_job(id: &str) -> Job {
+    struct Bar {
+        start: Instant,
+        last: Option<Instant>,
+    }
+    let id = id.to_string();
+    let state = Mutex::new(Bar {
+        start: Instant::now(),
+        last: None,
+    });
+    Job::with_sink(move |event| {
+        let JobEvent::Progress { fraction, message } = event else {
+            return;
+        };
+        let Ok(mut bar) = state.lock() else { return };
+        let now = Instant::now();
+        if now.duration_since(bar.start) < Duration::from_secs(1) {
+            return;
+        }
+        if bar
+            .last
+            .is_some_and(|t| now.duration_since(t) < Duration::from_millis(100))
+            && *fraction < 1.0
+        {
+            return;
+        }
+        bar.last = Some(now);
+        let width = 30;
+        let filled = (fraction * width as f64).round() as usize;
+        let mut err = std::io::stderr().lock();
+        let _ = write!(
+            err,
+            "\r{id:<14} [{}{}] {:>3.0}% {:<40.40}",
+            "#".repeat(filled),
+            " ".repeat(width - filled.min(width)),
+            fraction * 100.0,
+            message
+        );
+        let _ = err.flush();
+        PROGRESS_SHOWN.store(true, std::sync::atomic::Ordering::Relaxed);
+    })
+}
+
+static PROGRESS_SHOWN: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// End the progress line, if one was drawn.
+fn finish_progress() {
+    if PROGRESS_SHOWN.swap(false, std::sync::atomic::Ordering::Relaxed) {
+        eprintln!();
+    }
+}
+
+/// `--reproduce`: compute every registered number, write the report, print a summary.
+fn reproduce_command(out: &Path) -> anyhow::Result<ExitCode> {
+    let outcomes = reproduction::evaluate_all();
+    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    let md = reproduction::markdown(&outcomes);
+    let json = serde_json::to_string_pretty(&outcomes).context("serialising the report")?;
+    write_atomic(&out.join("reproduction.md"), md.as_bytes())?;
+    write_atomic(&out.join("reproduction.json"), json.as_bytes())?;
+    for o in &outcomes {
+        println!(
+            "{:<44} {:<12} printed {:<14} computed {:<14} {:?}{}",
+            o.id,
+            o.source,
+            o.printed_text,
+            if o.computed.is_nan() {
+                "-".to_string()
+            } else {
+                fmt_float(o.computed)
+            },
+            o.status,
+            if o.as_expected { "" } else { "  UNEXPECTED" }
+        );
+    }
+    println!("{}", out.join("reproduction.md").display());
+    println!("{}", out.join("reproduction.json").display());
+    if outcomes.iter().all(|o| o.as_expected) {
+        Ok(ExitCode::SUCCESS)
+    } else {
+        Err(Error::Unresolvable {
+            model: "reproduction",
+            reason: "some claims changed status (marked UNEXPECTED)".into(),
+        }
+        .into())
+    }
+}

@@ -1,0 +1,5 @@
+//! Physical models, one module per theory. Models know equations only: no printing, no files, no
+//! front-end types. Every public function names the equation it implements.
+
+pub mod classical;
+pub mod fuller_tabor;

@@ -1,0 +1,692 @@
+//! Scene parameters: specification (name, unit, help, valid range), parsing from text and TOML,
+//! and validation.
+//!
+//! A scene's parameters are one plain serde struct declared with [`scene_params!`], which
+//! generates the struct, its `Default` (the dissertation's values), and its [`ParamSpec`] list
+//! from a single declaration, so the docs, the `--describe` output, the terminal UI's form and
+//! the range checks cannot drift apart. Validation has two stages: parsing (types, unknown keys)
+//! and meaning (ranges here, cross-field checks in the scene).
+
+use serde::Serialize;
+use serde::de::DeserializeOwned;
+
+use crate::error::{Error, Result, did_you_mean};
+
+/// The type of a parameter as the user edits it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ParamKind {
+    /// A real number (finite).
+    Float,
+    /// A non-negative whole number.
+    Int,
+    /// `true` or `false`.
+    Bool,
+    /// One of a fixed set of words.
+    Choice(&'static [&'static str]),
+    /// A comma-separated list of real numbers.
+    FloatList,
+    /// Free text (file paths); may be empty.
+    Text,
+}
+
+impl ParamKind {
+    /// What the user is expected to type, for error messages.
+    pub fn expected(self) -> String {
+        match self {
+            ParamKind::Float => "a number".into(),
+            ParamKind::Int => "a whole number".into(),
+            ParamKind::Bool => "true or false".into(),
+            ParamKind::Choice(options) => format!("one of {}", options.join(", ")),
+            ParamKind::FloatList => "a comma-separated list of numbers".into(),
+            ParamKind::Text => "text".into(),
+        }
+    }
+}
+
+/// One end of a valid range.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Bound {
+    /// No bound.
+    Open,
+    /// The value may equal the bound.
+    Inclusive(f64),
+    /// The value must not equal the bound.
+    Exclusive(f64),
+}
+
+/// The valid range of a numeric parameter (every element, for lists).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Range {
+    /// Lower end.
+    pub min: Bound,
+    /// Upper end.
+    pub max: Bound,
+}
+
+impl Range {
+    /// Any finite value.
+    pub const fn any() -> Self {
+        Self {
+            min: Bound::Open,
+            max: Bound::Open,
+        }
+    }
+    /// x > 0.
+    pub const fn positive() -> Self {
+        Self {
+            min: Bound::Exclusive(0.0),
+            max: Bound::Open,
+        }
+    }
+    /// x ≥ 0.
+    pub const fn non_negative() -> Self {
+        Self {
+            min: Bound::Inclusive(0.0),
+            max: Bound::Open,
+        }
+    }
+    /// x ≥ lo.
+    pub const fn at_least(lo: f64) -> Self {
+        Self {
+            min: Bound::Inclusive(lo),
+            max: Bound::Open,
+        }
+    }
+    /// lo ≤ x ≤ hi.
+    pub const fn between(lo: f64, hi: f64) -> Self {
+        Self {
+            min: Bound::Inclusive(lo),
+            max: Bound::Inclusive(hi),
+        }
+    }
+    /// lo < x < hi.
+    pub const fn open(lo: f64, hi: f64) -> Self {
+        Self {
+            min: Bound::Exclusive(lo),
+            max: Bound::Exclusive(hi),
+        }
+    }
+    /// lo ≤ x < hi.
+    pub const fn half_open(lo: f64, hi: f64) -> Self {
+        Self {
+            min: Bound::Inclusive(lo),
+            max: Bound::Exclusive(hi),
+        }
+    }
+
+    /// `None` if `x` is in range, else the reason ("must be positive").
+    pub fn violation(&self, x: f64) -> Option<String> {
+        if !x.is_finite() {
+            return Some("must be a finite number".into());
+        }
+        let below = match self.min {
+            Bound::Open => false,
+            Bound::Inclusive(lo) => x < lo,
+            Bound::Exclusive(lo) => x <= lo,
+        };
+        let above = match self.max {
+            Bound::Open => false,
+            Bound::Inclusive(hi) => x > hi,
+            Bound::Exclusive(hi) => x >= hi,
+        };
+        (below || above).then(|| match (self.min, self.max) {
+            (Bound::Exclusive(0.0), Bound::Open) => "must be positive".into(),
+            (Bound::Inclusive(0.0), Bound::Open) => "must not be negative".into(),
+            _ => format!("must be in {}", self.describe()),
+        })
+    }
+
+    /// Interval notation, e.g. `(0, inf)` or `[0, 0.5)`.
+    pub fn describe(&self) -> String {
+        let lo = match self.min {
+            Bound::Open => "(-inf".to_string(),
+            Bound::Inclusive(v) => format!("[{v}"),
+            Bound::Exclusive(v) => format!("({v}"),
+        };
+        let hi = match self.max {
+            Bound::Open => "inf)".to_string(),
+            Bound::Inclusive(v) => format!("{v}]"),
+            Bound::Exclusive(v) => format!("{v})"),
+        };
+        format!("{lo}, {hi}")
+    }
+}
+
+/// Everything the front ends need to know about one parameter.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParamSpec {
+    /// Name as in presets and `--set`.
+    pub name: &'static str,
+    /// Type.
+    pub kind: ParamKind,
+    /// Unit (SI), empty for non-dimensional values.
+    pub unit: &'static str,
+    /// One-line meaning, with the symbol and equation where the dissertation defines it.
+    pub help: &'static str,
+    /// Valid range for numbers (ignored for other kinds).
+    pub range: Range,
+}
+
+impl ParamSpec {
+    /// Parse the text a user typed into a TOML value of this parameter's type, checking the
+    /// range. The error names the parameter.
+    ///
+    /// # Errors
+    /// [`Error::ParseParameter`] for text of the wrong type, [`Error::InvalidParameter`] for a
+    /// value out of range (NaN and infinities included).
+    pub fn parse(&self, text: &str) -> Result<toml::Value> {
+        let t = text.trim();
+        let parse_err = || Error::ParseParameter {
+            name: self.name.into(),
+            expected: self.kind.expected(),
+            text: text.into(),
+        };
+        let value = match self.kind {
+            ParamKind::Float => toml::Value::Float(parse_float(t).ok_or_else(parse_err)?),
+            ParamKind::Int => {
+                let v: i64 = t.replace('_', "").parse().map_err(|_| parse_err())?;
+                if v < 0 {
+                    return Err(Error::invalid(self.name, v, "must not be negative"));
+                }
+                toml::Value::Integer(v)
+            }
+            ParamKind::Bool => match t.to_ascii_lowercase().as_str() {
+                "true" | "yes" | "on" | "1" => toml::Value::Boolean(true),
+                "false" | "no" | "off" | "0" => toml::Value::Boolean(false),
+                _ => return Err(parse_err()),
+            },
+            ParamKind::Choice(options) => {
+                if !options.contains(&t) {
+                    return Err(parse_err());
+                }
+                toml::Value::String(t.into())
+            }
+            ParamKind::FloatList => {
+                let t = t.trim_start_matches('[').trim_end_matches(']');
+                let mut items = Vec::new();
+                for part in t.split(',').map(str::trim).filter(|p| !p.is_empty()) {
+                    items.push(toml::Value::Float(parse_float(part).ok_or_else(parse_err)?));
+                }
+                if items.is_empty() {
+                    return Err(parse_err());
+                }
+                toml::Value::Array(items)
+            }
+            ParamKind::Text => toml::Value::String(text.into()),
+        };
+        self.check(&value)?;
+        Ok(value)
+    }
+
+    /// Check a TOML value against the type and range.
+    ///
+    /// # Errors
+    /// As [`ParamSpec::parse`].
+    pub fn check(&self, value: &toml::Value) -> Result<()> {
+        let wrong = || Error::ParseParameter {
+            name: self.name.into(),
+            expected: self.kind.expected(),
+            text: value.to_string(),
+        };
+        let check_number = |x: f64| match self.range.violation(x) {
+            Some(reason) => Err(Error::invalid(self.name, fmt_value(x), reason)),
+            None => Ok(()),
+        };
+        match (self.kind, value) {
+            (ParamKind::Float, toml::Value::Float(x)) => check_number(*x),
+            (ParamKind::Float, toml::Value::Integer(i)) => check_number(*i as f64),
+            (ParamKind::Int, toml::Value::Integer(i)) => {
+                if *i < 0 {
+                    Err(Error::invalid(self.name, i, "must not be negative"))
+                } else {
+                    check_number(*i as f64)
+                }
+            }
+            (ParamKind::Bool, toml::Value::Boolean(_)) | (ParamKind::Text, toml::Value::String(_)) => Ok(()),
+            (ParamKind::Choice(options), toml::Value::String(s)) if options.contains(&s.as_str()) => Ok(()),
+            (ParamKind::FloatList, toml::Value::Array(items)) if !items.is_empty() => {
+                for item in items {
+                    match item {
+                        toml::Value::Float(x) => check_number(*x)?,
+                        toml::Value::Integer(i) => check_number(*i as f64)?,
+                        _ => return Err(wrong()),
+                    }
+                }
+                Ok(())
+            }
+            _ => Err(wrong()),
+        }
+    }
+}
+
+/// Parse a float, accepting `1e-6`, `1_000`, and rejecting NaN and infinities by returning them
+/// (the range check then names them).
+fn parse_float(t: &str) -> Option<f64> {
+    let t = t.replace('_', "");
+    let lower = t.to_ascii_lowercase();
+    match lower.as_str() {
+        "nan" | "+nan" | "-nan" => Some(f64::NAN),
+        "inf" | "+inf" | "infinity" => Some(f64::INFINITY),
+        "-inf" | "-infinity" => Some(f64::NEG_INFINITY),
+        _ => lower.parse().ok(),
+    }
+}
+
+/// Format a number for messages and the form: shortest text that round-trips.
+pub fn fmt_value(x: f64) -> String {
+    if x.is_nan() {
+        return "NaN".into();
+    }
+    format!("{x}")
+}
+
+/// The text of a TOML value as the user would type it (the inverse of [`ParamSpec::parse`]).
+pub fn value_text(value: &toml::Value) -> String {
+    match value {
+        toml::Value::Float(x) => fmt_float(*x),
+        toml::Value::Integer(i) => i.to_string(),
+        toml::Value::Boolean(b) => b.to_string(),
+        toml::Value::String(s) => s.clone(),
+        toml::Value::Array(items) => items.iter().map(value_text).collect::<Vec<_>>().join(", "),
+        other => other.to_string(),
+    }
+}
+
+/// Short float text: plain for moderate magnitudes, scientific otherwise.
+pub fn fmt_float(x: f64) -> String {
+    let a = x.abs();
+    if x == 0.0 || (1e-3..1e6).contains(&a) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// A parameter struct of a scene: serde data with defaults and a spec per field.
+///
+/// Implemented by [`scene_params!`]; do not implement by hand.
+pub trait Params: Serialize + DeserializeOwned + Default + Clone + Send + Sync + 'static {
+    /// One spec per field, in declaration order.
+    fn specs() -> Vec<ParamSpec>;
+}
+
+/// The current values of a scene's parameters as TOML values, in spec order. This is what the
+/// front ends edit; [`ParamValues::to_params`] turns it into the typed struct.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParamValues {
+    /// The scene id (for messages).
+    pub scene: &'static str,
+    /// Specs, in order.
+    pub specs: Vec<ParamSpec>,
+    /// Values, parallel to `specs`.
+    pub values: Vec<toml::Value>,
+}
+
+impl ParamValues {
+    /// The values of a typed parameter struct.
+    ///
+    /// # Panics
+    /// If the struct does not serialise to a TOML table with one entry per spec (a bug in the
+    /// declaration, caught by the registry test).
+    pub fn from_params<P: Params>(scene: &'static str, params: &P) -> Self {
+        let specs = P::specs();
+        let table = toml::Table::try_from(params).expect("scene params serialise to a TOML table");
+        let values = specs
+            .iter()
+            .map(|s| table.get(s.name).cloned().expect("every spec names a field"))
+            .collect();
+        Self { scene, specs, values }
+    }
+
+    /// Index of a parameter, or an error with a suggestion.
+    ///
+    /// # Errors
+    /// [`Error::UnknownParameter`].
+    pub fn index(&self, name: &str) -> Result<usize> {
+        self.specs
+            .iter()
+            .position(|s| s.name == name)
+            .ok_or_else(|| Error::UnknownParameter {
+                name: name.into(),
+                scene: self.scene.into(),
+                hint: did_you_mean(name, self.specs.iter().map(|s| s.name)),
+            })
+    }
+
+    /// The value of a parameter.
+    pub fn get(&self, name: &str) -> Option<&toml::Value> {
+        self.specs
+            .iter()
+            .position(|s| s.name == name)
+            .map(|k| &self.values[k])
+    }
+
+    /// Set a parameter from user text (`--set name=value`, the form).
+    ///
+    /// # Errors
+    /// Unknown name, unparsable text, value out of range.
+    pub fn set_text(&mut self, name: &str, text: &str) -> Result<()> {
+        let k = self.index(name)?;
+        self.values[k] = self.specs[k].parse(text)?;
+        Ok(())
+    }
+
+    /// Parse `name=value`.
+    ///
+    /// # Errors
+    /// A missing `=`, or as [`ParamValues::set_text`].
+    pub fn set_assignment(&mut self, assignment: &str) -> Result<()> {
+        let Some((name, text)) = assignment.split_once('=') else {
+            return Err(Error::ParseParameter {
+                name: assignment.into(),
+                expected: "name=value".into(),
+                text: assignment.into(),
+            });
+        };
+        self.set_text(name.trim(), text)
+    }
+
+    /// Apply a TOML table (a preset): every key must be a parameter, every value valid.
+    ///
+    /// # Errors
+    /// Unknown keys (with a suggestion), wrong types, values out of range.
+    pub fn apply_table(&mut self, table: &toml::Table) -> Result<()> {
+        for (key, value) in table {
+            let k = self.index(key)?;
+            let spec = &self.specs[k];
+            // Integers are accepted where floats are expected.
+            let value = match (spec.kind, value) {
+                (ParamKind::Float, toml::Value::Integer(i)) => toml::Value::Float(*i as f64),
+                (ParamKind::FloatList, toml::Value::Array(items)) => toml::Value::Array(
+                    items
+                        .iter()
+                        .map(|v| match v {
+                            toml::Value::Integer(i) => toml::Value::Float(*i as f64),
+                            other => other.clone(),
+                        })
+                        .collect(),
+                ),
+                _ => value.clone(),
+            };
+            spec.check(&value)?;
+            self.values[k] = value;
+        }
+        Ok(())
+    }
+
+    /// Load and apply a preset file.
+    ///
+    /// # Errors
+    /// [`Error::Preset`] naming the file for unreadable or invalid TOML, unknown keys and
+    /// invalid values.
+    pub fn apply_preset_file(&mut self, path: &std::path::Path) -> Result<()> {
+        let preset_err = |message: String| Error::Preset {
+            path: path.to_path_buf(),
+            message,
+        };
+        let text = std::fs::read_to_string(path).map_err(|e| preset_err(e.to_string()))?;
+        let table: toml::Table = toml::from_str(&text).map_err(|e| preset_err(e.message().to_string()))?;
+        self.apply_table(&table).map_err(|e| preset_err(e.to_string()))
+    }
+
+    /// The values as a TOML table.
+    pub fn to_table(&self) -> toml::Table {
+        self.specs
+            .iter()
+            .zip(&self.values)
+            .map(|(s, v)| (s.name.to_string(), v.clone()))
+            .collect()
+    }
+
+    /// The typed parameter struct.
+    ///
+    /// # Errors
+    /// When the values do not deserialise (cannot happen for values that passed
+    /// [`ParamSpec::check`], but reported rather than assumed).
+    pub fn to_params<P: Params>(&self) -> Result<P> {
+        for (s, v) in self.specs.iter().zip(&self.values) {
+            s.check(v)?;
+        }
+        toml::Value::Table(self.to_table())
+            .try_into()
+            .map_err(|e: toml::de::Error| Error::Preset {
+                path: std::path::PathBuf::from(self.scene),
+                message: e.message().to_string(),
+            })
+    }
+
+    /// The values as a preset file: a commented TOML document (unit and help per line).
+    pub fn to_preset_text(&self, header: &str) -> String {
+        let mut out = String::new();
+        for line in header.lines() {
+            out.push_str("# ");
+            out.push_str(line);
+            out.push('\n');
+        }
+        for (s, v) in self.specs.iter().zip(&self.values) {
+            let value = match v {
+                toml::Value::Float(x) => toml_float(*x),
+                toml::Value::Array(items) => format!(
+                    "[{}]",
+                    items
+                        .iter()
+                        .map(|i| match i {
+                            toml::Value::Float(x) => toml_float(*x),
+                            other => other.to_string(),
+                        })
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+                other => other.to_string(),
+            };
+            let unit = if s.unit.is_empty() { "-" } else { s.unit };
+            out.push_str(&format!("{} = {}  # [{}] {}\n", s.name, value, unit, s.help));
+        }
+        out
+    }
+}
+
+/// A float as TOML text that reads back as a float.
+fn toml_float(x: f64) -> String {
+    let t = fmt_float(x);
+    if t.contains(['.', 'e', 'E', 'i', 'n']) {
+        t
+    } else {
+        format!("{t}.0")
+    }
+}
+
+/// Conversion of a field type to its [`ParamKind`].
+pub trait ParamType {
+    /// The kind of this type.
+    const KIND: ParamKind;
+}
+impl ParamType for f64 {
+    const KIND: ParamKind = ParamKind::Float;
+}
+impl ParamType for usize {
+    const KIND: ParamKind = ParamKind::Int;
+}
+impl ParamType for u64 {
+    const KIND: ParamKind = ParamKind::Int;
+}
+impl ParamType for bool {
+    const KIND: ParamKind = ParamKind::Bool;
+}
+impl ParamType for String {
+    const KIND: ParamKind = ParamKind::Text;
+}
+impl ParamType for Vec<f64> {
+    const KIND: ParamKind = ParamKind::FloatList;
+}
+
+/// Declare a scene's parameter struct, its defaults and its specs in one place.
+///
+/// ```
+/// adhesion::scene_params! {
+///     /// Parameters of an example scene.
+///     pub struct ExampleParams {
+///         /// Sphere radius R.
+///         radius: f64 = 1.0e-6, unit = "m", range = adhesion::params::Range::positive();
+///         /// Number of points on each curve.
+///         points: usize = 200, unit = "", range = adhesion::params::Range::between(10.0, 1e5);
+///     }
+/// }
+/// use adhesion::params::Params;
+/// assert_eq!(ExampleParams::default().points, 200);
+/// assert_eq!(ExampleParams::specs()[0].unit, "m");
+/// ```
+#[macro_export]
+macro_rules! scene_params {
+    (
+        $(#[$meta:meta])*
+        pub struct $name:ident {
+            $(
+                #[doc = $doc:literal]
+                $field:ident : $ty:ty = $default:expr, unit = $unit:literal, range = $range:expr;
+            )*
+        }
+    ) => {
+        $(#[$meta])*
+        #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+        #[serde(deny_unknown_fields, default)]
+        pub struct $name {
+            $(
+                #[doc = $doc]
+                #[doc = concat!("\n\nUnit: `", $unit, "`.")]
+                pub $field: $ty,
+            )*
+        }
+
+        impl Default for $name {
+            fn default() -> Self {
+                Self { $($field: $default,)* }
+            }
+        }
+
+        impl $crate::params::Params for $name {
+            fn specs() -> Vec<$crate::params::ParamSpec> {
+                vec![$(
+                    $crate::params::ParamSpec {
+                        name: stringify!($field),
+                        kind: <$ty as $crate::params::ParamType>::KIND,
+                        unit: $unit,
+                        help: $doc.trim_ascii(),
+                        range: $range,
+                    },
+                )*]
+            }
+        }
+    };
+}
+
+/// Declare a closed set of words as a parameter type (a [`ParamKind::Choice`]).
+///
+/// ```
+/// adhesion::param_choice! {
+///     /// How the loss per asperity is computed.
+///     pub enum LossMethod { Exact = "exact", Empirical = "empirical" }
+/// }
+/// assert_eq!(LossMethod::Exact.as_str(), "exact");
+/// ```
+#[macro_export]
+macro_rules! param_choice {
+    (
+        $(#[$meta:meta])*
+        pub enum $name:ident { $first:ident = $first_text:literal $(, $variant:ident = $text:literal)* $(,)? }
+    ) => {
+        $(#[$meta])*
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+        pub enum $name {
+            #[doc = concat!("`", $first_text, "`")]
+            #[serde(rename = $first_text)]
+            $first,
+            $(
+                #[doc = concat!("`", $text, "`")]
+                #[serde(rename = $text)]
+                $variant,
+            )*
+        }
+
+        impl $name {
+            /// The word the user types.
+            pub fn as_str(self) -> &'static str {
+                match self {
+                    $name::$first => $first_text,
+                    $($name::$variant => $text,)*
+                }
+            }
+        }
+
+        impl Default for $name {
+            fn default() -> Self {
+                $name::$first
+            }
+        }
+
+        impl $crate::params::ParamType for $name {
+            const KIND: $crate::params::ParamKind =
+                $crate::params::ParamKind::Choice(&[$first_text $(, $text)*]);
+        }
+    };
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    crate::scene_params! {
+        /// Test parameters.
+        pub struct TestParams {
+            /// Modulus E*.
+            modulus: f64 = 1.0e6, unit = "Pa", range = Range::positive();
+            /// Points.
+            points: usize = 10, unit = "", range = Range::between(2.0, 100.0);
+            /// Values.
+            levels: Vec<f64> = vec![1.0, 2.0], unit = "nm", range = Range::non_negative();
+            /// Flag.
+            exact: bool = true, unit = "", range = Range::any();
+        }
+    }
+
+    fn values() -> ParamValues {
+        ParamValues::from_params("test", &TestParams::default())
+    }
+
+    #[test]
+    fn text_round_trip_and_errors_name_the_parameter() {
+        let mut v = values();
+        v.set_text("modulus", "2e6").unwrap();
+        v.set_text("levels", "1, 2.5, 3").unwrap();
+        let p: TestParams = v.to_params().unwrap();
+        assert_eq!(p.modulus, 2e6);
+        assert_eq!(p.levels, vec![1.0, 2.5, 3.0]);
+
+        let e = v.set_text("modulus", "-1").unwrap_err().to_string();
+        assert_eq!(e, "invalid parameter `modulus` = -1: must be positive");
+        let e = v.set_text("modulus", "abc").unwrap_err().to_string();
+        assert_eq!(e, "parameter `modulus` expects a number, got `abc`");
+        let e = v.set_text("modulus", "NaN").unwrap_err().to_string();
+        assert_eq!(e, "invalid parameter `modulus` = NaN: must be a finite number");
+        let e = v.set_text("points", "1").unwrap_err().to_string();
+        assert_eq!(e, "invalid parameter `points` = 1: must be in [2, 100]");
+        let e = v.set_text("modulos", "1").unwrap_err().to_string();
+        assert_eq!(
+            e,
+            "unknown parameter `modulos` for scene test (did you mean `modulus`?)"
+        );
+        // The failed assignments kept the last valid values.
+        assert_eq!(v.to_params::<TestParams>().unwrap().modulus, 2e6);
+    }
+
+    #[test]
+    fn preset_text_reads_back_to_the_same_values() {
+        let mut v = values();
+        v.set_text("modulus", "3").unwrap();
+        let text = v.to_preset_text("header");
+        let table: toml::Table = toml::from_str(&text).unwrap();
+        let mut w = values();
+        w.apply_table(&table).unwrap();
+        assert_eq!(v, w);
+    }
+}

@@ -1,0 +1,208 @@
+//! Axis ticks and number formatting shared by the plot and terminal renderers.
+
+use crate::figure::Scale;
+
+/// Tick positions (in data units) and their labels for an axis range.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ticks {
+    /// Tick positions, in data units, inside the range.
+    pub values: Vec<f64>,
+    /// Labels, parallel to `values`.
+    pub labels: Vec<String>,
+    /// Minor tick positions (log axes: 2..9 × 10^k).
+    pub minor: Vec<f64>,
+}
+
+/// Padded drawing range for data bounds: linear axes get 4 % margins (or a unit window when
+/// the data are constant); log axes snap outward to whole or half decades.
+pub fn padded_range(lo: f64, hi: f64, scale: Scale) -> (f64, f64) {
+    match scale {
+        Scale::Linear => {
+            if !(lo.is_finite() && hi.is_finite()) {
+                return (0.0, 1.0);
+            }
+            if hi - lo <= f64::EPSILON * lo.abs().max(hi.abs()).max(1e-300) {
+                let d = if lo == 0.0 { 1.0 } else { 0.1 * lo.abs() };
+                return (lo - d, hi + d);
+            }
+            let m = 0.04 * (hi - lo);
+            (lo - m, hi + m)
+        }
+        Scale::Log => {
+            let lo = if lo > 0.0 && lo.is_finite() { lo } else { 1e-3 };
+            let hi = if hi > 0.0 && hi.is_finite() { hi } else { lo * 10.0 };
+            let (l, h) = (lo.log10(), hi.log10());
+            if h - l < 1e-12 {
+                return (10f64.powf(l - 0.5), 10f64.powf(h + 0.5));
+            }
+            let m = 0.03 * (h - l);
+            (10f64.powf(l - m), 10f64.powf(h + m))
+        }
+    }
+}
+
+/// A "nice" step (1, 2 or 5 × 10^k) giving about `target` intervals over `span`.
+pub fn nice_step(span: f64, target: usize) -> f64 {
+    let raw = span / target.max(1) as f64;
+    let mag = 10f64.powf(raw.log10().floor());
+    let norm = raw / mag;
+    let nice = if norm < 1.5 {
+        1.0
+    } else if norm < 3.0 {
+        2.0
+    } else if norm < 7.0 {
+        5.0
+    } else {
+        10.0
+    };
+    nice * mag
+}
+
+/// Ticks for the range `[lo, hi]`.
+pub fn ticks(lo: f64, hi: f64, scale: Scale, target: usize) -> Ticks {
+    match scale {
+        Scale::Linear => {
+            let step = nice_step(hi - lo, target);
+            let first = (lo / step).ceil() as i64;
+            let last = (hi / step).floor() as i64;
+            let values: Vec<f64> = (first..=last).map(|k| k as f64 * step).collect();
+            let labels = format_ticks(&values, step);
+            Ticks {
+                values,
+                labels,
+                minor: Vec::new(),
+            }
+        }
+        Scale::Log => {
+            let (l, h) = (lo.log10(), hi.log10());
+            let decades = h - l;
+            let every = if decades > 12.0 {
+                (decades / 6.0).ceil() as i64
+            } else {
+                1
+            };
+            let first = l.ceil() as i64;
+            let last = h.floor() as i64;
+            let mut values = Vec::new();
+            let mut labels = Vec::new();
+            let mut minor = Vec::new();
+            for k in (l.floor() as i64)..=(h.ceil() as i64) {
+                if (first..=last).contains(&k) && k % every == 0 {
+                    values.push(10f64.powi(k as i32));
+                    labels.push(power_of_ten(k));
+                }
+                if every == 1 {
+                    for m in 2..10 {
+                        let v = m as f64 * 10f64.powi(k as i32);
+                        if v >= lo && v <= hi {
+                            minor.push(v);
+                        }
+                    }
+                }
+            }
+            // Less than a decade or two: label some of the 2 and 5 multiples as well.
+            if values.len() < 2 {
+                for &v in &minor {
+                    let m = (v / 10f64.powf(v.log10().floor())).round();
+                    if m == 2.0 || m == 5.0 {
+                        values.push(v);
+                        labels.push(format_number(v));
+                    }
+                }
+                let mut pairs: Vec<_> = values.into_iter().zip(labels).collect();
+                pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+                let (v, lab): (Vec<f64>, Vec<String>) = pairs.into_iter().unzip();
+                values = v;
+                labels = lab;
+            }
+            Ticks {
+                values,
+                labels,
+                minor,
+            }
+        }
+    }
+}
+
+/// `10ᵏ` with a superscript exponent.
+pub fn power_of_ten(k: i64) -> String {
+    const SUP: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+    match k {
+        0 => "1".into(),
+        1 => "10".into(),
+        _ => {
+            let mut s = String::from("10");
+            if k < 0 {
+                s.push('⁻');
+            }
+            for c in k.unsigned_abs().to_string().chars() {
+                s.push(SUP[c.to_digit(10).unwrap_or(0) as usize]);
+            }
+            s
+        }
+    }
+}
+
+/// Labels for equally spaced ticks: as many decimals as the step needs, or a common
+/// scientific form for very large or small values.
+pub fn format_ticks(values: &[f64], step: f64) -> Vec<String> {
+    let max = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if max >= 1e5 || (max > 0.0 && max < 1e-3) {
+        let decimals = ((max.log10().floor() - step.log10().floor()).max(0.0) as usize).min(6);
+        return values
+            .iter()
+            .map(|&v| {
+                if v == 0.0 {
+                    "0".into()
+                } else {
+                    format!("{v:.decimals$e}")
+                }
+            })
+            .collect();
+    }
+    let decimals = (-step.log10().floor()).max(0.0) as usize;
+    values
+        .iter()
+        .map(|&v| {
+            let s = format!("{v:.decimals$}");
+            if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') {
+                "0".into()
+            } else {
+                s.replace('-', "−")
+            }
+        })
+        .collect()
+}
+
+/// A single number, short.
+pub fn format_number(v: f64) -> String {
+    let a = v.abs();
+    if v == 0.0 {
+        "0".into()
+    } else if !(1e-3..1e5).contains(&a) {
+        format!("{v:.2e}")
+    } else {
+        let s = format!("{v:.4}");
+        let s = s.trim_end_matches('0').trim_end_matches('.');
+        s.to_string()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn linear_ticks_are_nice_and_inside() {
+        let t = ticks(-1.37, 2.9, Scale::Linear, 6);
+        assert_eq!(t.values.first().copied(), Some(-1.0));
+        assert!(t.values.iter().all(|v| (-1.37..=2.9).contains(v)));
+        assert_eq!(t.labels[0], "−1");
+    }
+
+    #[test]
+    fn log_ticks_are_decades() {
+        let t = ticks(0.009, 1100.0, Scale::Log, 6);
+        assert_eq!(t.labels, vec!["10⁻²", "10⁻¹", "1", "10", "10²", "10³"]);
+    }
+}

@@ -1,0 +1,203 @@
+//! The scene registry: one scene per computational figure of the dissertation.
+//!
+//! A scene is data plus one function: an id (the figure number, `fig2.5`), a title, the caption
+//! in short, a parameter struct with the dissertation's values as defaults (and a preset file
+//! `presets/<id>.toml`), the names of the scalar results it reports, and
+//! `run(&Params, &Job) -> Result<Figure>`. The terminal UI and the headless exporter list the
+//! same registry through the object-safe [`SceneDyn`].
+//!
+//! Adding a scene: implement [`Scene`] for a unit struct in the chapter's file under `scenes/`,
+//! add it to that file's `SCENES` list, and add `presets/<id>.toml`.
+
+use std::marker::PhantomData;
+
+use crate::error::{Error, Result, did_you_mean};
+use crate::figure::Figure;
+use crate::job::Job;
+use crate::params::{ParamSpec, ParamValues, Params};
+
+pub mod fig1;
+
+/// A figure of the dissertation, computed.
+pub trait Scene: Send + Sync + 'static {
+    /// Parameter struct (declared with [`crate::scene_params!`]).
+    type Params: Params;
+    /// Id, the dissertation's figure number: `fig1.1`, `fig2.5-accuracy`, `figC.2`.
+    const ID: &'static str;
+    /// Chapter or appendix the figure belongs to: `"1"` ... `"6"`, `"A"` ... `"C"`.
+    const CHAPTER: &'static str;
+    /// Title.
+    const TITLE: &'static str;
+    /// The dissertation's caption, in short, with the equations the scene uses.
+    const CAPTION: &'static str;
+    /// Names of the scalar results (with unit suffix or `_norm`) and their meaning.
+    const RESULTS: &'static [(&'static str, &'static str)];
+
+    /// Checks across fields (ranges of single fields are checked by their specs).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming the field.
+    fn validate(_params: &Self::Params) -> Result<()> {
+        Ok(())
+    }
+
+    /// Reduce the resolution for quick runs (tests of every preset); the physics is unchanged.
+    fn quick(_params: &mut Self::Params) {}
+
+    /// Compute the figure.
+    ///
+    /// # Errors
+    /// Model errors, [`Error::Cancelled`] when the job is cancelled.
+    fn run(params: &Self::Params, job: &Job) -> Result<Figure>;
+}
+
+/// Static description of a scene.
+#[derive(Debug, Clone, Copy)]
+pub struct SceneInfo {
+    /// Id.
+    pub id: &'static str,
+    /// Chapter key.
+    pub chapter: &'static str,
+    /// Title.
+    pub title: &'static str,
+    /// Caption.
+    pub caption: &'static str,
+    /// Result names and meanings.
+    pub results: &'static [(&'static str, &'static str)],
+}
+
+/// Object-safe view of a [`Scene`], used by the front ends.
+pub trait SceneDyn: Send + Sync {
+    /// Id, title, caption, results.
+    fn info(&self) -> SceneInfo;
+    /// Parameter specs.
+    fn specs(&self) -> Vec<ParamSpec>;
+    /// The default values (the dissertation's).
+    fn defaults(&self) -> ParamValues;
+    /// Validate values fully (types, ranges, cross-field checks) without running.
+    ///
+    /// # Errors
+    /// The first problem found.
+    fn validate(&self, values: &ParamValues) -> Result<()>;
+    /// Reduce `values` for a quick run.
+    ///
+    /// # Errors
+    /// If the values are invalid.
+    fn quick(&self, values: &ParamValues) -> Result<ParamValues>;
+    /// Validate and run.
+    ///
+    /// # Errors
+    /// Validation errors, model errors, cancellation.
+    fn run(&self, values: &ParamValues, job: &Job) -> Result<Figure>;
+}
+
+/// Adapter from a typed [`Scene`] to [`SceneDyn`].
+pub struct Registered<S>(PhantomData<S>);
+
+impl<S> Registered<S> {
+    /// The adapter (a zero-sized constant).
+    pub const NEW: Self = Registered(PhantomData);
+}
+
+impl<S: Scene> SceneDyn for Registered<S> {
+    fn info(&self) -> SceneInfo {
+        SceneInfo {
+            id: S::ID,
+            chapter: S::CHAPTER,
+            title: S::TITLE,
+            caption: S::CAPTION,
+            results: S::RESULTS,
+        }
+    }
+
+    fn specs(&self) -> Vec<ParamSpec> {
+        S::Params::specs()
+    }
+
+    fn defaults(&self) -> ParamValues {
+        ParamValues::from_params(S::ID, &S::Params::default())
+    }
+
+    fn validate(&self, values: &ParamValues) -> Result<()> {
+        let p: S::Params = values.to_params()?;
+        S::validate(&p)
+    }
+
+    fn quick(&self, values: &ParamValues) -> Result<ParamValues> {
+        let mut p: S::Params = values.to_params()?;
+        S::quick(&mut p);
+        Ok(ParamValues::from_params(S::ID, &p))
+    }
+
+    fn run(&self, values: &ParamValues, job: &Job) -> Result<Figure> {
+        let p: S::Params = values.to_params()?;
+        S::validate(&p)?;
+        let mut figure = S::run(&p, job)?;
+        figure.id = S::ID.to_string();
+        Ok(figure)
+    }
+}
+
+/// Every scene, in chapter order.
+pub fn all() -> Vec<&'static dyn SceneDyn> {
+    [fig1::SCENES].concat()
+}
+
+/// Look a scene up by id.
+///
+/// # Errors
+/// [`Error::UnknownScene`] with a suggestion.
+pub fn find(id: &str) -> Result<&'static dyn SceneDyn> {
+    let scenes = all();
+    scenes
+        .iter()
+        .find(|s| s.info().id == id)
+        .copied()
+        .ok_or_else(|| Error::UnknownScene {
+            id: id.into(),
+            hint: did_you_mean(id, scenes.iter().map(|s| s.info().id)),
+        })
+}
+
+/// Chapter titles, for grouping scenes in lists.
+pub const CHAPTERS: &[(&str, &str)] = &[
+    ("1", "Classical theories and Fuller-Tabor"),
+    ("2", "Machine stiffness (JKR with a spring)"),
+    ("3", "Maugis-Dugdale and depth-dependent hysteresis"),
+    ("4", "Finite elements with a Lennard-Jones body force"),
+    ("5", "Fibrils and spring arrays"),
+    ("6", "Peeling from wavy substrates"),
+    ("C", "Random rough surfaces (appendix C)"),
+];
+
+/// Title of a chapter key.
+pub fn chapter_title(key: &str) -> &'static str {
+    CHAPTERS
+        .iter()
+        .find(|(k, _)| *k == key)
+        .map_or("Other", |(_, t)| *t)
+}
+
+/// A readable SI prefix for values of magnitude around `magnitude`: returns (scale, unit) such
+/// that `value / scale` is in the prefixed unit, e.g. `(1e-9, "nm")` for 3e-8 m.
+pub fn engineering_unit(base: &str, magnitude: f64) -> (f64, String) {
+    const PREFIXES: [(f64, &str); 9] = [
+        (1e-15, "f"),
+        (1e-12, "p"),
+        (1e-9, "n"),
+        (1e-6, "µ"),
+        (1e-3, "m"),
+        (1.0, ""),
+        (1e3, "k"),
+        (1e6, "M"),
+        (1e9, "G"),
+    ];
+    let m = magnitude.abs();
+    let (scale, prefix) = PREFIXES
+        .iter()
+        .rev()
+        .find(|(s, _)| m >= *s)
+        .copied()
+        .unwrap_or(PREFIXES[0]);
+    (scale, format!("{prefix}{base}"))
+}
