@@ -56,8 +56,8 @@ fn readme_test_command_is_ci() {
     let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
     let command = ci
         .lines()
-        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
-        .last()
+        .rev()
+        .find(|l| !l.starts_with('#') && !l.trim().is_empty())
         .unwrap();
     assert!(command.starts_with("cargo "), "last line of .ci/run: {command}");
     assert!(
