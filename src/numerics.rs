@@ -1,8 +1,10 @@
 //! Numerical building blocks with no physics in them: root finding, quadrature, curve tracing
-//! (all roots on an interval, turning points, the path along equilibrium branches).
+//! (all roots on an interval, turning points, the path along equilibrium branches), and
+//! nonlinear least squares (Levenberg-Marquardt).
 //!
 //! Models call these; they know nothing about contact mechanics, figures or front ends.
 
 pub mod curve;
+pub mod least_squares;
 pub mod quadrature;
 pub mod roots;
