@@ -71,4 +71,12 @@ pub struct Cli {
     /// reproduction.md and reproduction.json.
     #[arg(long)]
     pub reproduce: bool,
+
+    /// Curve fitting (appendix A.4).
+    #[command(flatten)]
+    pub fit: crate::fit::FitArgs,
+
+    /// Rough-surface generation and analysis.
+    #[command(flatten)]
+    pub surface: crate::surface::SurfaceArgs,
 }

@@ -37,6 +37,7 @@
 pub mod cli;
 pub mod error;
 pub mod figure;
+pub mod fit;
 pub mod headless;
 pub mod job;
 pub mod models;
@@ -45,6 +46,7 @@ pub mod params;
 pub mod render;
 pub mod reproduction;
 pub mod scenes;
+pub mod surface;
 pub mod tui;
 
 pub use error::{Error, Result};

@@ -2,4 +2,9 @@
 //! front-end types. Every public function names the equation it implements.
 
 pub mod classical;
+pub mod fibril;
 pub mod fuller_tabor;
+pub mod machine_stiffness;
+pub mod maugis_dugdale;
+pub mod peeling;
+pub mod spring_array;

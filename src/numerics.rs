@@ -6,5 +6,6 @@
 
 pub mod curve;
 pub mod least_squares;
+pub mod newton;
 pub mod quadrature;
 pub mod roots;

@@ -12,7 +12,12 @@ use serde::Serialize;
 
 use crate::error::Result;
 
+mod appc;
 mod ch1;
+mod ch2;
+mod ch3;
+mod ch5;
+mod ch6;
 
 /// What the workbench expects to obtain for a claim.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -98,7 +103,15 @@ pub struct Outcome {
 
 /// Every claim, chapter by chapter.
 pub fn claims() -> Vec<Claim> {
-    [ch1::claims()].concat()
+    [
+        ch1::claims(),
+        ch2::claims(),
+        ch3::claims(),
+        ch5::claims(),
+        ch6::claims(),
+        appc::claims(),
+    ]
+    .concat()
 }
 
 /// Value and absolute tolerance of a printed number: half a unit of its last digit.

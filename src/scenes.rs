@@ -17,6 +17,11 @@ use crate::job::Job;
 use crate::params::{ParamSpec, ParamValues, Params};
 
 pub mod fig1;
+pub mod fig2;
+pub mod fig3;
+pub mod fig5;
+pub mod fig6;
+pub mod figc;
 
 /// A figure of the dissertation, computed.
 pub trait Scene: Send + Sync + 'static {
@@ -140,7 +145,15 @@ impl<S: Scene> SceneDyn for Registered<S> {
 
 /// Every scene, in chapter order.
 pub fn all() -> Vec<&'static dyn SceneDyn> {
-    [fig1::SCENES].concat()
+    [
+        fig1::SCENES,
+        fig2::SCENES,
+        fig3::SCENES,
+        fig5::SCENES,
+        fig6::SCENES,
+        figc::SCENES,
+    ]
+    .concat()
 }
 
 /// Look a scene up by id.

@@ -2,6 +2,10 @@
 //! consistency, the scene registry and presets, snapshots of exported data, the command line,
 //! and the reproduction registry.
 
+mod ch2;
+mod ch3;
+mod ch5;
+mod ch6;
 mod cli;
 mod common;
 mod layering;
@@ -9,3 +13,5 @@ mod reference_ch1;
 mod registry;
 mod reproduction;
 mod snapshots;
+mod surface;
+mod tui;
