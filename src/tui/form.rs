@@ -456,6 +456,58 @@ mod tests {
         assert!(f.is_valid());
     }
 
+    crate::scene_params! {
+        /// Parameters of a scene with a cross-field check.
+        pub struct SpanParams {
+            /// Lower end.
+            lo: f64 = 1.0, unit = "m", range = crate::params::Range::positive();
+            /// Upper end, above the lower.
+            hi: f64 = 2.0, unit = "m", range = crate::params::Range::positive();
+        }
+    }
+
+    struct Span;
+
+    impl crate::scenes::Scene for Span {
+        type Params = SpanParams;
+        const ID: &'static str = "span";
+        const CHAPTER: &'static str = "1";
+        const TITLE: &'static str = "span";
+        const CAPTION: &'static str = "a scene with lo < hi";
+        const RESULTS: &'static [(&'static str, &'static str)] = &[];
+
+        fn validate(p: &SpanParams) -> crate::error::Result<()> {
+            if p.lo < p.hi {
+                Ok(())
+            } else {
+                Err(Error::invalid("hi", p.hi, format!("must exceed lo = {}", p.lo)))
+            }
+        }
+
+        fn run(_: &SpanParams, _: &crate::job::Job) -> crate::error::Result<crate::figure::Figure> {
+            Ok(crate::figure::Figure::new("span", "span"))
+        }
+    }
+
+    static SPAN: crate::scenes::Registered<Span> = crate::scenes::Registered::<Span>::NEW;
+
+    #[test]
+    fn cross_field_checks_mark_the_named_field_and_clear_when_either_field_is_fixed() {
+        let mut f = Form::new(&SPAN);
+        f.set_text(0, "3");
+        assert!(!f.is_valid());
+        assert_eq!(f.error(0), None);
+        assert_eq!(f.error(1), Some("invalid parameter `hi` = 2: must exceed lo = 3"));
+        assert_eq!(f.cross_error(), f.error(1));
+        // The run values are the last valid set.
+        assert_eq!(f.values().get("lo"), Some(&toml::Value::Float(1.0)));
+        // Fixing the other field makes the whole set valid, with both new values.
+        f.set_text(1, "4");
+        assert!(f.is_valid(), "{:?}", f.first_error());
+        assert_eq!(f.values().get("lo"), Some(&toml::Value::Float(3.0)));
+        assert_eq!(f.values().get("hi"), Some(&toml::Value::Float(4.0)));
+    }
+
     #[test]
     fn selection_wraps_around() {
         let mut f = form();

@@ -278,6 +278,7 @@ fn escape_cancels_a_running_job_and_keeps_the_partial_chart() {
     assert!(screen.contains("rising sine"), "{screen}");
     assert!(screen.contains("partial"), "{screen}");
     assert!(screen.contains("Esc cancels"), "the gauge:\n{screen}");
+    assert!(screen.contains("50% waiting for Esc"), "the progress:\n{screen}");
     // Export is refused while the figure is partial.
     press(&mut s, KeyCode::Char('e'));
     assert!(s.app().status().error);
