@@ -12,7 +12,7 @@
 //!
 //! The terminal is restored on exit, on error (a drop guard) and on panic (the panic hook of
 //! [`ratatui::try_init`], which this module lets through only for the drawing thread: a panic in
-//! a worker is reported as a failed run instead).
+//! a worker thread is caught there and reported as a failed run instead).
 
 pub mod app;
 pub mod form;
@@ -57,23 +57,30 @@ pub fn run() -> anyhow::Result<ExitCode> {
     std::panic::set_hook(Box::new(move |info| {
         // Worker threads catch their panics and report them as failed runs; only a panic of
         // the drawing thread restores the terminal and prints.
-        let worker = std::thread::current().name() == Some(worker::WORKER_THREAD)
-            || std::thread::current().id() != ui_thread;
-        if !worker {
+        if std::thread::current().id() == ui_thread {
             restore_and_report(info);
         }
     }));
+    // Draw only when something changed: a key, a resize, a message of the worker.
+    let mut dirty = true;
     loop {
-        terminal
-            .draw(|frame| session.draw(frame))
-            .context("drawing the terminal UI")?;
+        if dirty {
+            terminal
+                .draw(|frame| session.draw(frame))
+                .context("drawing the terminal UI")?;
+            dirty = false;
+        }
         if event::poll(TICK).context("reading the terminal")? {
             match event::read().context("reading the terminal")? {
-                Event::Key(key) if key.kind != KeyEventKind::Release => session.key(key),
+                Event::Key(key) if key.kind != KeyEventKind::Release => {
+                    session.key(key);
+                    dirty = true;
+                }
+                Event::Resize(..) => dirty = true,
                 _ => {}
             }
         }
-        session.pump();
+        dirty |= session.pump();
         if session.should_quit() {
             break;
         }

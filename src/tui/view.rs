@@ -277,7 +277,7 @@ fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect) {
         frame.render_widget(Line::from(spans), tabs_area);
     }
     match view {
-        Some(v) if !app.show_info => {
+        Some(v) if !app.show_info && !v.figure.panels.is_empty() => {
             if let Some(panel) = v.figure.panels.get(app.panel()) {
                 render_panel(panel, body, frame.buffer_mut());
             }

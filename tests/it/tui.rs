@@ -5,6 +5,7 @@
 //! panics is reported, not fatal. Waits on the worker are bounded.
 
 use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 use adhesion::error::{Error, Result};
@@ -24,13 +25,13 @@ const WAIT: Duration = Duration::from_secs(20);
 
 adhesion::param_choice! {
     /// What the probe scene's run does.
-    pub enum Behaviour { Finish = "finish", Wait = "wait", Panic = "panic" }
+    pub enum Behaviour { Finish = "finish", Wait = "wait", Panic = "panic", Grow = "grow" }
 }
 
 adhesion::scene_params! {
     /// Parameters of the probe scene.
     pub struct ProbeParams {
-        /// What the run does: finish at once, stream a preview and wait to be cancelled, or panic.
+        /// What the run does: finish, wait to be cancelled, panic, or grow in steps (`GATE`).
         behaviour: Behaviour = Behaviour::Finish, unit = "", range = Range::any();
         /// Amplitude of the drawn sine.
         amplitude: f64 = 1.0, unit = "m", range = Range::positive();
@@ -65,6 +66,7 @@ impl Scene for Probe {
         match p.behaviour {
             Behaviour::Finish => {}
             Behaviour::Panic => panic!("probe panics on purpose"),
+            Behaviour::Grow => return grow(p, job),
             Behaviour::Wait => {
                 job.progress(0.5, "waiting for Esc");
                 job.preview(&fig);
@@ -93,6 +95,43 @@ impl Scene for Probe {
 }
 
 static PROBE: Registered<Probe> = Registered::<Probe>::NEW;
+
+/// Steps the `grow` behaviour may take (set by the one test that uses it).
+static GATE: AtomicUsize = AtomicUsize::new(0);
+
+/// The `grow` behaviour: a preview of 100·k points on x in [0, 2k/3] for k = 1, 2, 3, each step
+/// after the test has released it; then the complete figure.
+fn grow(p: &ProbeParams, job: &Job) -> Result<Figure> {
+    let figure = |k: usize| {
+        // A fixed x range, so that a longer curve covers more of the chart.
+        let x_axis = Axis::linear("x", "").with_range(0.0, 2.0);
+        let mut panel = Panel::new(x_axis, Axis::linear("y", "m"));
+        let points = sine(p.amplitude, 100 * k)
+            .into_iter()
+            .map(|(x, y)| (x * k as f64 / 9.0, y))
+            .collect();
+        panel.add(Series::new("growing sine", Style::Stable, points));
+        Figure::new(Probe::ID, Probe::TITLE).with_panel(panel)
+    };
+    for k in 1..=3 {
+        let start = Instant::now();
+        while GATE.load(Ordering::SeqCst) < k - 1 {
+            job.check()?;
+            if start.elapsed() > WAIT {
+                return Err(Error::Unresolvable {
+                    model: "probe",
+                    reason: "never released".into(),
+                });
+            }
+            std::thread::sleep(Duration::from_millis(2));
+        }
+        // Longer than the worker's preview interval, so no preview is dropped.
+        std::thread::sleep(Duration::from_millis(100));
+        job.progress(k as f64 / 3.0, &format!("step {k}/3"));
+        job.preview(&figure(k));
+    }
+    Ok(figure(3))
+}
 
 fn key(code: KeyCode) -> KeyEvent {
     KeyEvent::new(code, KeyModifiers::NONE)
@@ -297,6 +336,45 @@ fn escape_cancels_a_running_job_and_keeps_the_partial_chart() {
     assert!(!std::fs::exists(dir.path().join("out")).unwrap_or(true));
 }
 
+/// Number of points of the first series of scene 0's figure.
+fn shown_points(app: &App) -> usize {
+    app.figure(0)
+        .and_then(|v| v.figure.panels.first())
+        .and_then(|p| p.series.first())
+        .map_or(0, |s| s.points.len())
+}
+
+#[test]
+fn the_chart_grows_as_partial_results_arrive() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = session(dir.path(), vec![&PROBE]);
+    press(&mut s, KeyCode::Tab);
+    for _ in 0..3 {
+        press(&mut s, KeyCode::Char(' ')); // finish -> wait -> panic -> grow
+    }
+    press(&mut s, KeyCode::Char('r'));
+    let mut cells = Vec::new();
+    for k in 1..=2 {
+        assert!(
+            s.wait_until(WAIT, |a| shown_points(a) == 100 * k),
+            "preview {k} arrives"
+        );
+        assert_eq!(s.app().figure(0).expect("preview").state, FigureState::Partial);
+        let screen = text(&draw(&s));
+        assert!(screen.contains(&format!("step {k}/3")), "{screen}");
+        cells.push(braille_cells(&draw(&s)));
+        GATE.store(k, Ordering::SeqCst);
+    }
+    assert!(s.wait_until(WAIT, idle));
+    assert_eq!(shown_points(s.app()), 300);
+    assert_eq!(s.app().figure(0).expect("figure").state, FigureState::Complete);
+    cells.push(braille_cells(&draw(&s)));
+    assert!(
+        cells.windows(2).all(|w| w[1] > w[0]),
+        "the curve covers more cells at every step: {cells:?}"
+    );
+}
+
 #[test]
 fn a_new_run_replaces_the_running_one() {
     let dir = tempfile::tempdir().expect("temp dir");
@@ -306,7 +384,8 @@ fn a_new_run_replaces_the_running_one() {
     press(&mut s, KeyCode::Char('r'));
     let first = s.app().running().expect("running").job;
     press(&mut s, KeyCode::Char(' ')); // wait -> panic
-    press(&mut s, KeyCode::Char(' ')); // panic -> finish
+    press(&mut s, KeyCode::Char(' ')); // panic -> grow
+    press(&mut s, KeyCode::Char(' ')); // grow -> finish
     press(&mut s, KeyCode::Char('r'));
     let second = s.app().running().expect("running").job;
     assert_ne!(first, second);
