@@ -108,6 +108,7 @@ pub struct Form {
     errors: Vec<Option<String>>,
     cross_error: Option<String>,
     valid: ParamValues,
+    defaults: ParamValues,
     selected: usize,
     edit: Option<LineEdit>,
 }
@@ -135,6 +136,7 @@ impl Form {
             errors: vec![None; n],
             cross_error: None,
             valid: valid.clone(),
+            defaults: valid.clone(),
             selected: 0,
             edit: None,
         };
@@ -200,6 +202,11 @@ impl Form {
             .or(self.cross_error.as_deref())
     }
 
+    /// Whether field `k`'s valid value differs from the scene's default.
+    pub fn is_changed(&self, k: usize) -> bool {
+        self.valid.values.get(k) != self.defaults.values.get(k)
+    }
+
     /// The selected field.
     pub fn selected(&self) -> usize {
         self.selected
@@ -230,7 +237,7 @@ impl Form {
 
     /// Reset every field to the scene's defaults.
     pub fn reset(&mut self) {
-        self.load(self.scene.defaults());
+        self.load(self.defaults.clone());
     }
 
     /// Set the text of field `k` and validate.
@@ -437,8 +444,10 @@ mod tests {
             f.move_selection(1);
         }
         assert_eq!(f.text(k), "normalized");
+        assert!(!f.is_changed(k));
         assert!(f.cycle());
         assert_eq!(f.text(k), "si");
+        assert!(f.is_changed(k));
         assert_eq!(f.values().get("units"), Some(&toml::Value::String("si".into())));
         assert!(f.cycle());
         assert_eq!(f.text(k), "normalized");

@@ -176,7 +176,13 @@ fn draw_form(frame: &mut Frame<'_>, app: &App, area: Rect) {
                 style.add_modifier(Modifier::REVERSED)
             };
         }
-        let marker = if form.error(k).is_some() { "✗" } else { " " };
+        let marker = if form.error(k).is_some() {
+            "✗"
+        } else if form.is_changed(k) {
+            "*"
+        } else {
+            " "
+        };
         lines.push(Line::styled(
             format!(
                 "{marker}{:<name_width$} {shown:<value_width$} {}",
@@ -332,7 +338,11 @@ fn draw_gauge(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, area:
             frame.render_widget(gauge, area);
         }
         None => {
+            let stale = view.is_some_and(|v| app.form().is_some_and(|f| f.values() != &v.values));
             let text = match view.map(|v| v.state) {
+                Some(FigureState::Complete) if stale => {
+                    "parameters changed since this run: r reruns · e exports the figure as computed"
+                }
                 Some(FigureState::Complete) => "done · e exports · i caption and results",
                 Some(FigureState::Cancelled) => "cancelled · r runs again",
                 Some(FigureState::Failed) => "failed · see the status line",
@@ -375,7 +385,11 @@ fn draw_help(frame: &mut Frame<'_>, area: Rect) {
         Style::default().fg(Color::DarkGray),
     ));
     lines.push(Line::styled(
-        " invalid values turn red and block running; the last valid values are kept.",
+        " invalid values turn red (✗) and block running; the last valid values are kept;",
+        Style::default().fg(Color::DarkGray),
+    ));
+    lines.push(Line::styled(
+        " * marks a value changed from the dissertation's default.",
         Style::default().fg(Color::DarkGray),
     ));
     let width = 84.min(area.width);

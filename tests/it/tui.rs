@@ -293,6 +293,16 @@ fn an_invalid_value_is_shown_and_blocks_running() {
     let view = s.app().figure(0).expect("a figure");
     assert_eq!(view.state, FigureState::Complete);
     assert_eq!(view.values.get("radius"), Some(&toml::Value::Float(2e-5)));
+    let screen = text(&draw(&s));
+    assert!(screen.contains("*radius"), "changed value marked:\n{screen}");
+    assert!(!screen.contains("parameters changed since this run"), "{screen}");
+    // Editing after the run marks the figure as computed with other values.
+    press(&mut s, KeyCode::Down);
+    press(&mut s, KeyCode::Enter);
+    type_text(&mut s, "0");
+    press(&mut s, KeyCode::Enter);
+    let screen = text(&draw(&s));
+    assert!(screen.contains("parameters changed since this run"), "{screen}");
 }
 
 #[test]
