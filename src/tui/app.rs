@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use ratatui::crossterm::event::{KeyCode, KeyEvent, KeyEventKind};
+use ratatui::crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
 use super::form::{Form, LineEdit};
 use super::keymap::{Action, action_for};
@@ -279,6 +279,10 @@ impl App {
     pub fn update(&mut self, key: KeyEvent) -> Vec<Effect> {
         if key.kind == KeyEventKind::Release {
             return Vec::new();
+        }
+        // Ctrl-C quits from anywhere, text entry included.
+        if key.modifiers.contains(KeyModifiers::CONTROL) && key.code == KeyCode::Char('c') {
+            return self.act(Action::Quit);
         }
         match &mut self.mode {
             Mode::Normal => {}

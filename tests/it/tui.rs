@@ -524,6 +524,15 @@ fn help_lists_the_keys_and_q_quits() {
     assert_eq!(s.app().mode(), &Mode::Normal);
     press(&mut s, KeyCode::Char('q'));
     assert!(s.should_quit());
+
+    // Ctrl-C quits even while a value is being edited (where `q` is just a letter).
+    let mut s = session(dir.path(), scenes::all());
+    press(&mut s, KeyCode::Enter);
+    press(&mut s, KeyCode::Enter);
+    press(&mut s, KeyCode::Char('q'));
+    assert!(!s.should_quit());
+    s.key(KeyEvent::new(KeyCode::Char('c'), KeyModifiers::CONTROL));
+    assert!(s.should_quit());
 }
 
 #[test]
