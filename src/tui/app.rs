@@ -160,6 +160,7 @@ pub struct App {
     pub(crate) panel: usize,
     pub(crate) show_info: bool,
     pub(crate) status: Status,
+    pub(crate) auto_run: bool,
     preset_dir: PathBuf,
     next_job: u64,
     quit: bool,
@@ -196,6 +197,7 @@ impl App {
                 text: "select a scene, Enter to edit its parameters, r to run, ? for help".into(),
                 error: false,
             },
+            auto_run: false,
             preset_dir: preset_dir.into(),
             next_job: 1,
             quit: false,
@@ -268,11 +270,45 @@ impl App {
         };
     }
 
-    /// Put loaded preset values into the form of scene `scene`.
-    pub fn load_values(&mut self, scene: usize, values: ParamValues) {
-        if let Some(form) = self.forms.get_mut(scene) {
-            form.load(values);
+    /// Whether valid changes start a run by themselves.
+    pub fn auto_run(&self) -> bool {
+        self.auto_run
+    }
+
+    /// Put loaded preset values into the form of scene `scene` (with auto-run, this may start
+    /// a run).
+    pub fn load_values(&mut self, scene: usize, values: ParamValues) -> Vec<Effect> {
+        match self.forms.get_mut(scene) {
+            Some(form) => {
+                form.load(values);
+                self.after_change()
+            }
+            None => Vec::new(),
         }
+    }
+
+    /// After a change of the form: with auto-run on, run a valid set that is neither running
+    /// nor shown already.
+    fn after_change(&mut self) -> Vec<Effect> {
+        let mut effects = Vec::new();
+        let Some(form) = self.forms.get(self.selected) else {
+            return effects;
+        };
+        if !self.auto_run || !form.is_valid() {
+            return effects;
+        }
+        let values = form.values();
+        let running = self
+            .running
+            .as_ref()
+            .is_some_and(|r| r.scene == self.selected && &r.values == values);
+        let shown = self
+            .figure(self.selected)
+            .is_some_and(|v| v.state == FigureState::Complete && &v.values == values);
+        if !running && !shown {
+            self.run(&mut effects);
+        }
+        effects
     }
 
     /// Handle a key; returns what the session must do.
@@ -328,7 +364,7 @@ impl App {
                 }
             }
             self.show_form_status();
-            return Vec::new();
+            return self.after_change();
         }
         match action_for(key) {
             Some(action) => self.act(action),
@@ -395,7 +431,18 @@ impl App {
                 if let Some(form) = self.forms.get_mut(self.selected) {
                     form.reset();
                     self.set_status("parameters reset to the dissertation's values", false);
+                    effects.extend(self.after_change());
                 }
+            }
+            Action::AutoRun => {
+                self.auto_run = !self.auto_run;
+                let text = if self.auto_run {
+                    "auto-run on: every valid change runs the scene"
+                } else {
+                    "auto-run off"
+                };
+                self.set_status(text, false);
+                effects.extend(self.after_change());
             }
             Action::SwitchFocus => {
                 self.focus = match self.focus {
@@ -428,6 +475,7 @@ impl App {
                 {
                     form.cycle();
                     self.show_form_status();
+                    effects.extend(self.after_change());
                 }
             }
             Action::PrevPanel => self.panel = self.panel().saturating_sub(1),

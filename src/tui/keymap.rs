@@ -42,6 +42,8 @@ pub enum Action {
     NextPanel,
     /// Show the caption and the scalar results instead of the chart, or back.
     Info,
+    /// Switch automatic runs after every valid change on or off.
+    AutoRun,
 }
 
 /// One key binding: the keys, how the help writes them, the action, what it does.
@@ -100,6 +102,12 @@ pub const BINDINGS: &[Binding] = &[
         label: "Esc",
         action: Action::Cancel,
         help: "cancel the running job",
+    },
+    Binding {
+        keys: &[KeyCode::Char('a')],
+        label: "a",
+        action: Action::AutoRun,
+        help: "auto-run: run again after every valid change (for fast scenes)",
     },
     Binding {
         keys: &[KeyCode::Char('e')],

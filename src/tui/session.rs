@@ -137,13 +137,16 @@ impl Session {
         let mut values = scene.defaults();
         match values.apply_preset_file(path) {
             Ok(()) => {
-                self.app.load_values(k, values);
+                let effects = self.app.load_values(k, values);
                 let problem = self.app.form().and_then(|f| f.first_error().map(str::to_string));
                 match problem {
                     Some(e) => self
                         .app
                         .set_status(format!("loaded {}, but: {e}", path.display()), true),
                     None => self.app.set_status(format!("loaded {}", path.display()), false),
+                }
+                for e in effects {
+                    self.apply(e);
                 }
             }
             Err(e) => self.app.set_status(e.to_string(), true),

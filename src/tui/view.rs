@@ -119,7 +119,8 @@ fn draw_form(frame: &mut Frame<'_>, app: &App, area: Rect) {
     };
     let focused = app.focus == Focus::Form;
     let verdict = if form.is_valid() { "valid" } else { "INVALID" };
-    let title = format!(" Parameters of {} — {verdict} ", form.scene().info().id);
+    let auto = if app.auto_run { " · auto-run" } else { "" };
+    let title = format!(" Parameters of {} — {verdict}{auto} ", form.scene().info().id);
     let block = pane(title, focused);
     let inner = block.inner(area);
     frame.render_widget(block, area);

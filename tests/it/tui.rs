@@ -386,6 +386,41 @@ fn the_chart_grows_as_partial_results_arrive() {
 }
 
 #[test]
+fn auto_run_reruns_after_every_valid_change_only() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = session(dir.path(), scenes::all());
+    press(&mut s, KeyCode::Char('a'));
+    assert!(s.app().auto_run());
+    assert!(
+        s.app().running().is_some(),
+        "switching auto-run on runs the current values"
+    );
+    assert!(s.wait_until(WAIT, idle));
+    assert!(text(&draw(&s)).contains("auto-run"));
+
+    press(&mut s, KeyCode::Enter);
+    press(&mut s, KeyCode::Enter);
+    clear_line(&mut s);
+    assert!(s.app().running().is_none(), "an empty field does not run");
+    type_text(&mut s, "-");
+    assert!(s.app().running().is_none(), "an invalid value does not run");
+    clear_line(&mut s);
+    type_text(&mut s, "2e-5");
+    assert!(s.wait_until(WAIT, idle));
+    let view = s.app().figure(0).expect("a figure");
+    assert_eq!(view.state, FigureState::Complete);
+    assert_eq!(view.values.get("radius"), Some(&toml::Value::Float(2e-5)));
+    // Leaving the field changes nothing: no new run.
+    press(&mut s, KeyCode::Enter);
+    assert!(s.app().running().is_none());
+    press(&mut s, KeyCode::Char('d'));
+    assert!(s.wait_until(WAIT, idle));
+    let view = s.app().figure(0).expect("a figure");
+    assert_eq!(view.values, s.app().form().expect("form").values().clone());
+    assert_eq!(view.values.get("radius"), Some(&toml::Value::Float(10.0e-6)));
+}
+
+#[test]
 fn a_new_run_replaces_the_running_one() {
     let dir = tempfile::tempdir().expect("temp dir");
     let mut s = session(dir.path(), vec![&PROBE]);
