@@ -556,15 +556,6 @@ impl App {
                 outcome, run_time_s, ..
             } => {
                 let run = self.running.take();
-                let partial_state = |state| {
-                    move |f: &mut Option<FigureView>| {
-                        if let Some(v) = f
-                            && v.state == FigureState::Partial
-                        {
-                            v.state = state;
-                        }
-                    }
-                };
                 match outcome {
                     Outcome::Done(figure) => {
                         self.figures[scene] = Some(FigureView {
@@ -578,20 +569,29 @@ impl App {
                         self.set_status(format!("{id} done in {}", fmt_duration(run_time_s)), false);
                     }
                     Outcome::Cancelled => {
-                        partial_state(FigureState::Cancelled)(&mut self.figures[scene]);
+                        mark_partial(&mut self.figures[scene], FigureState::Cancelled);
                         self.set_status(
                             format!("{id} cancelled after {}", fmt_duration(run_time_s)),
                             false,
                         );
                     }
                     Outcome::Failed(message) => {
-                        partial_state(FigureState::Failed)(&mut self.figures[scene]);
+                        mark_partial(&mut self.figures[scene], FigureState::Failed);
                         self.set_status(format!("{id} failed: {message}"), true);
                     }
                 }
                 self.panel = self.panel();
             }
         }
+    }
+}
+
+/// Mark the partial figure of a run that ended early (a complete figure of an earlier run stays).
+fn mark_partial(figure: &mut Option<FigureView>, state: FigureState) {
+    if let Some(v) = figure
+        && v.state == FigureState::Partial
+    {
+        v.state = state;
     }
 }
 
