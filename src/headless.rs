@@ -153,12 +153,16 @@ pub fn describe(id: &str) -> Result<String> {
 
 /// The scene's defaults as a commented preset file.
 pub fn preset_text(scene: &dyn SceneDyn) -> String {
+    scene.defaults().to_preset_text(&preset_header(scene))
+}
+
+/// The comment heading a preset file of `scene`: file name, title, caption, how to load it.
+pub fn preset_header(scene: &dyn SceneDyn) -> String {
     let info = scene.info();
-    let header = format!(
+    format!(
         "presets/{}.toml -- {}\n{}\nSI units; load with `adhesion --headless --figure {} --preset FILE`.",
         info.id, info.title, info.caption, info.id
-    );
-    scene.defaults().to_preset_text(&header)
+    )
 }
 
 /// Defaults, then the preset, then the `--set` assignments; validated.

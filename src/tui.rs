@@ -1,11 +1,89 @@
-//! The terminal UI (placeholder until the UI lands).
+//! The terminal UI: pick a scene by chapter, edit its parameters with validation as you type,
+//! run it in a background thread while the chart grows, cancel, export, load and save presets.
+//!
+//! The parts, from pure to impure:
+//! - [`form`]: the parameter form of one scene (text per field, last valid set, validation);
+//! - [`keymap`]: keys to actions, also the key help;
+//! - [`app`]: the state machine (keys and run messages in, effects out; no I/O);
+//! - [`view`]: drawing the state into any ratatui backend;
+//! - [`worker`]: background runs on threads, messages over a channel;
+//! - [`session`]: the state plus the worker, carrying out effects (runs, exports, presets);
+//! - [`run`]: the crossterm event loop around a session.
+//!
+//! The terminal is restored on exit, on error (a drop guard) and on panic (the panic hook of
+//! [`ratatui::try_init`], which this module lets through only for the drawing thread: a panic in
+//! a worker thread is caught there and reported as a failed run instead).
+
+pub mod app;
+pub mod form;
+pub mod keymap;
+pub mod session;
+pub mod view;
+pub mod worker;
 
 use std::process::ExitCode;
+use std::time::Duration;
 
-/// Start the terminal UI.
+use anyhow::Context;
+use ratatui::crossterm::event::{self, Event, KeyEventKind};
+
+use crate::scenes;
+use session::Session;
+
+/// How long the loop waits for a key before it looks at the worker again.
+const TICK: Duration = Duration::from_millis(40);
+
+/// Restores the terminal when dropped (normal exit and early return on error).
+struct TerminalGuard;
+
+impl Drop for TerminalGuard {
+    fn drop(&mut self) {
+        ratatui::restore();
+    }
+}
+
+/// Start the terminal UI over every scene; exports go to `output/`, presets are offered from
+/// `presets/`.
 ///
 /// # Errors
-/// Terminal errors.
+/// Terminal errors (no terminal, a failed draw).
 pub fn run() -> anyhow::Result<ExitCode> {
-    anyhow::bail!("the terminal UI is not built yet; use --headless")
+    let mut session = Session::new(scenes::all(), "output", "presets");
+    let _guard = TerminalGuard;
+    let mut terminal =
+        ratatui::try_init().context("starting the terminal UI (use --headless without a terminal)")?;
+    let ui_thread = std::thread::current().id();
+    let restore_and_report = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        // Worker threads catch their panics and report them as failed runs; only a panic of
+        // the drawing thread restores the terminal and prints.
+        if std::thread::current().id() == ui_thread {
+            restore_and_report(info);
+        }
+    }));
+    // Draw only when something changed: a key, a resize, a message of the worker.
+    let mut dirty = true;
+    loop {
+        if dirty {
+            terminal
+                .draw(|frame| session.draw(frame))
+                .context("drawing the terminal UI")?;
+            dirty = false;
+        }
+        if event::poll(TICK).context("reading the terminal")? {
+            match event::read().context("reading the terminal")? {
+                Event::Key(key) if key.kind != KeyEventKind::Release => {
+                    session.key(key);
+                    dirty = true;
+                }
+                Event::Resize(..) => dirty = true,
+                _ => {}
+            }
+        }
+        dirty |= session.pump();
+        if session.should_quit() {
+            break;
+        }
+    }
+    Ok(ExitCode::SUCCESS)
 }

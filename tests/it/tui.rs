@@ -1,1 +1,586 @@
-//! Tests of tui.
+//! The terminal UI driven without a terminal: keys into a [`Session`], frames drawn into
+//! ratatui's `TestBackend`. Select a scene, run it in the background and see the chart; an
+//! invalid value is shown and blocks running; `Esc` cancels a running job; export writes the
+//! four files; presets are saved and loaded; the key help; a multi-panel figure; a scene that
+//! panics is reported, not fatal. Waits on the worker are bounded.
+
+use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
+
+use adhesion::error::{Error, Result};
+use adhesion::figure::{Axis, Figure, Panel, Series, Style};
+use adhesion::job::Job;
+use adhesion::params::Range;
+use adhesion::scenes::{self, Registered, Scene, SceneDyn};
+use adhesion::tui::app::{App, FigureState, Focus, Mode};
+use adhesion::tui::session::Session;
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use ratatui::buffer::Buffer;
+use ratatui::crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+
+/// Upper bound on any wait for the worker (runs here take milliseconds).
+const WAIT: Duration = Duration::from_secs(20);
+
+adhesion::param_choice! {
+    /// What the probe scene's run does.
+    pub enum Behaviour { Finish = "finish", Wait = "wait", Panic = "panic", Grow = "grow" }
+}
+
+adhesion::scene_params! {
+    /// Parameters of the probe scene.
+    pub struct ProbeParams {
+        /// What the run does: finish, wait to be cancelled, panic, or grow in steps (`GATE`).
+        behaviour: Behaviour = Behaviour::Finish, unit = "", range = Range::any();
+        /// Amplitude of the drawn sine.
+        amplitude: f64 = 1.0, unit = "m", range = Range::positive();
+    }
+}
+
+/// A scene for the UI tests: two panels, a preview, and runs that wait for cancellation.
+struct Probe;
+
+fn sine(amplitude: f64, n: usize) -> Vec<(f64, f64)> {
+    (0..n)
+        .map(|i| {
+            let x = i as f64 / (n - 1) as f64 * 6.0;
+            (x, amplitude * x.sin())
+        })
+        .collect()
+}
+
+impl Scene for Probe {
+    type Params = ProbeParams;
+    const ID: &'static str = "probe";
+    const CHAPTER: &'static str = "1";
+    const TITLE: &'static str = "Probe scene";
+    const CAPTION: &'static str = "A sine, for the terminal UI tests.";
+    const RESULTS: &'static [(&'static str, &'static str)] = &[("amplitude_m", "the amplitude")];
+
+    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        let mut first = Panel::new(Axis::linear("x", ""), Axis::linear("y", "m"));
+        first.label = "(a)".into();
+        first.add(Series::new("rising sine", Style::Stable, sine(p.amplitude, 200)));
+        let mut fig = Figure::new(Self::ID, Self::TITLE).with_panel(first.clone());
+        match p.behaviour {
+            Behaviour::Finish => {}
+            Behaviour::Panic => panic!("probe panics on purpose"),
+            Behaviour::Grow => return grow(p, job),
+            Behaviour::Wait => {
+                job.progress(0.5, "waiting for Esc");
+                job.preview(&fig);
+                let start = Instant::now();
+                while start.elapsed() < WAIT {
+                    job.check()?;
+                    std::thread::sleep(Duration::from_millis(2));
+                }
+                return Err(Error::Unresolvable {
+                    model: "probe",
+                    reason: "never cancelled".into(),
+                });
+            }
+        }
+        let mut second = Panel::new(Axis::linear("x", ""), Axis::linear("y", "m"));
+        second.label = "(b)".into();
+        second.add(Series::new(
+            "falling sine",
+            Style::Unstable,
+            sine(-p.amplitude, 200),
+        ));
+        fig.panels.push(second);
+        fig.result("amplitude_m", p.amplitude);
+        Ok(fig)
+    }
+}
+
+static PROBE: Registered<Probe> = Registered::<Probe>::NEW;
+
+/// Steps the `grow` behaviour may take (set by the one test that uses it).
+static GATE: AtomicUsize = AtomicUsize::new(0);
+
+/// The `grow` behaviour: a preview of 100·k points on x in [0, 2k/3] for k = 1, 2, 3, each step
+/// after the test has released it; then the complete figure.
+fn grow(p: &ProbeParams, job: &Job) -> Result<Figure> {
+    let figure = |k: usize| {
+        // A fixed x range, so that a longer curve covers more of the chart.
+        let x_axis = Axis::linear("x", "").with_range(0.0, 2.0);
+        let mut panel = Panel::new(x_axis, Axis::linear("y", "m"));
+        let points = sine(p.amplitude, 100 * k)
+            .into_iter()
+            .map(|(x, y)| (x * k as f64 / 9.0, y))
+            .collect();
+        panel.add(Series::new("growing sine", Style::Stable, points));
+        Figure::new(Probe::ID, Probe::TITLE).with_panel(panel)
+    };
+    for k in 1..=3 {
+        let start = Instant::now();
+        while GATE.load(Ordering::SeqCst) < k - 1 {
+            job.check()?;
+            if start.elapsed() > WAIT {
+                return Err(Error::Unresolvable {
+                    model: "probe",
+                    reason: "never released".into(),
+                });
+            }
+            std::thread::sleep(Duration::from_millis(2));
+        }
+        // Longer than the worker's preview interval, so no preview is dropped.
+        std::thread::sleep(Duration::from_millis(100));
+        job.progress(k as f64 / 3.0, &format!("step {k}/3"));
+        job.preview(&figure(k));
+    }
+    Ok(figure(3))
+}
+
+fn key(code: KeyCode) -> KeyEvent {
+    KeyEvent::new(code, KeyModifiers::NONE)
+}
+
+fn press(s: &mut Session, code: KeyCode) {
+    s.key(key(code));
+}
+
+fn type_text(s: &mut Session, text: &str) {
+    for c in text.chars() {
+        press(s, KeyCode::Char(c));
+    }
+}
+
+fn clear_line(s: &mut Session) {
+    s.key(KeyEvent::new(KeyCode::Char('u'), KeyModifiers::CONTROL));
+}
+
+fn session(dir: &Path, scenes: Vec<&'static dyn SceneDyn>) -> Session {
+    Session::new(scenes, dir.join("out"), dir.join("presets"))
+}
+
+fn draw(s: &Session) -> Buffer {
+    let mut terminal = Terminal::new(TestBackend::new(140, 40)).expect("test backend");
+    terminal.draw(|f| s.draw(f)).expect("drawing into a test backend");
+    terminal.backend().buffer().clone()
+}
+
+fn text(buf: &Buffer) -> String {
+    let mut out = String::new();
+    for y in 0..buf.area.height {
+        for x in 0..buf.area.width {
+            out.push_str(buf[(x, y)].symbol());
+        }
+        out.push('\n');
+    }
+    out
+}
+
+/// Number of braille cells with at least one dot (the chart's curves).
+fn braille_cells(buf: &Buffer) -> usize {
+    buf.content()
+        .iter()
+        .filter(|c| {
+            c.symbol()
+                .chars()
+                .any(|ch| ('\u{2801}'..='\u{28ff}').contains(&ch))
+        })
+        .count()
+}
+
+fn idle(app: &App) -> bool {
+    app.running().is_none()
+}
+
+#[test]
+fn selecting_and_running_a_scene_draws_its_chart() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = session(dir.path(), scenes::all());
+    let screen = text(&draw(&s));
+    assert!(
+        screen.contains("Classical theories"),
+        "chapter heading:\n{screen}"
+    );
+    assert!(screen.contains("fig1.4b"), "scene list:\n{screen}");
+    assert_eq!(braille_cells(&draw(&s)), 0);
+
+    // Select the second scene, then go back to fig1.1.
+    press(&mut s, KeyCode::Down);
+    assert_eq!(s.app().scene().expect("a scene").info().id, "fig1.4b");
+    press(&mut s, KeyCode::Up);
+    assert_eq!(s.app().scene().expect("a scene").info().id, "fig1.1");
+
+    press(&mut s, KeyCode::Char('r'));
+    assert!(s.app().running().is_some(), "r starts a run");
+    assert!(s.wait_until(WAIT, idle), "the run ends");
+    let view = s.app().figure(0).expect("a figure");
+    assert_eq!(view.state, FigureState::Complete);
+    assert!(
+        s.app().status().text.starts_with("fig1.1 done in"),
+        "{:?}",
+        s.app().status()
+    );
+
+    let buf = draw(&s);
+    let screen = text(&buf);
+    assert!(braille_cells(&buf) > 100, "the chart is drawn:\n{screen}");
+    for label in ["Hertz", "JKR", "DMT", "Contact force", "computed in"] {
+        assert!(screen.contains(label), "`{label}` on screen:\n{screen}");
+    }
+    // The caption and results page.
+    press(&mut s, KeyCode::Char('i'));
+    let screen = text(&draw(&s));
+    assert!(screen.contains("jkr_pull_off_force_norm"), "results:\n{screen}");
+}
+
+#[test]
+fn an_invalid_value_is_shown_and_blocks_running() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = session(dir.path(), scenes::all());
+    press(&mut s, KeyCode::Enter); // to the form
+    assert_eq!(s.app().focus(), Focus::Form);
+    press(&mut s, KeyCode::Enter); // edit the first field, radius
+    clear_line(&mut s);
+    type_text(&mut s, "-1");
+    let buf = draw(&s);
+    let screen = text(&buf);
+    assert!(screen.contains("INVALID"), "{screen}");
+    assert!(
+        screen.contains("invalid parameter `radius` = -1: must be positive"),
+        "{screen}"
+    );
+    // The field's row is drawn in the error colour.
+    let row = (0..buf.area.height)
+        .find(|&y| {
+            (0..buf.area.width)
+                .map(|x| buf[(x, y)].symbol())
+                .collect::<String>()
+                .contains("✗radius")
+        })
+        .expect("the radius row is marked");
+    let x = (0..buf.area.width)
+        .find(|&x| buf[(x, row)].symbol() == "r")
+        .expect("row text");
+    assert_eq!(buf[(x, row)].fg, ratatui::style::Color::LightRed);
+
+    press(&mut s, KeyCode::Enter); // keep the invalid text
+    press(&mut s, KeyCode::Char('r'));
+    assert!(s.app().running().is_none(), "an invalid form does not run");
+    assert!(s.app().status().error);
+    assert_eq!(
+        s.app().status().text,
+        "cannot run fig1.1: invalid parameter `radius` = -1: must be positive"
+    );
+    // The values a run would use are still the last valid ones.
+    let form = s.app().form().expect("a form");
+    assert_eq!(form.values().get("radius"), Some(&toml::Value::Float(10.0e-6)));
+
+    // A non-number and NaN are rejected the same way.
+    press(&mut s, KeyCode::Enter);
+    clear_line(&mut s);
+    type_text(&mut s, "ten");
+    assert_eq!(
+        s.app().status().text,
+        "parameter `radius` expects a number, got `ten`"
+    );
+    clear_line(&mut s);
+    type_text(&mut s, "NaN");
+    assert!(s.app().status().text.contains("must be a finite number"));
+
+    // Fixing it makes the form runnable again.
+    clear_line(&mut s);
+    type_text(&mut s, "2e-5");
+    press(&mut s, KeyCode::Enter);
+    assert!(s.app().form().expect("a form").is_valid());
+    press(&mut s, KeyCode::Char('r'));
+    assert!(s.wait_until(WAIT, idle));
+    let view = s.app().figure(0).expect("a figure");
+    assert_eq!(view.state, FigureState::Complete);
+    assert_eq!(view.values.get("radius"), Some(&toml::Value::Float(2e-5)));
+    let screen = text(&draw(&s));
+    assert!(screen.contains("*radius"), "changed value marked:\n{screen}");
+    assert!(!screen.contains("parameters changed since this run"), "{screen}");
+    // Editing after the run marks the figure as computed with other values.
+    press(&mut s, KeyCode::Down);
+    press(&mut s, KeyCode::Enter);
+    type_text(&mut s, "0");
+    press(&mut s, KeyCode::Enter);
+    let screen = text(&draw(&s));
+    assert!(screen.contains("parameters changed since this run"), "{screen}");
+}
+
+#[test]
+fn escape_cancels_a_running_job_and_keeps_the_partial_chart() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = session(dir.path(), vec![&PROBE]);
+    press(&mut s, KeyCode::Tab);
+    press(&mut s, KeyCode::Char(' ')); // behaviour: finish -> wait
+    assert_eq!(
+        s.app().form().expect("a form").values().get("behaviour"),
+        Some(&toml::Value::String("wait".into()))
+    );
+    press(&mut s, KeyCode::Char('r'));
+    assert!(
+        s.wait_until(WAIT, |a| a.figure(0).is_some()),
+        "the preview arrives"
+    );
+    assert!(s.app().running().is_some(), "still running");
+    let buf = draw(&s);
+    let screen = text(&buf);
+    assert!(braille_cells(&buf) > 20, "the partial chart is drawn:\n{screen}");
+    assert!(screen.contains("rising sine"), "{screen}");
+    assert!(screen.contains("partial"), "{screen}");
+    assert!(screen.contains("Esc cancels"), "the gauge:\n{screen}");
+    assert!(screen.contains("50% waiting for Esc"), "the progress:\n{screen}");
+    // Export is refused while the figure is partial.
+    press(&mut s, KeyCode::Char('e'));
+    assert!(s.app().status().error);
+
+    press(&mut s, KeyCode::Esc);
+    assert!(s.app().running().expect("still tracked").cancelling);
+    assert!(s.wait_until(WAIT, idle), "the run stops after Esc");
+    assert_eq!(s.app().figure(0).expect("kept").state, FigureState::Cancelled);
+    assert!(
+        s.app().status().text.starts_with("probe cancelled"),
+        "{:?}",
+        s.app().status()
+    );
+    let screen = text(&draw(&s));
+    assert!(screen.contains("cancelled"), "{screen}");
+    assert!(!std::fs::exists(dir.path().join("out")).unwrap_or(true));
+}
+
+/// Number of points of the first series of scene 0's figure.
+fn shown_points(app: &App) -> usize {
+    app.figure(0)
+        .and_then(|v| v.figure.panels.first())
+        .and_then(|p| p.series.first())
+        .map_or(0, |s| s.points.len())
+}
+
+#[test]
+fn the_chart_grows_as_partial_results_arrive() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = session(dir.path(), vec![&PROBE]);
+    press(&mut s, KeyCode::Tab);
+    for _ in 0..3 {
+        press(&mut s, KeyCode::Char(' ')); // finish -> wait -> panic -> grow
+    }
+    press(&mut s, KeyCode::Char('r'));
+    let mut cells = Vec::new();
+    for k in 1..=2 {
+        assert!(
+            s.wait_until(WAIT, |a| shown_points(a) == 100 * k),
+            "preview {k} arrives"
+        );
+        assert_eq!(s.app().figure(0).expect("preview").state, FigureState::Partial);
+        let screen = text(&draw(&s));
+        assert!(screen.contains(&format!("step {k}/3")), "{screen}");
+        cells.push(braille_cells(&draw(&s)));
+        GATE.store(k, Ordering::SeqCst);
+    }
+    assert!(s.wait_until(WAIT, idle));
+    assert_eq!(shown_points(s.app()), 300);
+    assert_eq!(s.app().figure(0).expect("figure").state, FigureState::Complete);
+    cells.push(braille_cells(&draw(&s)));
+    assert!(
+        cells.windows(2).all(|w| w[1] > w[0]),
+        "the curve covers more cells at every step: {cells:?}"
+    );
+}
+
+#[test]
+fn auto_run_reruns_after_every_valid_change_only() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = session(dir.path(), scenes::all());
+    press(&mut s, KeyCode::Char('a'));
+    assert!(s.app().auto_run());
+    assert!(
+        s.app().running().is_some(),
+        "switching auto-run on runs the current values"
+    );
+    assert!(s.wait_until(WAIT, idle));
+    assert!(text(&draw(&s)).contains("auto-run"));
+
+    press(&mut s, KeyCode::Enter);
+    press(&mut s, KeyCode::Enter);
+    clear_line(&mut s);
+    assert!(s.app().running().is_none(), "an empty field does not run");
+    type_text(&mut s, "-");
+    assert!(s.app().running().is_none(), "an invalid value does not run");
+    clear_line(&mut s);
+    type_text(&mut s, "2e-5");
+    assert!(s.wait_until(WAIT, idle));
+    let view = s.app().figure(0).expect("a figure");
+    assert_eq!(view.state, FigureState::Complete);
+    assert_eq!(view.values.get("radius"), Some(&toml::Value::Float(2e-5)));
+    // Leaving the field changes nothing: no new run.
+    press(&mut s, KeyCode::Enter);
+    assert!(s.app().running().is_none());
+    press(&mut s, KeyCode::Char('d'));
+    assert!(s.wait_until(WAIT, idle));
+    let view = s.app().figure(0).expect("a figure");
+    assert_eq!(view.values, s.app().form().expect("form").values().clone());
+    assert_eq!(view.values.get("radius"), Some(&toml::Value::Float(10.0e-6)));
+}
+
+#[test]
+fn a_new_run_replaces_the_running_one() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = session(dir.path(), vec![&PROBE]);
+    press(&mut s, KeyCode::Tab);
+    press(&mut s, KeyCode::Char(' ')); // wait
+    press(&mut s, KeyCode::Char('r'));
+    let first = s.app().running().expect("running").job;
+    press(&mut s, KeyCode::Char(' ')); // wait -> panic
+    press(&mut s, KeyCode::Char(' ')); // panic -> grow
+    press(&mut s, KeyCode::Char(' ')); // grow -> finish
+    press(&mut s, KeyCode::Char('r'));
+    let second = s.app().running().expect("running").job;
+    assert_ne!(first, second);
+    assert!(s.wait_until(WAIT, idle));
+    let view = s.app().figure(0).expect("a figure");
+    assert_eq!(view.state, FigureState::Complete, "{:?}", s.app().status());
+    assert_eq!(view.figure.panels.len(), 2);
+}
+
+#[test]
+fn panels_switch_and_a_panicking_scene_is_reported() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = session(dir.path(), vec![&PROBE]);
+    press(&mut s, KeyCode::Char('r'));
+    assert!(s.wait_until(WAIT, idle));
+    let screen = text(&draw(&s));
+    assert!(
+        screen.contains("(a)") && screen.contains("(b)"),
+        "tabs:\n{screen}"
+    );
+    assert!(screen.contains("rising sine"), "{screen}");
+    press(&mut s, KeyCode::Right);
+    assert_eq!(s.app().panel(), 1);
+    let screen = text(&draw(&s));
+    assert!(screen.contains("falling sine"), "{screen}");
+    press(&mut s, KeyCode::Right); // stays on the last panel
+    assert_eq!(s.app().panel(), 1);
+    press(&mut s, KeyCode::Char('['));
+    assert_eq!(s.app().panel(), 0);
+
+    press(&mut s, KeyCode::Tab);
+    press(&mut s, KeyCode::Char(' '));
+    press(&mut s, KeyCode::Char(' ')); // panic
+    press(&mut s, KeyCode::Char('r'));
+    assert!(s.wait_until(WAIT, idle));
+    let status = s.app().status();
+    assert!(status.error);
+    assert!(status.text.contains("probe panics on purpose"), "{status:?}");
+    // The last complete figure stays.
+    assert_eq!(s.app().figure(0).expect("kept").state, FigureState::Complete);
+}
+
+#[test]
+fn export_writes_png_svg_csv_and_json() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = session(dir.path(), scenes::all());
+    press(&mut s, KeyCode::Char('e'));
+    assert_eq!(
+        s.app().status().text,
+        "nothing to export: run the scene first (r)"
+    );
+    press(&mut s, KeyCode::Char('r'));
+    assert!(s.wait_until(WAIT, idle));
+    press(&mut s, KeyCode::Char('e'));
+    assert!(!s.app().status().error, "{:?}", s.app().status());
+    for ext in ["png", "svg", "csv", "json"] {
+        let p = dir.path().join("out").join(format!("fig1.1.{ext}"));
+        let size = std::fs::metadata(&p).map(|m| m.len()).unwrap_or(0);
+        assert!(size > 100, "{} written ({size} bytes)", p.display());
+    }
+    let csv = std::fs::read_to_string(dir.path().join("out/fig1.1.csv")).expect("csv");
+    assert!(csv.starts_with("panel,series,style,x,y"));
+    let json = std::fs::read_to_string(dir.path().join("out/fig1.1.json")).expect("json");
+    assert!(json.contains("jkr_hysteresis_norm"));
+}
+
+#[test]
+fn presets_are_saved_and_loaded_and_bad_ones_are_named() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = session(dir.path(), scenes::all());
+    press(&mut s, KeyCode::Enter);
+    press(&mut s, KeyCode::Enter);
+    clear_line(&mut s);
+    type_text(&mut s, "3e-5");
+    press(&mut s, KeyCode::Enter);
+
+    press(&mut s, KeyCode::Char('s'));
+    let Mode::Prompt { edit, .. } = s.app().mode() else {
+        panic!("s opens the path prompt");
+    };
+    let path = dir.path().join("presets/fig1.1.toml");
+    assert_eq!(edit.text(), path.display().to_string());
+    assert!(text(&draw(&s)).contains("Save preset"));
+    press(&mut s, KeyCode::Enter);
+    assert!(!s.app().status().error, "{:?}", s.app().status());
+    let saved = std::fs::read_to_string(&path).expect("preset written");
+    assert!(saved.contains("radius = 3e-5"), "{saved}");
+
+    press(&mut s, KeyCode::Char('d'));
+    let radius = |s: &Session| s.app().form().expect("form").values().get("radius").cloned();
+    assert_eq!(radius(&s), Some(toml::Value::Float(10.0e-6)));
+    press(&mut s, KeyCode::Char('l'));
+    press(&mut s, KeyCode::Enter);
+    assert_eq!(radius(&s), Some(toml::Value::Float(3e-5)));
+
+    // A misspelled key in a typed path: one line naming the file and the key.
+    let bad = dir.path().join("bad.toml");
+    std::fs::write(&bad, "radus = 1e-6\n").expect("write");
+    press(&mut s, KeyCode::Char('l'));
+    clear_line(&mut s);
+    type_text(&mut s, &bad.display().to_string());
+    press(&mut s, KeyCode::Enter);
+    let status = s.app().status();
+    assert!(status.error);
+    assert!(status.text.contains("bad.toml"), "{status:?}");
+    assert!(status.text.contains("did you mean `radius`"), "{status:?}");
+    assert_eq!(radius(&s), Some(toml::Value::Float(3e-5)), "kept on error");
+
+    // Esc closes the prompt without loading.
+    press(&mut s, KeyCode::Char('l'));
+    press(&mut s, KeyCode::Esc);
+    assert_eq!(s.app().mode(), &Mode::Normal);
+}
+
+#[test]
+fn help_lists_the_keys_and_q_quits() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = session(dir.path(), scenes::all());
+    press(&mut s, KeyCode::Char('?'));
+    let screen = text(&draw(&s));
+    for line in ["export the figure", "cancel the running job", "load a preset"] {
+        assert!(screen.contains(line), "`{line}` in the help:\n{screen}");
+    }
+    press(&mut s, KeyCode::Char('q')); // closes the help only
+    assert!(!s.should_quit());
+    assert_eq!(s.app().mode(), &Mode::Normal);
+    press(&mut s, KeyCode::Char('q'));
+    assert!(s.should_quit());
+
+    // Ctrl-C quits even while a value is being edited (where `q` is just a letter).
+    let mut s = session(dir.path(), scenes::all());
+    press(&mut s, KeyCode::Enter);
+    press(&mut s, KeyCode::Enter);
+    press(&mut s, KeyCode::Char('q'));
+    assert!(!s.should_quit());
+    s.key(KeyEvent::new(KeyCode::Char('c'), KeyModifiers::CONTROL));
+    assert!(s.should_quit());
+}
+
+#[test]
+fn drawing_never_panics_on_tiny_terminals() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = session(dir.path(), vec![&PROBE]);
+    press(&mut s, KeyCode::Char('r'));
+    assert!(s.wait_until(WAIT, idle));
+    for (w, h) in [(1, 1), (10, 3), (30, 8), (50, 12)] {
+        let mut terminal = Terminal::new(TestBackend::new(w, h)).expect("test backend");
+        terminal.draw(|f| s.draw(f)).expect("draw");
+        press(&mut s, KeyCode::Char('?'));
+        terminal.draw(|f| s.draw(f)).expect("draw help");
+        press(&mut s, KeyCode::Esc);
+    }
+}

@@ -1,0 +1,610 @@
+//! The state of the terminal UI and its transitions: keys in, [`Effect`]s out, messages of the
+//! background runs in. No I/O, no threads and no clock here: the session carries the effects
+//! out, the view draws the state, so tests drive the UI without a terminal.
+
+use std::path::{Path, PathBuf};
+
+use ratatui::crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+
+use super::form::{Form, LineEdit};
+use super::keymap::{Action, action_for};
+use super::worker::{JobMsg, Outcome};
+use crate::figure::Figure;
+use crate::params::ParamValues;
+use crate::scenes::SceneDyn;
+
+/// Which pane the arrow keys move in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Focus {
+    /// The scene list.
+    Scenes,
+    /// The parameter form.
+    Form,
+}
+
+/// What a path prompt is for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PromptKind {
+    /// Load a preset into the form.
+    LoadPreset,
+    /// Save the form as a preset.
+    SavePreset,
+}
+
+/// Modal state on top of the panes.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Mode {
+    /// Keys go to the key map.
+    Normal,
+    /// The key help is shown; any key closes it.
+    Help,
+    /// A file path is being typed.
+    Prompt {
+        /// What the path is for.
+        kind: PromptKind,
+        /// The path being typed.
+        edit: LineEdit,
+    },
+}
+
+/// How complete a shown figure is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FigureState {
+    /// Partial results of a running job.
+    Partial,
+    /// The finished figure.
+    Complete,
+    /// Partial results of a cancelled job.
+    Cancelled,
+    /// Partial results of a failed job.
+    Failed,
+}
+
+/// A scene's latest figure and the parameters it was computed with.
+#[derive(Debug, Clone)]
+pub struct FigureView {
+    /// The figure.
+    pub figure: Figure,
+    /// Parameters of the run.
+    pub values: ParamValues,
+    /// Wall time of the run in seconds, once finished.
+    pub run_time_s: Option<f64>,
+    /// Complete or partial.
+    pub state: FigureState,
+}
+
+/// The run in progress.
+#[derive(Debug, Clone)]
+pub struct Running {
+    /// Run id.
+    pub job: u64,
+    /// Index of the scene.
+    pub scene: usize,
+    /// Parameters of the run.
+    pub values: ParamValues,
+    /// Fraction done, 0 to 1.
+    pub fraction: f64,
+    /// Latest progress message.
+    pub message: String,
+    /// Whether cancellation was requested.
+    pub cancelling: bool,
+}
+
+/// A line in the status bar.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Status {
+    /// Text, one line.
+    pub text: String,
+    /// Shown as an error.
+    pub error: bool,
+}
+
+/// Something the session must do outside the state.
+pub enum Effect {
+    /// Start a background run.
+    Start {
+        /// Run id (messages carry it).
+        job: u64,
+        /// The scene.
+        scene: &'static dyn SceneDyn,
+        /// Validated parameters.
+        values: ParamValues,
+    },
+    /// Ask a run to stop.
+    Cancel {
+        /// Run id.
+        job: u64,
+    },
+    /// Export the complete figure of scene `scene` (index).
+    Export {
+        /// Scene index.
+        scene: usize,
+    },
+    /// Read a preset file into the form of scene `scene`.
+    LoadPreset {
+        /// Scene index.
+        scene: usize,
+        /// The file.
+        path: PathBuf,
+    },
+    /// Write the form of scene `scene` as a preset file.
+    SavePreset {
+        /// Scene index.
+        scene: usize,
+        /// The file.
+        path: PathBuf,
+    },
+}
+
+impl std::fmt::Debug for Effect {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Effect::Start { job, scene, .. } => write!(f, "Start({job}, {})", scene.info().id),
+            Effect::Cancel { job } => write!(f, "Cancel({job})"),
+            Effect::Export { scene } => write!(f, "Export({scene})"),
+            Effect::LoadPreset { scene, path } => write!(f, "LoadPreset({scene}, {})", path.display()),
+            Effect::SavePreset { scene, path } => write!(f, "SavePreset({scene}, {})", path.display()),
+        }
+    }
+}
+
+/// The whole state of the terminal UI.
+pub struct App {
+    pub(crate) scenes: Vec<&'static dyn SceneDyn>,
+    pub(crate) forms: Vec<Form>,
+    pub(crate) figures: Vec<Option<FigureView>>,
+    pub(crate) selected: usize,
+    pub(crate) focus: Focus,
+    pub(crate) mode: Mode,
+    pub(crate) running: Option<Running>,
+    pub(crate) panel: usize,
+    pub(crate) show_info: bool,
+    pub(crate) status: Status,
+    pub(crate) auto_run: bool,
+    preset_dir: PathBuf,
+    next_job: u64,
+    quit: bool,
+}
+
+impl std::fmt::Debug for App {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("App")
+            .field("selected", &self.selected)
+            .field("focus", &self.focus)
+            .field("mode", &self.mode)
+            .field("running", &self.running.as_ref().map(|r| r.job))
+            .field("status", &self.status)
+            .finish()
+    }
+}
+
+impl App {
+    /// The UI over `scenes` (in chapter order); presets are offered from `preset_dir`.
+    pub fn new(scenes: Vec<&'static dyn SceneDyn>, preset_dir: impl Into<PathBuf>) -> Self {
+        let forms = scenes.iter().map(|s| Form::new(*s)).collect();
+        let figures = scenes.iter().map(|_| None).collect();
+        Self {
+            scenes,
+            forms,
+            figures,
+            selected: 0,
+            focus: Focus::Scenes,
+            mode: Mode::Normal,
+            running: None,
+            panel: 0,
+            show_info: false,
+            status: Status {
+                text: "select a scene, Enter to edit its parameters, r to run, ? for help".into(),
+                error: false,
+            },
+            auto_run: false,
+            preset_dir: preset_dir.into(),
+            next_job: 1,
+            quit: false,
+        }
+    }
+
+    /// The scenes.
+    pub fn scenes(&self) -> &[&'static dyn SceneDyn] {
+        &self.scenes
+    }
+
+    /// Index of the selected scene.
+    pub fn selected(&self) -> usize {
+        self.selected
+    }
+
+    /// The selected scene.
+    pub fn scene(&self) -> Option<&'static dyn SceneDyn> {
+        self.scenes.get(self.selected).copied()
+    }
+
+    /// The form of the selected scene.
+    pub fn form(&self) -> Option<&Form> {
+        self.forms.get(self.selected)
+    }
+
+    /// The latest figure of scene `k`.
+    pub fn figure(&self, k: usize) -> Option<&FigureView> {
+        self.figures.get(k).and_then(Option::as_ref)
+    }
+
+    /// The run in progress.
+    pub fn running(&self) -> Option<&Running> {
+        self.running.as_ref()
+    }
+
+    /// The status line.
+    pub fn status(&self) -> &Status {
+        &self.status
+    }
+
+    /// The modal state.
+    pub fn mode(&self) -> &Mode {
+        &self.mode
+    }
+
+    /// The focused pane.
+    pub fn focus(&self) -> Focus {
+        self.focus
+    }
+
+    /// The shown panel of the selected figure.
+    pub fn panel(&self) -> usize {
+        let n = self
+            .figure(self.selected)
+            .map_or(1, |f| f.figure.panels.len().max(1));
+        self.panel.min(n - 1)
+    }
+
+    /// Whether the user asked to quit.
+    pub fn should_quit(&self) -> bool {
+        self.quit
+    }
+
+    /// Set the status line.
+    pub fn set_status(&mut self, text: impl Into<String>, error: bool) {
+        self.status = Status {
+            text: text.into(),
+            error,
+        };
+    }
+
+    /// Whether valid changes start a run by themselves.
+    pub fn auto_run(&self) -> bool {
+        self.auto_run
+    }
+
+    /// Put loaded preset values into the form of scene `scene` (with auto-run, this may start
+    /// a run).
+    pub fn load_values(&mut self, scene: usize, values: ParamValues) -> Vec<Effect> {
+        match self.forms.get_mut(scene) {
+            Some(form) => {
+                form.load(values);
+                self.after_change()
+            }
+            None => Vec::new(),
+        }
+    }
+
+    /// After a change of the form: with auto-run on, run a valid set that is neither running
+    /// nor shown already.
+    fn after_change(&mut self) -> Vec<Effect> {
+        let mut effects = Vec::new();
+        let Some(form) = self.forms.get(self.selected) else {
+            return effects;
+        };
+        if !self.auto_run || !form.is_valid() {
+            return effects;
+        }
+        let values = form.values();
+        let running = self
+            .running
+            .as_ref()
+            .is_some_and(|r| r.scene == self.selected && &r.values == values);
+        let shown = self
+            .figure(self.selected)
+            .is_some_and(|v| v.state == FigureState::Complete && &v.values == values);
+        if !running && !shown {
+            self.run(&mut effects);
+        }
+        effects
+    }
+
+    /// Handle a key; returns what the session must do.
+    pub fn update(&mut self, key: KeyEvent) -> Vec<Effect> {
+        if key.kind == KeyEventKind::Release {
+            return Vec::new();
+        }
+        // Ctrl-C quits from anywhere, text entry included.
+        if key.modifiers.contains(KeyModifiers::CONTROL) && key.code == KeyCode::Char('c') {
+            return self.act(Action::Quit);
+        }
+        match &mut self.mode {
+            Mode::Normal => {}
+            Mode::Help => {
+                self.mode = Mode::Normal;
+                return Vec::new();
+            }
+            Mode::Prompt { kind, edit } => {
+                let kind = *kind;
+                match key.code {
+                    KeyCode::Esc => self.mode = Mode::Normal,
+                    KeyCode::Enter => {
+                        let path = PathBuf::from(edit.text().trim());
+                        self.mode = Mode::Normal;
+                        if path.as_os_str().is_empty() {
+                            self.set_status("no file given", true);
+                            return Vec::new();
+                        }
+                        let scene = self.selected;
+                        return vec![match kind {
+                            PromptKind::LoadPreset => Effect::LoadPreset { scene, path },
+                            PromptKind::SavePreset => Effect::SavePreset { scene, path },
+                        }];
+                    }
+                    _ => {
+                        edit.handle(key);
+                    }
+                }
+                return Vec::new();
+            }
+        }
+        if self.focus == Focus::Form
+            && let Some(form) = self.forms.get_mut(self.selected)
+            && form.editor().is_some()
+        {
+            match key.code {
+                KeyCode::Enter | KeyCode::Tab => form.finish_edit(),
+                KeyCode::Esc => form.cancel_edit(),
+                KeyCode::Up => form.move_selection(-1),
+                KeyCode::Down => form.move_selection(1),
+                _ => {
+                    form.edit_key(key);
+                }
+            }
+            self.show_form_status();
+            return self.after_change();
+        }
+        match action_for(key) {
+            Some(action) => self.act(action),
+            None => Vec::new(),
+        }
+    }
+
+    fn show_form_status(&mut self) {
+        if let Some(form) = self.forms.get(self.selected) {
+            match form.first_error() {
+                Some(e) => self.set_status(e.to_string(), true),
+                None if self.status.error => self.set_status("parameters valid", false),
+                None => {}
+            }
+        }
+    }
+
+    fn act(&mut self, action: Action) -> Vec<Effect> {
+        let mut effects = Vec::new();
+        match action {
+            Action::Quit => {
+                self.quit = true;
+                if let Some(run) = &self.running {
+                    effects.push(Effect::Cancel { job: run.job });
+                }
+            }
+            Action::Help => self.mode = Mode::Help,
+            Action::Run => self.run(&mut effects),
+            Action::Cancel => {
+                if let Some(run) = &mut self.running {
+                    run.cancelling = true;
+                    effects.push(Effect::Cancel { job: run.job });
+                    let id = self.scenes[run.scene].info().id;
+                    self.set_status(format!("cancelling {id}…"), false);
+                } else if self.show_info {
+                    self.show_info = false;
+                }
+            }
+            Action::Export => match self.figure(self.selected) {
+                Some(view) if view.state == FigureState::Complete => {
+                    effects.push(Effect::Export { scene: self.selected });
+                }
+                Some(_) => self.set_status(
+                    "the figure is incomplete: run the scene to the end (r) before exporting",
+                    true,
+                ),
+                None => self.set_status("nothing to export: run the scene first (r)", true),
+            },
+            Action::LoadPreset | Action::SavePreset => {
+                if let Some(scene) = self.scene() {
+                    let path = default_preset_path(&self.preset_dir, scene.info().id);
+                    let kind = if action == Action::LoadPreset {
+                        PromptKind::LoadPreset
+                    } else {
+                        PromptKind::SavePreset
+                    };
+                    self.mode = Mode::Prompt {
+                        kind,
+                        edit: LineEdit::new(path.display().to_string()),
+                    };
+                }
+            }
+            Action::Defaults => {
+                if let Some(form) = self.forms.get_mut(self.selected) {
+                    form.reset();
+                    self.set_status("parameters reset to the dissertation's values", false);
+                    effects.extend(self.after_change());
+                }
+            }
+            Action::AutoRun => {
+                self.auto_run = !self.auto_run;
+                let text = if self.auto_run {
+                    "auto-run on: every valid change runs the scene"
+                } else {
+                    "auto-run off"
+                };
+                self.set_status(text, false);
+                effects.extend(self.after_change());
+            }
+            Action::SwitchFocus => {
+                self.focus = match self.focus {
+                    Focus::Scenes => Focus::Form,
+                    Focus::Form => Focus::Scenes,
+                };
+            }
+            Action::Up | Action::Down => {
+                let step = if action == Action::Up { -1 } else { 1 };
+                match self.focus {
+                    Focus::Scenes => self.select_scene(step),
+                    Focus::Form => {
+                        if let Some(form) = self.forms.get_mut(self.selected) {
+                            form.move_selection(step);
+                        }
+                    }
+                }
+            }
+            Action::Activate => match self.focus {
+                Focus::Scenes => self.focus = Focus::Form,
+                Focus::Form => {
+                    if let Some(form) = self.forms.get_mut(self.selected) {
+                        form.start_edit();
+                    }
+                }
+            },
+            Action::Cycle => {
+                if self.focus == Focus::Form
+                    && let Some(form) = self.forms.get_mut(self.selected)
+                {
+                    form.cycle();
+                    self.show_form_status();
+                    effects.extend(self.after_change());
+                }
+            }
+            Action::PrevPanel => self.panel = self.panel().saturating_sub(1),
+            Action::NextPanel => self.panel = self.panel() + 1,
+            Action::Info => self.show_info = !self.show_info,
+        }
+        // Keep the panel index within the figure.
+        self.panel = self.panel();
+        effects
+    }
+
+    fn select_scene(&mut self, step: isize) {
+        if self.scenes.is_empty() {
+            return;
+        }
+        let last = self.scenes.len() as isize - 1;
+        let k = (self.selected as isize + step).clamp(0, last) as usize;
+        if k != self.selected {
+            self.selected = k;
+            self.panel = 0;
+        }
+    }
+
+    fn run(&mut self, effects: &mut Vec<Effect>) {
+        let Some(form) = self.forms.get(self.selected) else {
+            return;
+        };
+        let scene = form.scene();
+        if let Some(e) = form.first_error() {
+            let text = format!("cannot run {}: {e}", scene.info().id);
+            self.set_status(text, true);
+            return;
+        }
+        let values = form.values().clone();
+        if let Some(old) = self.running.take() {
+            effects.push(Effect::Cancel { job: old.job });
+        }
+        let job = self.next_job;
+        self.next_job += 1;
+        self.running = Some(Running {
+            job,
+            scene: self.selected,
+            values: values.clone(),
+            fraction: 0.0,
+            message: "starting".into(),
+            cancelling: false,
+        });
+        self.set_status(format!("running {}…", scene.info().id), false);
+        effects.push(Effect::Start { job, scene, values });
+    }
+
+    /// Take a message of a background run. Messages of runs no longer tracked are ignored.
+    pub fn on_job(&mut self, msg: JobMsg) {
+        let Some(run) = &mut self.running else {
+            return;
+        };
+        if msg.job() != run.job {
+            return;
+        }
+        let scene = run.scene;
+        let id = self.scenes[scene].info().id;
+        match msg {
+            JobMsg::Progress {
+                fraction, message, ..
+            } => {
+                run.fraction = fraction;
+                run.message = message;
+            }
+            JobMsg::Preview { figure, .. } => {
+                self.figures[scene] = Some(FigureView {
+                    figure: *figure,
+                    values: run.values.clone(),
+                    run_time_s: None,
+                    state: FigureState::Partial,
+                });
+            }
+            JobMsg::Finished {
+                outcome, run_time_s, ..
+            } => {
+                let run = self.running.take();
+                match outcome {
+                    Outcome::Done(figure) => {
+                        self.figures[scene] = Some(FigureView {
+                            figure: *figure,
+                            values: run
+                                .map(|r| r.values)
+                                .unwrap_or_else(|| self.forms[scene].values().clone()),
+                            run_time_s: Some(run_time_s),
+                            state: FigureState::Complete,
+                        });
+                        self.set_status(format!("{id} done in {}", fmt_duration(run_time_s)), false);
+                    }
+                    Outcome::Cancelled => {
+                        mark_partial(&mut self.figures[scene], FigureState::Cancelled);
+                        self.set_status(
+                            format!("{id} cancelled after {}", fmt_duration(run_time_s)),
+                            false,
+                        );
+                    }
+                    Outcome::Failed(message) => {
+                        mark_partial(&mut self.figures[scene], FigureState::Failed);
+                        self.set_status(format!("{id} failed: {message}"), true);
+                    }
+                }
+                self.panel = self.panel();
+            }
+        }
+    }
+}
+
+/// Mark the partial figure of a run that ended early (a complete figure of an earlier run stays).
+fn mark_partial(figure: &mut Option<FigureView>, state: FigureState) {
+    if let Some(v) = figure
+        && v.state == FigureState::Partial
+    {
+        v.state = state;
+    }
+}
+
+/// `presets/<id>.toml` under `dir`.
+pub fn default_preset_path(dir: &Path, id: &str) -> PathBuf {
+    dir.join(format!("{id}.toml"))
+}
+
+/// A run time for people: `12 ms`, `3.4 s`.
+pub fn fmt_duration(seconds: f64) -> String {
+    if seconds < 1.0 {
+        format!("{:.0} ms", seconds * 1e3)
+    } else {
+        format!("{seconds:.1} s")
+    }
+}

@@ -1,0 +1,204 @@
+//! Keys of the terminal UI outside text entry: one table maps keys to [`Action`]s and is also
+//! the key help (`?`), so the two cannot drift apart.
+//!
+//! A new action (for instance loading a measured force curve or a height map from a CSV file)
+//! is one [`Action`] variant, one row in [`BINDINGS`] and one branch in
+//! [`crate::tui::app::App::update`].
+
+use ratatui::crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+
+/// What a key asks for (outside text entry).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Action {
+    /// Leave the program.
+    Quit,
+    /// Show or hide the key help.
+    Help,
+    /// Run the selected scene in the background.
+    Run,
+    /// Cancel the running job (or close the help).
+    Cancel,
+    /// Export the selected scene's figure (PNG, SVG, CSV, JSON).
+    Export,
+    /// Load a preset file into the form.
+    LoadPreset,
+    /// Save the form as a preset file.
+    SavePreset,
+    /// Reset the form to the dissertation's values.
+    Defaults,
+    /// Move the focus between the scene list and the parameter form.
+    SwitchFocus,
+    /// Move up in the focused list.
+    Up,
+    /// Move down in the focused list.
+    Down,
+    /// Open the selected scene's form, or edit the selected parameter.
+    Activate,
+    /// Next option of a choice or flag parameter.
+    Cycle,
+    /// Previous panel of a multi-panel figure.
+    PrevPanel,
+    /// Next panel of a multi-panel figure.
+    NextPanel,
+    /// Show the caption and the scalar results instead of the chart, or back.
+    Info,
+    /// Switch automatic runs after every valid change on or off.
+    AutoRun,
+}
+
+/// One key binding: the keys, how the help writes them, the action, what it does.
+#[derive(Debug, Clone, Copy)]
+pub struct Binding {
+    /// Keys that trigger the action.
+    pub keys: &'static [KeyCode],
+    /// The keys as shown in the help.
+    pub label: &'static str,
+    /// The action.
+    pub action: Action,
+    /// One line of help.
+    pub help: &'static str,
+}
+
+/// Every key binding, in the order of the help.
+pub const BINDINGS: &[Binding] = &[
+    Binding {
+        keys: &[KeyCode::Up, KeyCode::Char('k')],
+        label: "↑ k",
+        action: Action::Up,
+        help: "previous scene or parameter",
+    },
+    Binding {
+        keys: &[KeyCode::Down, KeyCode::Char('j')],
+        label: "↓ j",
+        action: Action::Down,
+        help: "next scene or parameter",
+    },
+    Binding {
+        keys: &[KeyCode::Tab, KeyCode::BackTab],
+        label: "Tab",
+        action: Action::SwitchFocus,
+        help: "switch between scene list and parameters",
+    },
+    Binding {
+        keys: &[KeyCode::Enter],
+        label: "Enter",
+        action: Action::Activate,
+        help: "open the scene's parameters / edit a value (Enter keeps, Esc reverts)",
+    },
+    Binding {
+        keys: &[KeyCode::Char(' ')],
+        label: "Space",
+        action: Action::Cycle,
+        help: "next option of a choice or true/false parameter",
+    },
+    Binding {
+        keys: &[KeyCode::Char('r')],
+        label: "r",
+        action: Action::Run,
+        help: "run the scene in the background (a new run replaces a running one)",
+    },
+    Binding {
+        keys: &[KeyCode::Esc],
+        label: "Esc",
+        action: Action::Cancel,
+        help: "cancel the running job",
+    },
+    Binding {
+        keys: &[KeyCode::Char('a')],
+        label: "a",
+        action: Action::AutoRun,
+        help: "auto-run: run again after every valid change (for fast scenes)",
+    },
+    Binding {
+        keys: &[KeyCode::Char('e')],
+        label: "e",
+        action: Action::Export,
+        help: "export the figure as PNG, SVG, CSV and JSON to output/",
+    },
+    Binding {
+        keys: &[KeyCode::Char('l')],
+        label: "l",
+        action: Action::LoadPreset,
+        help: "load a preset (TOML; presets/<id>.toml or a path you type)",
+    },
+    Binding {
+        keys: &[KeyCode::Char('s')],
+        label: "s",
+        action: Action::SavePreset,
+        help: "save the parameters as a preset",
+    },
+    Binding {
+        keys: &[KeyCode::Char('d')],
+        label: "d",
+        action: Action::Defaults,
+        help: "reset the parameters to the dissertation's values",
+    },
+    Binding {
+        keys: &[KeyCode::Left, KeyCode::Char('[')],
+        label: "← [",
+        action: Action::PrevPanel,
+        help: "previous panel of the figure",
+    },
+    Binding {
+        keys: &[KeyCode::Right, KeyCode::Char(']')],
+        label: "→ ]",
+        action: Action::NextPanel,
+        help: "next panel of the figure",
+    },
+    Binding {
+        keys: &[KeyCode::Char('i')],
+        label: "i",
+        action: Action::Info,
+        help: "caption and results / chart",
+    },
+    Binding {
+        keys: &[KeyCode::Char('?')],
+        label: "?",
+        action: Action::Help,
+        help: "this help",
+    },
+    Binding {
+        keys: &[KeyCode::Char('q')],
+        label: "q Ctrl-C",
+        action: Action::Quit,
+        help: "quit (cancels a running job)",
+    },
+];
+
+/// The action of a key outside text entry, if any.
+pub fn action_for(key: KeyEvent) -> Option<Action> {
+    if key.modifiers.contains(KeyModifiers::CONTROL) {
+        return matches!(key.code, KeyCode::Char('c')).then_some(Action::Quit);
+    }
+    BINDINGS
+        .iter()
+        .find(|b| b.keys.contains(&key.code))
+        .map(|b| b.action)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_action_has_exactly_one_binding_and_no_key_is_bound_twice() {
+        let mut keys = Vec::new();
+        for b in BINDINGS {
+            for k in b.keys {
+                assert!(!keys.contains(k), "{k:?} bound twice");
+                keys.push(*k);
+            }
+            assert_eq!(
+                BINDINGS.iter().filter(|c| c.action == b.action).count(),
+                1,
+                "{:?}",
+                b.action
+            );
+        }
+        let ctrl_c = KeyEvent::new(KeyCode::Char('c'), KeyModifiers::CONTROL);
+        assert_eq!(action_for(ctrl_c), Some(Action::Quit));
+        let plain = |c| KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE);
+        assert_eq!(action_for(plain('r')), Some(Action::Run));
+        assert_eq!(action_for(plain('x')), None);
+    }
+}

@@ -1,0 +1,179 @@
+//! A terminal-free session of the UI: the [`App`] state, the background [`Worker`], and the
+//! effects carried out (runs, exports, presets). The crossterm loop in [`crate::tui::run`] feeds
+//! it keys and draws it; tests do the same with ratatui's `TestBackend`.
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use ratatui::Frame;
+use ratatui::crossterm::event::KeyEvent;
+
+use super::app::{App, Effect};
+use super::view;
+use super::worker::Worker;
+use crate::headless::{preset_header, write_figure};
+use crate::render::{Format, write_atomic};
+use crate::scenes::SceneDyn;
+
+/// The UI state, its worker, and where exports go.
+#[derive(Debug)]
+pub struct Session {
+    app: App,
+    worker: Worker,
+    out_dir: PathBuf,
+}
+
+impl Session {
+    /// A session over `scenes`, exporting to `out_dir`, offering presets from `preset_dir`.
+    pub fn new(
+        scenes: Vec<&'static dyn SceneDyn>,
+        out_dir: impl Into<PathBuf>,
+        preset_dir: impl Into<PathBuf>,
+    ) -> Self {
+        Self {
+            app: App::new(scenes, preset_dir),
+            worker: Worker::new(),
+            out_dir: out_dir.into(),
+        }
+    }
+
+    /// The state.
+    pub fn app(&self) -> &App {
+        &self.app
+    }
+
+    /// Where exports go.
+    pub fn out_dir(&self) -> &Path {
+        &self.out_dir
+    }
+
+    /// Handle a key and carry out what it asks for.
+    pub fn key(&mut self, key: KeyEvent) {
+        for effect in self.app.update(key) {
+            self.apply(effect);
+        }
+    }
+
+    /// Take every message the worker has; returns whether there was any.
+    pub fn pump(&mut self) -> bool {
+        let msgs = self.worker.drain();
+        let any = !msgs.is_empty();
+        for m in msgs {
+            self.app.on_job(m);
+        }
+        any
+    }
+
+    /// Take messages until `done(app)` holds or `timeout` passes; returns whether it holds.
+    pub fn wait_until(&mut self, timeout: Duration, done: impl Fn(&App) -> bool) -> bool {
+        let end = Instant::now() + timeout;
+        loop {
+            self.pump();
+            if done(&self.app) {
+                return true;
+            }
+            let now = Instant::now();
+            if now >= end {
+                return false;
+            }
+            if let Some(m) = self
+                .worker
+                .recv_timeout((end - now).min(Duration::from_millis(20)))
+            {
+                self.app.on_job(m);
+            }
+        }
+    }
+
+    /// Draw the state into a frame.
+    pub fn draw(&self, frame: &mut Frame<'_>) {
+        view::draw(frame, &self.app);
+    }
+
+    /// Whether the user asked to quit.
+    pub fn should_quit(&self) -> bool {
+        self.app.should_quit()
+    }
+
+    fn apply(&mut self, effect: Effect) {
+        match effect {
+            Effect::Start { job, scene, values } => self.worker.start(job, scene, values),
+            Effect::Cancel { job } => self.worker.cancel(job),
+            Effect::Export { scene } => self.export(scene),
+            Effect::LoadPreset { scene, path } => self.load_preset(scene, &path),
+            Effect::SavePreset { scene, path } => self.save_preset(scene, &path),
+        }
+    }
+
+    fn export(&mut self, k: usize) {
+        let (Some(view), Some(scene)) = (self.app.figure(k), self.app.scenes().get(k)) else {
+            return;
+        };
+        let written = write_figure(
+            &view.figure,
+            scene.info().caption,
+            &view.values,
+            view.run_time_s.unwrap_or(0.0),
+            &self.out_dir,
+            &Format::ALL,
+        );
+        match written {
+            Ok(paths) => {
+                let names: Vec<String> = paths
+                    .iter()
+                    .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
+                    .collect();
+                let text = format!("exported to {}: {}", self.out_dir.display(), names.join(", "));
+                self.app.set_status(text, false);
+            }
+            Err(e) => self.app.set_status(format!("export failed: {e}"), true),
+        }
+    }
+
+    fn load_preset(&mut self, k: usize, path: &Path) {
+        let Some(scene) = self.app.scenes().get(k).copied() else {
+            return;
+        };
+        let mut values = scene.defaults();
+        match values.apply_preset_file(path) {
+            Ok(()) => {
+                let effects = self.app.load_values(k, values);
+                let problem = self.app.form().and_then(|f| f.first_error().map(str::to_string));
+                match problem {
+                    Some(e) => self
+                        .app
+                        .set_status(format!("loaded {}, but: {e}", path.display()), true),
+                    None => self.app.set_status(format!("loaded {}", path.display()), false),
+                }
+                for e in effects {
+                    self.apply(e);
+                }
+            }
+            Err(e) => self.app.set_status(e.to_string(), true),
+        }
+    }
+
+    fn save_preset(&mut self, k: usize, path: &Path) {
+        let (Some(scene), Some(form)) = (self.app.scenes().get(k).copied(), self.app.forms.get(k)) else {
+            return;
+        };
+        if let Some(e) = form.first_error() {
+            let text = format!("not saved: {e}");
+            self.app.set_status(text, true);
+            return;
+        }
+        let text = form.values().to_preset_text(&preset_header(scene));
+        let written = (|| -> crate::error::Result<()> {
+            if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+                std::fs::create_dir_all(dir)?;
+            }
+            write_atomic(path, text.as_bytes())
+        })();
+        match written {
+            Ok(()) => self.app.set_status(format!("saved {}", path.display()), false),
+            Err(e) => self
+                .app
+                .set_status(format!("saving {}: {e}", path.display()), true),
+        }
+    }
+}

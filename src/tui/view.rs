@@ -1,0 +1,413 @@
+//! Drawing the [`App`] state into any ratatui backend: the scene list by chapter, the parameter
+//! form (invalid fields in red with their error), the figure as a braille chart
+//! ([`crate::render::terminal::render_panel`]) with panel tabs, the progress gauge, the status
+//! bar, and the help and path-prompt overlays.
+
+use ratatui::Frame;
+use ratatui::layout::{Constraint, Layout, Position, Rect};
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Clear, Gauge, List, ListItem, ListState, Paragraph, Wrap};
+
+use super::app::{App, FigureState, FigureView, Focus, Mode, PromptKind, fmt_duration};
+use super::keymap::BINDINGS;
+use crate::params::{ParamKind, fmt_float};
+use crate::render::terminal::render_panel;
+use crate::scenes::chapter_title;
+
+const ACCENT: Color = Color::Cyan;
+const ERROR: Color = Color::LightRed;
+
+/// Draw the whole UI.
+pub fn draw(frame: &mut Frame<'_>, app: &App) {
+    let [main, status] = Layout::vertical([Constraint::Min(0), Constraint::Length(1)]).areas(frame.area());
+    let left_width = (main.width * 2 / 5).clamp(30, 52).min(main.width);
+    let [left, right] = Layout::horizontal([Constraint::Length(left_width), Constraint::Min(0)]).areas(main);
+    let entries = app.scenes.len() + chapter_count(app);
+    let list_height = (entries as u16 + 2).min(left.height / 2).max(3);
+    let [list_area, form_area] =
+        Layout::vertical([Constraint::Length(list_height), Constraint::Min(0)]).areas(left);
+    draw_scene_list(frame, app, list_area);
+    draw_form(frame, app, form_area);
+    draw_figure(frame, app, right);
+    draw_status(frame, app, status);
+    match &app.mode {
+        Mode::Normal => {}
+        Mode::Help => draw_help(frame, main),
+        Mode::Prompt { kind, edit } => {
+            let area = Rect {
+                x: main.x,
+                y: main.bottom().saturating_sub(3),
+                width: main.width,
+                height: 3.min(main.height),
+            };
+            let title = match kind {
+                PromptKind::LoadPreset => " Load preset (TOML) — Enter loads, Esc cancels ",
+                PromptKind::SavePreset => " Save preset (TOML) — Enter saves, Esc cancels ",
+            };
+            frame.render_widget(Clear, area);
+            let block = Block::bordered()
+                .title(title)
+                .border_style(Style::default().fg(ACCENT));
+            let inner = block.inner(area);
+            frame.render_widget(Paragraph::new(edit.text()).block(block), area);
+            let x = inner.x + (edit.cursor() as u16).min(inner.width.saturating_sub(1));
+            frame.set_cursor_position(Position::new(x, inner.y));
+        }
+    }
+}
+
+fn chapter_count(app: &App) -> usize {
+    let mut chapters: Vec<&str> = app.scenes.iter().map(|s| s.info().chapter).collect();
+    chapters.dedup();
+    chapters.len()
+}
+
+fn pane(title: String, focused: bool) -> Block<'static> {
+    let style = if focused {
+        Style::default().fg(ACCENT)
+    } else {
+        Style::default().fg(Color::DarkGray)
+    };
+    Block::bordered().title(title).border_style(style)
+}
+
+fn draw_scene_list(frame: &mut Frame<'_>, app: &App, area: Rect) {
+    let mut items = Vec::new();
+    let mut selected_item = 0;
+    let mut chapter = "";
+    for (k, s) in app.scenes.iter().enumerate() {
+        let info = s.info();
+        if info.chapter != chapter {
+            chapter = info.chapter;
+            items.push(ListItem::new(Line::styled(
+                format!("{chapter} {}", chapter_title(chapter)),
+                Style::default().fg(Color::Yellow).add_modifier(Modifier::BOLD),
+            )));
+        }
+        if k == app.selected {
+            selected_item = items.len();
+        }
+        let running = app.running.as_ref().is_some_and(|r| r.scene == k);
+        let mark = if running { "▶" } else { " " };
+        items.push(ListItem::new(Line::from(vec![
+            Span::raw(format!(" {mark}")),
+            Span::styled(
+                format!("{:<13}", info.id),
+                Style::default().add_modifier(Modifier::BOLD),
+            ),
+            Span::raw(info.title),
+        ])));
+    }
+    let focused = app.focus == Focus::Scenes && app.mode == Mode::Normal;
+    let highlight = if focused {
+        Style::default().bg(Color::Blue).fg(Color::White)
+    } else {
+        Style::default().add_modifier(Modifier::REVERSED)
+    };
+    let list = List::new(items)
+        .block(pane(" Scenes ".into(), focused))
+        .highlight_style(highlight);
+    let mut state = ListState::default().with_selected(Some(selected_item));
+    frame.render_stateful_widget(list, area, &mut state);
+}
+
+fn draw_form(frame: &mut Frame<'_>, app: &App, area: Rect) {
+    let Some(form) = app.form() else {
+        frame.render_widget(pane(" Parameters ".into(), false), area);
+        return;
+    };
+    let focused = app.focus == Focus::Form;
+    let verdict = if form.is_valid() { "valid" } else { "INVALID" };
+    let auto = if app.auto_run { " · auto-run" } else { "" };
+    let title = format!(" Parameters of {} — {verdict}{auto} ", form.scene().info().id);
+    let block = pane(title, focused);
+    let inner = block.inner(area);
+    frame.render_widget(block, area);
+    if inner.height == 0 || inner.width == 0 {
+        return;
+    }
+    let help_height = 3.min(inner.height.saturating_sub(1));
+    let [rows_area, help_area] =
+        Layout::vertical([Constraint::Min(0), Constraint::Length(help_height)]).areas(inner);
+
+    let name_width = form
+        .specs()
+        .iter()
+        .map(|s| s.name.len())
+        .max()
+        .unwrap_or(4)
+        .min(24);
+    let unit_width = form
+        .specs()
+        .iter()
+        .map(|s| s.unit.chars().count())
+        .max()
+        .unwrap_or(0);
+    let value_width = (inner.width as usize)
+        .saturating_sub(name_width + unit_width + 4)
+        .max(4);
+    let visible = rows_area.height as usize;
+    let offset = (form.selected() + 1).saturating_sub(visible);
+    let mut lines = Vec::new();
+    for k in offset..form.len().min(offset + visible) {
+        let spec = &form.specs()[k];
+        let text = form.text(k);
+        let shown: String = if text.chars().count() > value_width {
+            let tail: String = text
+                .chars()
+                .skip(text.chars().count() + 1 - value_width)
+                .collect();
+            format!("…{tail}")
+        } else {
+            text.to_string()
+        };
+        let mut style = Style::default();
+        if form.error(k).is_some() {
+            style = style.fg(ERROR).add_modifier(Modifier::BOLD);
+        }
+        if k == form.selected() {
+            style = if focused {
+                style.bg(Color::Blue).fg(if form.error(k).is_some() {
+                    ERROR
+                } else {
+                    Color::White
+                })
+            } else {
+                style.add_modifier(Modifier::REVERSED)
+            };
+        }
+        let marker = if form.error(k).is_some() {
+            "✗"
+        } else if form.is_changed(k) {
+            "*"
+        } else {
+            " "
+        };
+        lines.push(Line::styled(
+            format!(
+                "{marker}{:<name_width$} {shown:<value_width$} {}",
+                spec.name,
+                spec.unit,
+                name_width = name_width,
+                value_width = value_width
+            ),
+            style,
+        ));
+        if k == form.selected()
+            && let Some(edit) = form.editor()
+        {
+            let start = text.chars().count().saturating_sub(shown.chars().count());
+            let col = (1 + name_width + 1 + edit.cursor().saturating_sub(start)) as u16;
+            let x = rows_area.x + col.min(rows_area.width.saturating_sub(1));
+            frame.set_cursor_position(Position::new(x, rows_area.y + (k - offset) as u16));
+        }
+    }
+    frame.render_widget(Paragraph::new(lines), rows_area);
+
+    let k = form.selected();
+    let help = match (form.error(k), form.cross_error()) {
+        (Some(e), _) | (None, Some(e)) => {
+            Paragraph::new(Line::styled(e.to_string(), Style::default().fg(ERROR)))
+        }
+        (None, None) => match form.specs().get(k) {
+            Some(spec) => {
+                let range = match spec.kind {
+                    ParamKind::Float | ParamKind::Int | ParamKind::FloatList => spec.range.describe(),
+                    ParamKind::Bool => "true or false (Space toggles)".into(),
+                    ParamKind::Choice(options) => format!("{} (Space cycles)", options.join(", ")),
+                    ParamKind::Text => "text".into(),
+                };
+                let unit = if spec.unit.is_empty() { "-" } else { spec.unit };
+                Paragraph::new(vec![
+                    Line::from(spec.help),
+                    Line::styled(format!("[{unit}]  {range}"), Style::default().fg(Color::DarkGray)),
+                ])
+            }
+            None => Paragraph::new("no parameters"),
+        },
+    };
+    frame.render_widget(help.wrap(Wrap { trim: true }), help_area);
+}
+
+fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect) {
+    let Some(scene) = app.scene() else {
+        frame.render_widget(pane(" Figure ".into(), false), area);
+        return;
+    };
+    let info = scene.info();
+    let view = app.figure(app.selected);
+    let state = view.map_or(String::new(), |v| match v.state {
+        FigureState::Complete => v
+            .run_time_s
+            .map_or(String::new(), |t| format!(" · computed in {}", fmt_duration(t))),
+        FigureState::Partial => " · partial".into(),
+        FigureState::Cancelled => " · cancelled, partial".into(),
+        FigureState::Failed => " · failed, partial".into(),
+    });
+    let block = pane(format!(" {} — {}{state} ", info.id, info.title), false);
+    let inner = block.inner(area);
+    frame.render_widget(block, area);
+    let panels = view.map_or(0, |v| v.figure.panels.len());
+    let tabs_height = u16::from(panels > 1);
+    let [tabs_area, body, gauge_area] = Layout::vertical([
+        Constraint::Length(tabs_height),
+        Constraint::Min(0),
+        Constraint::Length(1),
+    ])
+    .areas(inner);
+    if panels > 1
+        && let Some(v) = view
+    {
+        let mut spans = vec![Span::styled(
+            "panels (← →): ",
+            Style::default().fg(Color::DarkGray),
+        )];
+        for (k, p) in v.figure.panels.iter().enumerate() {
+            let label = if p.label.is_empty() {
+                format!("{}", k + 1)
+            } else {
+                p.label.clone()
+            };
+            let text = if p.title.is_empty() {
+                format!(" {label} ")
+            } else {
+                format!(" {label} {} ", p.title)
+            };
+            let style = if k == app.panel() {
+                Style::default().bg(ACCENT).fg(Color::Black)
+            } else {
+                Style::default()
+            };
+            spans.push(Span::styled(text, style));
+        }
+        frame.render_widget(Line::from(spans), tabs_area);
+    }
+    match view {
+        Some(v) if !app.show_info && !v.figure.panels.is_empty() => {
+            if let Some(panel) = v.figure.panels.get(app.panel()) {
+                render_panel(panel, body, frame.buffer_mut());
+            }
+        }
+        _ => draw_info(frame, app, view, body),
+    }
+    draw_gauge(frame, app, view, gauge_area);
+}
+
+fn draw_info(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, area: Rect) {
+    let Some(scene) = app.scene() else { return };
+    let info = scene.info();
+    let mut lines = vec![Line::from(info.caption), Line::from("")];
+    match view {
+        None => lines.push(Line::styled(
+            "Not computed yet: press r to run, i to switch between chart and this page.",
+            Style::default().fg(Color::DarkGray),
+        )),
+        Some(v) => {
+            lines.push(Line::styled(
+                "Results",
+                Style::default().add_modifier(Modifier::BOLD),
+            ));
+            for (name, value) in &v.figure.results {
+                lines.push(Line::from(format!("  {name:<36} {}", fmt_float(*value))));
+            }
+            for note in &v.figure.notes {
+                lines.push(Line::styled(
+                    format!("  {note}"),
+                    Style::default().fg(Color::DarkGray),
+                ));
+            }
+        }
+    }
+    frame.render_widget(Paragraph::new(lines).wrap(Wrap { trim: false }), area);
+}
+
+fn draw_gauge(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, area: Rect) {
+    match &app.running {
+        Some(run) => {
+            let id = app.scenes[run.scene].info().id;
+            let message = if run.cancelling {
+                "cancelling…"
+            } else {
+                run.message.as_str()
+            };
+            let label = format!("{id} {:>3.0}% {message}  (Esc cancels)", run.fraction * 100.0);
+            let gauge = Gauge::default()
+                .gauge_style(Style::default().fg(ACCENT).bg(Color::Black))
+                .ratio(run.fraction.clamp(0.0, 1.0))
+                .label(label);
+            frame.render_widget(gauge, area);
+        }
+        None => {
+            let stale = view.is_some_and(|v| app.form().is_some_and(|f| f.values() != &v.values));
+            let text = match view.map(|v| v.state) {
+                Some(FigureState::Complete) if stale => {
+                    "parameters changed since this run: r reruns · e exports the figure as computed"
+                }
+                Some(FigureState::Complete) => "done · e exports · i caption and results",
+                Some(FigureState::Cancelled) => "cancelled · r runs again",
+                Some(FigureState::Failed) => "failed · see the status line",
+                Some(FigureState::Partial) | None => "idle · r runs",
+            };
+            frame.render_widget(Line::styled(text, Style::default().fg(Color::DarkGray)), area);
+        }
+    }
+}
+
+fn draw_status(frame: &mut Frame<'_>, app: &App, area: Rect) {
+    let hint = " ? help · q quit ";
+    let [text_area, hint_area] =
+        Layout::horizontal([Constraint::Min(0), Constraint::Length(hint.len() as u16)]).areas(area);
+    let style = if app.status.error {
+        Style::default().fg(ERROR).add_modifier(Modifier::BOLD)
+    } else {
+        Style::default()
+    };
+    frame.render_widget(Line::styled(app.status.text.as_str(), style), text_area);
+    frame.render_widget(
+        Line::styled(hint, Style::default().fg(Color::DarkGray)),
+        hint_area,
+    );
+}
+
+fn draw_help(frame: &mut Frame<'_>, area: Rect) {
+    let mut lines: Vec<Line<'_>> = BINDINGS
+        .iter()
+        .map(|b| {
+            Line::from(vec![
+                Span::styled(format!(" {:<10}", b.label), Style::default().fg(ACCENT)),
+                Span::raw(b.help),
+            ])
+        })
+        .collect();
+    lines.push(Line::from(""));
+    lines.push(Line::styled(
+        " While editing a value: type, ← → Home End, Backspace Del, Ctrl-U clears;",
+        Style::default().fg(Color::DarkGray),
+    ));
+    lines.push(Line::styled(
+        " invalid values turn red (✗) and block running; the last valid values are kept;",
+        Style::default().fg(Color::DarkGray),
+    ));
+    lines.push(Line::styled(
+        " * marks a value changed from the dissertation's default.",
+        Style::default().fg(Color::DarkGray),
+    ));
+    let width = 84.min(area.width);
+    let height = (lines.len() as u16 + 2).min(area.height);
+    let rect = Rect {
+        x: area.x + (area.width - width) / 2,
+        y: area.y + (area.height - height) / 2,
+        width,
+        height,
+    };
+    frame.render_widget(Clear, rect);
+    frame.render_widget(
+        Paragraph::new(lines).block(
+            Block::bordered()
+                .title(" Keys — any key closes ")
+                .border_style(Style::default().fg(ACCENT)),
+        ),
+        rect,
+    );
+}

@@ -1,0 +1,223 @@
+//! The background solver: one thread per run, a channel back to the drawing loop.
+//!
+//! A run gets a [`Job`] whose sink forwards progress and previews (throttled to a few dozen a
+//! second; the final figure always arrives) as [`JobMsg`]s tagged with the run's id, and whose
+//! cancellation flag the worker keeps. The work is CPU-bound, so there is no async runtime. A
+//! panic inside a scene is caught and reported as a failed run.
+
+use std::collections::HashMap;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{Receiver, Sender, channel};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use crate::error::Error;
+use crate::figure::Figure;
+use crate::job::{Job, JobEvent};
+use crate::params::ParamValues;
+use crate::scenes::SceneDyn;
+
+/// Name of the worker threads (the panic hook lets their panics through to the worker).
+pub const WORKER_THREAD: &str = "adhesion-worker";
+
+/// Shortest interval between two progress messages (the last one always passes).
+const PROGRESS_INTERVAL: Duration = Duration::from_millis(30);
+/// Shortest interval between two previews (cloning a figure is not free).
+const PREVIEW_INTERVAL: Duration = Duration::from_millis(60);
+
+/// How a run ended.
+#[derive(Debug)]
+pub enum Outcome {
+    /// The complete figure.
+    Done(Box<Figure>),
+    /// Cancelled through the job.
+    Cancelled,
+    /// The scene returned an error or panicked: the one-line message.
+    Failed(String),
+}
+
+/// A message from a run to the drawing loop.
+#[derive(Debug)]
+pub enum JobMsg {
+    /// Fraction done and what is being done.
+    Progress {
+        /// The run.
+        job: u64,
+        /// 0 to 1.
+        fraction: f64,
+        /// Short message.
+        message: String,
+    },
+    /// The figure as far as it is computed.
+    Preview {
+        /// The run.
+        job: u64,
+        /// Partial figure.
+        figure: Box<Figure>,
+    },
+    /// The run ended.
+    Finished {
+        /// The run.
+        job: u64,
+        /// Result.
+        outcome: Outcome,
+        /// Wall time of the run in seconds.
+        run_time_s: f64,
+    },
+}
+
+impl JobMsg {
+    /// The id of the run that sent the message.
+    pub fn job(&self) -> u64 {
+        match self {
+            JobMsg::Progress { job, .. } | JobMsg::Preview { job, .. } | JobMsg::Finished { job, .. } => *job,
+        }
+    }
+}
+
+/// Starts runs on background threads and collects their messages.
+pub struct Worker {
+    tx: Sender<JobMsg>,
+    rx: Receiver<JobMsg>,
+    flags: HashMap<u64, Arc<AtomicBool>>,
+}
+
+impl Default for Worker {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl std::fmt::Debug for Worker {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Worker").field("runs", &self.flags.len()).finish()
+    }
+}
+
+impl Worker {
+    /// A worker with no runs.
+    pub fn new() -> Self {
+        let (tx, rx) = channel();
+        Self {
+            tx,
+            rx,
+            flags: HashMap::new(),
+        }
+    }
+
+    /// Run `scene` with `values` on a new thread, reporting as run `job`.
+    pub fn start(&mut self, job: u64, scene: &'static dyn SceneDyn, values: ParamValues) {
+        let flag = Arc::new(AtomicBool::new(false));
+        self.flags.insert(job, Arc::clone(&flag));
+        let tx = self.tx.clone();
+        let sink_tx = self.tx.clone();
+        let last = Mutex::new((None::<Instant>, None::<Instant>));
+        let sink = move |event: &JobEvent<'_>| {
+            let now = Instant::now();
+            let Ok(mut last) = last.lock() else { return };
+            let due = |t: Option<Instant>, every: Duration| t.is_none_or(|t| now.duration_since(t) >= every);
+            let msg = match event {
+                JobEvent::Progress { fraction, message } => {
+                    if !(due(last.0, PROGRESS_INTERVAL) || *fraction >= 1.0) {
+                        return;
+                    }
+                    last.0 = Some(now);
+                    JobMsg::Progress {
+                        job,
+                        fraction: *fraction,
+                        message: (*message).to_string(),
+                    }
+                }
+                JobEvent::Preview(figure) => {
+                    if !due(last.1, PREVIEW_INTERVAL) {
+                        return;
+                    }
+                    last.1 = Some(now);
+                    JobMsg::Preview {
+                        job,
+                        figure: Box::new((*figure).clone()),
+                    }
+                }
+            };
+            drop(last);
+            // The receiver is gone only when the UI has quit.
+            let _ = sink_tx.send(msg);
+        };
+        let run_job = Job::with_sink(sink).with_cancel_flag(flag);
+        let spawned = std::thread::Builder::new().name(WORKER_THREAD.into()).spawn({
+            let tx = tx.clone();
+            move || {
+                let start = Instant::now();
+                let result = catch_unwind(AssertUnwindSafe(|| scene.run(&values, &run_job)));
+                let outcome = match result {
+                    Ok(Ok(figure)) => Outcome::Done(Box::new(figure)),
+                    Ok(Err(Error::Cancelled)) => Outcome::Cancelled,
+                    Ok(Err(e)) => Outcome::Failed(e.to_string()),
+                    Err(payload) => Outcome::Failed(format!(
+                        "the computation stopped on an internal error: {}",
+                        panic_text(payload.as_ref())
+                    )),
+                };
+                let _ = tx.send(JobMsg::Finished {
+                    job,
+                    outcome,
+                    run_time_s: start.elapsed().as_secs_f64(),
+                });
+            }
+        });
+        if let Err(e) = spawned {
+            let _ = tx.send(JobMsg::Finished {
+                job,
+                outcome: Outcome::Failed(format!("cannot start a worker thread: {e}")),
+                run_time_s: 0.0,
+            });
+        }
+    }
+
+    /// Ask run `job` to stop (it stops at its next `job.check()`).
+    pub fn cancel(&mut self, job: u64) {
+        if let Some(flag) = self.flags.get(&job) {
+            flag.store(true, Ordering::Relaxed);
+        }
+    }
+
+    /// The messages that have arrived, without waiting.
+    pub fn drain(&mut self) -> Vec<JobMsg> {
+        let msgs: Vec<JobMsg> = self.rx.try_iter().collect();
+        self.forget_finished(&msgs);
+        msgs
+    }
+
+    /// Wait up to `timeout` for the next message.
+    pub fn recv_timeout(&mut self, timeout: Duration) -> Option<JobMsg> {
+        let msg = self.rx.recv_timeout(timeout).ok()?;
+        self.forget_finished(std::slice::from_ref(&msg));
+        Some(msg)
+    }
+
+    fn forget_finished(&mut self, msgs: &[JobMsg]) {
+        for m in msgs {
+            if let JobMsg::Finished { job, .. } = m {
+                self.flags.remove(job);
+            }
+        }
+    }
+}
+
+impl Drop for Worker {
+    fn drop(&mut self) {
+        for flag in self.flags.values() {
+            flag.store(true, Ordering::Relaxed);
+        }
+    }
+}
+
+/// The text of a panic payload.
+fn panic_text(payload: &(dyn std::any::Any + Send)) -> String {
+    payload
+        .downcast_ref::<&str>()
+        .map(|s| (*s).to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "unknown".into())
+}
