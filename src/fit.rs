@@ -28,7 +28,7 @@ use serde::Serialize;
 
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Figure, Series, Style};
-use crate::models::machine_stiffness::{Experiment, Instability, TipGeometry};
+use crate::models::machine_stiffness::{Experiment, Instability, TipGeometry, sphere_radius_at_depth};
 use crate::numerics::least_squares::{LmOptions, levenberg_marquardt};
 use crate::scenes::fig2::{Predictions, ph_panel, predictions};
 
@@ -345,12 +345,6 @@ pub struct FitReport {
     pub measured_min_force_n: f64,
 }
 
-/// The fitted curve: force at each depth for given (w, ℰ), Eqs. (2.31b)-(2.32b).
-fn model_forces(depth: &[f64], radius: f64, w: f64, e: f64) -> Result<Vec<f64>> {
-    let x = Experiment::new(TipGeometry::Sphere { radius }, e, w, 1.0)?;
-    depth.iter().map(|&h| x.force_at_depth(h)).collect()
-}
-
 /// Fit w and ℰ to the in-contact rows of a curve (appendix A.4).
 ///
 /// # Errors
@@ -395,14 +389,43 @@ pub fn fit_curve(
     } else {
         p_scale / (1.5 * pi * radius) * 0.1
     };
-    let residuals = |x: &[f64]| -> Vec<f64> {
-        match model_forces(h, radius, x[0].exp(), x[1].exp()) {
-            Ok(f) => f.iter().zip(p).map(|(m, d)| (m - d) / p_scale).collect(),
-            Err(_) => vec![f64::NAN; h.len()],
+    // Residuals (model − measured force)/max|P| and their analytic Jacobian in (ln w, ln ℰ):
+    // P = P̂ P̄(h̄), h̄ = h/ĥ with P̂ ∝ w and ĥ ∝ (w/ℰ)^(2/3), so ∂h̄/∂ln w = −(2/3)h̄ = −∂h̄/∂ln ℰ.
+    let eval = |x: &[f64], hs: &[f64], ps: &[f64], with_jac: bool| -> (Vec<f64>, Vec<[f64; 2]>) {
+        let Ok(ex) = Experiment::new(TipGeometry::Sphere { radius }, x[1].exp(), x[0].exp(), 1.0) else {
+            return (vec![f64::NAN; hs.len()], Vec::new());
+        };
+        let sc = ex.scales();
+        let mut r = Vec::with_capacity(hs.len());
+        let mut j = Vec::with_capacity(if with_jac { hs.len() } else { 0 });
+        for (&hh, &pp) in hs.iter().zip(ps) {
+            let hb = hh / sc.h;
+            let a = sphere_radius_at_depth(hb);
+            let pb = a.powi(3) - 2.0 * a.powf(1.5);
+            r.push((sc.force * pb - pp) / p_scale);
+            if with_jac {
+                // dP̄/dh̄ along the branch; zero where the depth is below the branch (clamped).
+                let dh = 2.0 * a - 2.0 / (3.0 * a.sqrt());
+                let slope = if dh > 1e-12 {
+                    (3.0 * a * a - 3.0 * a.sqrt()) / dh
+                } else {
+                    0.0
+                };
+                let d_e = sc.force * slope * (2.0 / 3.0) * hb / p_scale;
+                j.push([sc.force * pb / p_scale - d_e, d_e]);
+            }
         }
+        (r, j)
     };
-    let cost = |x: &[f64]| residuals(x).iter().map(|r| r * r).sum::<f64>();
-    // Coarse scan of the modulus (the cost is flat far from the answer).
+    let residuals = |x: &[f64]| eval(x, h, p, false).0;
+    let jacobian = |x: &[f64]| {
+        let j = eval(x, h, p, true).1;
+        nalgebra::DMatrix::from_fn(j.len(), 2, |i, k| j[i][k])
+    };
+    // Coarse scan of the modulus on a subsample (the cost is flat far from the answer).
+    let stride = (h.len() / 200).max(1);
+    let (hs, ps): (Vec<f64>, Vec<f64>) = h.iter().zip(p).step_by(stride).map(|(a, b)| (*a, *b)).unzip();
+    let cost = |x: &[f64]| eval(x, &hs, &ps, false).0.iter().map(|r| r * r).sum::<f64>();
     let (k_max, h_max) = h.iter().zip(p).fold(
         (0.0f64, 0.0f64),
         |acc, (&hh, &pp)| if hh > acc.1 { (pp, hh) } else { acc },
@@ -424,7 +447,7 @@ pub fn fit_curve(
             }
         }
     }
-    let sol = levenberg_marquardt(&residuals, None, &x0, LmOptions::default())?;
+    let sol = levenberg_marquardt(&residuals, Some(&jacobian), &x0, LmOptions::default())?;
     let (w, e) = (sol.x[0].exp(), sol.x[1].exp());
     let rms = sol.residual_norm * p_scale / (h.len() as f64).sqrt();
     let x_for = |k: f64| Experiment::new(TipGeometry::Sphere { radius }, e, w, k);
