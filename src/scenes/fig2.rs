@@ -24,6 +24,7 @@ pub const SCENES: &[&dyn SceneDyn] = &[
     &Registered::<Fig2_6>::NEW,
     &Registered::<Fig2_7>::NEW,
     &Registered::<Fig2_8>::NEW,
+    &Registered::<Fig2_8Fit>::NEW,
 ];
 
 const XTOL: f64 = 1e-14;
@@ -957,7 +958,7 @@ impl Scene for Fig2_8 {
     const CAPTION: &'static str = "Contact force vs indentation depth of the machine-stiffness model \
         ((2.31b)-(2.32b) with the jumps of Sec. 2.3.1, blue) and of JKR ((1.2), red) at the best-fit \
         parameters of Sec. 2.4: (a) Sun et al., R = 58 nm; (b) Notbohm et al., R = 2.5 um. Squares: \
-        the state just before the pull-off. Measured curves are fitted with `--fit FILE.csv`.";
+        the state just before the pull-off. Measured curves: `--fit FILE.csv` or scene fig2.8-fit.";
     const RESULTS: &'static [(&'static str, &'static str)] = &[
         ("sun_alpha_norm", "alpha = k_s/k_hat, Sun et al."),
         (
@@ -1059,6 +1060,160 @@ impl Scene for Fig2_8 {
             );
         }
         fig.note("in this model the depth changes by |P|/k_s in each jump; JKR predicts no change of depth");
+        job.progress(1.0, "done");
+        Ok(fig)
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// fig2.8-fit: Fig. 2.8 for the user's own data (the `--fit` command as a scene).
+
+crate::param_choice! {
+    /// The model drawn and reported first by a fit.
+    pub enum FitModelChoice { Auto = "auto", Jkr = "jkr", MachineStiffness = "machine-stiffness" }
+}
+
+crate::scene_params! {
+    /// Parameters of scene fig2.8-fit. With no data file, a synthetic cycle of the model (with
+    /// the demo parameters and deterministic force noise) is fitted, as a demonstration.
+    pub struct Fig2_8FitParams {
+        /// Measured cycle (CSV with a header such as `depth_nm,force_nN`); empty: a synthetic demonstration cycle.
+        data_file: String = String::new(), unit = "", range = Range::any();
+        /// Tip radius R.
+        tip_radius: f64 = 1.0e-6, unit = "m", range = Range::positive();
+        /// Cantilever stiffness k_s; 0: unknown (JKR only).
+        spring_constant: f64 = 0.5, unit = "N/m", range = Range::non_negative();
+        /// Model drawn and reported first: auto (machine-stiffness when k_s > 0), jkr, machine-stiffness.
+        model: FitModelChoice = FitModelChoice::Auto, unit = "", range = Range::any();
+        /// Demonstration cycle: plane-strain modulus ℰ.
+        demo_modulus: f64 = 2.0e6, unit = "Pa", range = Range::positive();
+        /// Demonstration cycle: work of adhesion w.
+        demo_work_of_adhesion: f64 = 0.04, unit = "J/m^2", range = Range::positive();
+        /// Demonstration cycle: force noise, as a fraction of the largest |P|.
+        demo_noise: f64 = 0.01, unit = "", range = Range::between(0.0, 0.5);
+        /// Demonstration cycle: samples per branch.
+        demo_points: usize = 400, unit = "", range = Range::between(20.0, 1.0e6);
+    }
+}
+
+/// fig2.8-fit: fit a measured force-indentation cycle (appendix A.4) and draw it against both
+/// models, as `adhesion --headless --fit FILE.csv` does.
+pub struct Fig2_8Fit;
+
+/// The synthetic demonstration cycle of [`Fig2_8Fit`]: the model's cycle with deterministic
+/// pseudo-random force noise (uniform, standard deviation `noise` × max |P|).
+///
+/// # Errors
+/// Model errors.
+pub fn demo_cycle(x: &Experiment, noise: f64, samples: usize) -> Result<crate::fit::Curve> {
+    let d_o = x.pull_off()?.before.delta;
+    let mut curve = crate::fit::simulate_cycle(x, 1.5 * d_o, 3.0 * x.scales().h, samples)?;
+    let p_max = curve.force.iter().fold(0.0f64, |m, p| m.max(p.abs()));
+    for (k, p) in curve.force.iter_mut().enumerate() {
+        *p += noise * p_max * 3f64.sqrt() * (((k * 7919) % 1000) as f64 / 500.0 - 1.0);
+    }
+    Ok(curve)
+}
+
+impl Scene for Fig2_8Fit {
+    type Params = Fig2_8FitParams;
+    const ID: &'static str = "fig2.8-fit";
+    const CHAPTER: &'static str = "2";
+    const TITLE: &'static str = "Fit of a measured force-indentation cycle (your data)";
+    const CAPTION: &'static str = "A measured cycle (CSV: depth and force columns with units; positive depth is \
+        indentation) fitted for the work of adhesion and the plane-strain modulus by Levenberg-Marquardt on the \
+        contact relation (2.31b)-(2.32b), appendix A.4; the in-contact part is found automatically. Drawn against \
+        the machine-stiffness model and JKR at the fitted parameters, with their predicted jumps.";
+    const RESULTS: &'static [(&'static str, &'static str)] = &[
+        ("work_of_adhesion_J_per_m2", "fitted w"),
+        ("work_of_adhesion_std_error_J_per_m2", "standard error of w"),
+        (
+            "plane_strain_modulus_Pa",
+            "fitted plane-strain modulus E/(1-nu^2)",
+        ),
+        ("plane_strain_modulus_std_error_Pa", "its standard error"),
+        ("rms_residual_N", "root-mean-square force residual"),
+        ("points_used_count", "in-contact points used"),
+        ("jkr_pull_off_force_N", "JKR pull-off -5 pi w R/6 at the fit"),
+        (
+            "pull_in_force_N",
+            "machine-stiffness pull-in force (k_s > 0 only)",
+        ),
+        (
+            "pull_in_depth_jump_m",
+            "machine-stiffness depth change at the pull-in (k_s > 0 only)",
+        ),
+        (
+            "pull_off_force_N",
+            "machine-stiffness pull-off force (k_s > 0 only)",
+        ),
+        (
+            "pull_off_depth_jump_m",
+            "machine-stiffness depth change at the pull-off (k_s > 0 only)",
+        ),
+    ];
+
+    fn validate(p: &Self::Params) -> Result<()> {
+        if p.model == FitModelChoice::MachineStiffness && p.spring_constant == 0.0 {
+            return Err(Error::invalid(
+                "model",
+                "machine-stiffness",
+                "needs spring_constant > 0",
+            ));
+        }
+        Ok(())
+    }
+
+    fn quick(p: &mut Self::Params) {
+        p.demo_points = p.demo_points.min(80);
+    }
+
+    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        let k = (p.spring_constant > 0.0).then_some(p.spring_constant);
+        let path = std::path::PathBuf::from(if p.data_file.is_empty() {
+            "demonstration"
+        } else {
+            p.data_file.as_str()
+        });
+        let curve = if p.data_file.is_empty() {
+            let x = Experiment::new(
+                TipGeometry::Sphere { radius: p.tip_radius },
+                p.demo_modulus,
+                p.demo_work_of_adhesion,
+                k.unwrap_or(1.0),
+            )?;
+            demo_cycle(&x, p.demo_noise, p.demo_points)?
+        } else {
+            crate::fit::read_curve(&path)?
+        };
+        job.check()?;
+        let model = match p.model {
+            FitModelChoice::Auto => None,
+            FitModelChoice::Jkr => Some(crate::fit::FitModel::Jkr),
+            FitModelChoice::MachineStiffness => Some(crate::fit::FitModel::MachineStiffness),
+        };
+        let report = crate::fit::fit_curve(&curve, &path, p.tip_radius, k, model)?;
+        let mut fig = crate::fit::fit_figure(&curve, &report)?;
+        fig.id = Self::ID.into();
+        fig.title = Self::TITLE.into();
+        fig.result(
+            "work_of_adhesion_std_error_J_per_m2",
+            report.work_of_adhesion_j_per_m2.std_error,
+        );
+        fig.result(
+            "plane_strain_modulus_std_error_Pa",
+            report.plane_strain_modulus_pa.std_error,
+        );
+        fig.result("jkr_pull_off_force_N", report.jkr.pull_off_force_n);
+        if let Some(ms) = report.machine_stiffness {
+            fig.result("pull_in_force_N", ms.pull_in_force_n);
+            fig.result("pull_in_depth_jump_m", ms.pull_in_depth_jump_m);
+            fig.result("pull_off_force_N", ms.pull_off_force_n);
+            fig.result("pull_off_depth_jump_m", ms.pull_off_depth_jump_m);
+        }
+        if p.data_file.is_empty() {
+            fig.note("no data file given: a synthetic demonstration cycle of the model is fitted");
+        }
         job.progress(1.0, "done");
         Ok(fig)
     }
