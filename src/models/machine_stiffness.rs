@@ -31,10 +31,18 @@ use crate::numerics::quadrature::{GaussLegendre, polygon_area};
 use crate::numerics::roots::{brent, expand_upward};
 
 /// Tip shape of the non-dimensional problem.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum TipShape {
-    /// Spherical (paraboloidal) tip, Eq. (2.30).
+    /// Spherical tip in the paraboloid approximation (2.30), the form the chapter uses.
     Sphere,
+    /// Spherical tip with the exact profile, χ of Eq. (2.28), for a sphere of radius
+    /// R = `radius_ratio` × â (â of the paraboloid's scaling). Stationary points: h̄(ā) =
+    /// ρ ā atanh(ā/ρ) − (4/3)√ā, P̄ = (3/2)ā h̄ − (3ρ/4)(ā² − ρ²) atanh(ā/ρ) − (3/4)ρ² ā (from (2.19),
+    /// (2.20), (2.25b) with (2.28)), ρ = R/â; it tends to [`TipShape::Sphere`] as ρ → ∞.
+    SphereExact {
+        /// ρ = R/â (> 1).
+        radius_ratio: f64,
+    },
     /// Conical tip, Eq. (2.40).
     Cone,
 }
@@ -164,13 +172,22 @@ impl MachineStiffness {
         if !(alpha.is_finite() && alpha > 0.0) {
             return Err(Error::invalid("alpha", alpha, "must be positive and finite"));
         }
+        if let TipShape::SphereExact { radius_ratio } = tip
+            && !(radius_ratio.is_finite() && radius_ratio > 1.0)
+        {
+            return Err(Error::invalid(
+                "radius_ratio",
+                radius_ratio,
+                "R/a_hat must exceed 1 (the contact radius stays below R)",
+            ));
+        }
         Ok(Self { tip, alpha })
     }
 
     /// c/α in Δ̄ = (c/α)P̄ + h̄: 4/(3α) for the sphere (2.35a), 1/α for the cone (2.45a).
     pub fn compliance(&self) -> f64 {
         match self.tip {
-            TipShape::Sphere => 4.0 / (3.0 * self.alpha),
+            TipShape::Sphere | TipShape::SphereExact { .. } => 4.0 / (3.0 * self.alpha),
             TipShape::Cone => 1.0 / self.alpha,
         }
     }
@@ -179,6 +196,7 @@ impl MachineStiffness {
     pub fn depth(&self, a: f64) -> f64 {
         match self.tip {
             TipShape::Sphere => a * a - 4.0 / 3.0 * a.sqrt(),
+            TipShape::SphereExact { radius_ratio: r } => r * a * (a / r).atanh() - 4.0 / 3.0 * a.sqrt(),
             TipShape::Cone => 0.5 * a - (2.0 * a).sqrt(),
         }
     }
@@ -187,6 +205,9 @@ impl MachineStiffness {
     pub fn depth_slope(&self, a: f64) -> f64 {
         match self.tip {
             TipShape::Sphere => 2.0 * a - 2.0 / (3.0 * a.sqrt()),
+            TipShape::SphereExact { radius_ratio: r } => {
+                r * (a / r).atanh() + a / (1.0 - (a / r).powi(2)) - 2.0 / (3.0 * a.sqrt())
+            }
             TipShape::Cone => 0.5 - 1.0 / (2.0 * a).sqrt(),
         }
     }
@@ -195,6 +216,9 @@ impl MachineStiffness {
     pub fn force(&self, a: f64, h: f64) -> f64 {
         match self.tip {
             TipShape::Sphere => 1.5 * a * h - 0.5 * a.powi(3),
+            TipShape::SphereExact { radius_ratio: r } => {
+                1.5 * a * h - 0.75 * r * (a * a - r * r) * (a / r).atanh() - 0.75 * r * r * a
+            }
             TipShape::Cone => 2.0 * a * h - 0.5 * a * a,
         }
     }
@@ -203,6 +227,7 @@ impl MachineStiffness {
     pub fn force_partials(&self, a: f64, h: f64) -> (f64, f64) {
         match self.tip {
             TipShape::Sphere => (1.5 * h - 1.5 * a * a, 1.5 * a),
+            TipShape::SphereExact { radius_ratio: r } => (1.5 * h - 1.5 * r * a * (a / r).atanh(), 1.5 * a),
             TipShape::Cone => (2.0 * h - a, 2.0 * a),
         }
     }
@@ -231,6 +256,8 @@ impl MachineStiffness {
         let spring = 4.0 * a / (2.0 * a + self.alpha);
         match self.tip {
             TipShape::Sphere => 3.0 * a.powf(1.5) - spring - 1.0,
+            // (2.23) in the sphere's scales: (3/2)√ā h̄'(ā) − 4ā/(2ā + α).
+            TipShape::SphereExact { .. } => 1.5 * a.sqrt() * self.depth_slope(a) - spring,
             TipShape::Cone => (2.0 * a).sqrt() / 2.0 - spring - 1.0,
         }
     }
@@ -239,8 +266,28 @@ impl MachineStiffness {
     /// cone √(2ā)/2 > 3.
     fn fold_bound(&self) -> f64 {
         match self.tip {
-            TipShape::Sphere => 1.0,
+            // The exact profile is steeper than the paraboloid, so ḡ is larger there.
+            TipShape::Sphere | TipShape::SphereExact { .. } => 1.0,
             TipShape::Cone => 18.0,
+        }
+    }
+
+    /// A bracket [lo, hi] of the root of an increasing `f` above `lo`: doubling, or, for the exact
+    /// sphere, the whole range below ā = ρ (where the depth diverges).
+    fn upward_bracket(&self, f: impl Fn(f64) -> f64, lo: f64) -> Result<(f64, f64)> {
+        match self.tip {
+            TipShape::SphereExact { radius_ratio: r } => {
+                let hi = r * (1.0 - 1e-12);
+                if f(hi) < 0.0 {
+                    return Err(Error::invalid(
+                        "delta",
+                        "",
+                        "beyond the reach of the sphere (contact radius would exceed R)",
+                    ));
+                }
+                Ok((lo, hi))
+            }
+            _ => expand_upward(f, lo, lo.max(1.0) * 2.0, 200),
         }
     }
 
@@ -301,7 +348,7 @@ impl MachineStiffness {
         // Beyond the last fold Δ̄(ā) grows without bound.
         let last = *ends.last().expect("ends holds 0");
         if f(last) < 0.0 {
-            let (lo, hi) = expand_upward(f, last, last.max(1.0) * 2.0, 200)?;
+            let (lo, hi) = self.upward_bracket(f, last)?;
             roots.push(brent(f, lo, hi, xtol)?);
         }
         Ok(roots
@@ -406,7 +453,7 @@ impl MachineStiffness {
     /// P̂ĥ in the chapter's energy units: (3π/2)(9π/8)^(2/3) for the sphere, 1 for the cone.
     pub fn energy_factor(&self) -> f64 {
         match self.tip {
-            TipShape::Sphere => sphere_energy_factor(),
+            TipShape::Sphere | TipShape::SphereExact { .. } => sphere_energy_factor(),
             TipShape::Cone => 1.0,
         }
     }
@@ -443,7 +490,7 @@ impl MachineStiffness {
         }
         let n = samples.max(20);
         let f = |a: f64| self.stage_displacement(a) - delta_max;
-        let (lo, hi) = expand_upward(f, a_i, a_i * 2.0, 200)?;
+        let (lo, hi) = self.upward_bracket(f, a_i)?;
         let a_max = brent(f, lo, hi, xtol)? * 1.000_001;
         // Unstable part: clustered towards ā = 0; stable part: uniform, with āₒ and āᵢ exact.
         let mut radii: Vec<f64> = (1..n / 4)
@@ -503,7 +550,9 @@ impl MachineStiffness {
     pub fn pull_in_force_fit(&self) -> f64 {
         let al = self.alpha;
         match self.tip {
-            TipShape::Sphere => -8.0 / 9.0 * (1.0 - 1.0 / (1.0 + 0.83 * al.powf(1.12))),
+            TipShape::Sphere | TipShape::SphereExact { .. } => {
+                -8.0 / 9.0 * (1.0 - 1.0 / (1.0 + 0.83 * al.powf(1.12)))
+            }
             TipShape::Cone => {
                 -32.0 * (1.0 - (-0.12 * al).exp()) * (1.0 + 2.05 * (-0.123 * al.powf(0.665)).exp())
             }
@@ -514,7 +563,9 @@ impl MachineStiffness {
     pub fn pull_off_force_fit(&self) -> f64 {
         let al = self.alpha;
         match self.tip {
-            TipShape::Sphere => -(5.0 + 4.0 / (1.0 + 0.21 * al.powf(1.32))) / 9.0,
+            TipShape::Sphere | TipShape::SphereExact { .. } => {
+                -(5.0 + 4.0 / (1.0 + 0.21 * al.powf(1.32))) / 9.0
+            }
             TipShape::Cone => -6.0 - 48.0 / (1.0 + 0.00158 * al.powf(2.285)),
         }
     }
@@ -523,7 +574,7 @@ impl MachineStiffness {
     pub fn hysteresis_fit(&self) -> f64 {
         let al = self.alpha;
         match self.tip {
-            TipShape::Sphere => 7.092 + 7.657 / al.powf(0.99),
+            TipShape::Sphere | TipShape::SphereExact { .. } => 7.092 + 7.657 / al.powf(0.99),
             TipShape::Cone => 22.0 + 4383.87 / al.powf(1.4478),
         }
     }
@@ -667,6 +718,23 @@ impl Experiment {
         self.spring_constant / self.scales().stiffness
     }
 
+    /// The non-dimensional model with the exact spherical profile (2.28) instead of the
+    /// paraboloid (2.30): [`TipShape::SphereExact`] with ρ = R/â.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for a cone, or R/â ≤ 1.
+    pub fn model_exact_sphere(&self) -> Result<MachineStiffness> {
+        let TipGeometry::Sphere { radius } = self.tip else {
+            return Err(Error::invalid("tip", "cone", "the exact profile is for a sphere"));
+        };
+        MachineStiffness::new(
+            TipShape::SphereExact {
+                radius_ratio: radius / self.scales().a,
+            },
+            self.alpha(),
+        )
+    }
+
     /// The non-dimensional model.
     ///
     /// # Errors
@@ -780,7 +848,8 @@ mod tests {
 
     #[test]
     fn g_is_a_positive_multiple_of_the_stage_slope() {
-        for tip in [TipShape::Sphere, TipShape::Cone] {
+        let exact = TipShape::SphereExact { radius_ratio: 35.0 };
+        for tip in [TipShape::Sphere, TipShape::Cone, exact] {
             for alpha in [1e-2, 0.3, 1.0, 7.0, 1e3] {
                 let m = MachineStiffness::new(tip, alpha).unwrap();
                 for a in logspace(1e-3, 30.0, 50) {

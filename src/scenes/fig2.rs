@@ -1050,6 +1050,8 @@ impl Scene for Fig2_8 {
                 pr.jkr_pull_off_force * 1e9,
             );
             fig.result(format!("{name}_pull_in_force_nN"), pr.pull_in.after.force * 1e9);
+            let exact = x.model_exact_sphere()?.pull_off(XTOL)?.before.force * x.scales().force;
+            fig.result(format!("{name}_pull_off_force_exact_sphere_nN"), exact * 1e9);
             fig.result(
                 format!("{name}_pull_in_depth_jump_{}", depth_unit.0),
                 pr.pull_in.depth_jump().abs() * depth_unit.1,
