@@ -974,6 +974,10 @@ impl Scene for Fig2_8 {
             "machine-stiffness pull-in force, Sun et al.",
         ),
         (
+            "sun_pull_off_force_exact_sphere_nN",
+            "pull-off force with the exact spherical profile (2.28)",
+        ),
+        (
             "sun_pull_in_depth_jump_nm",
             "depth change in the pull-in, Sun et al. (printed 27.4)",
         ),
@@ -993,6 +997,10 @@ impl Scene for Fig2_8 {
         (
             "notbohm_pull_in_force_nN",
             "machine-stiffness pull-in force, Notbohm et al.",
+        ),
+        (
+            "notbohm_pull_off_force_exact_sphere_nN",
+            "pull-off force with the exact spherical profile (2.28)",
         ),
         (
             "notbohm_pull_in_depth_jump_um",
