@@ -530,3 +530,28 @@ fn exact_sphere_profile() {
         "{p_exact:e} vs {p_par:e}"
     );
 }
+
+/// fig2.5-accuracy: the exact computation converges (Brent's tolerance bounds the pull-off
+/// error; Gauss-Legendre reaches machine precision for the hysteresis with 8 points, the
+/// integrand being smooth on [āₒ, āᵢ]), while the fits (2.37b), (2.39) stay at the per-cent level.
+#[test]
+fn accuracy_scene_shows_convergence() {
+    let s = adhesion::scenes::find("fig2.5-accuracy").unwrap();
+    let fig = s
+        .run(&s.quick(&s.defaults()).unwrap(), &adhesion::job::Job::quiet())
+        .unwrap();
+    let r = |n: &str| fig.result_value(n).unwrap();
+    assert!(r("tolerance_1e-8_pull_off_max_rel_error_norm") < 1e-7);
+    assert!(r("order_8_hysteresis_max_rel_error_norm") < 1e-12);
+    for n in [
+        "fits_pull_off_max_rel_error_norm",
+        "fits_hysteresis_max_rel_error_norm",
+    ] {
+        assert!((1e-3..0.05).contains(&r(n)), "{n} = {}", r(n));
+    }
+    // Panel (a): the pull-off error falls as the tolerance tightens.
+    let tol_series = &fig.panels[0].series[0];
+    let first = tol_series.points.first().unwrap().1;
+    let last = tol_series.points.last().unwrap().1;
+    assert!(first > 1e-4 && last < 1e-13, "{:?}", tol_series.points);
+}
