@@ -246,22 +246,22 @@ pub fn read_curve(path: &Path) -> Result<Curve> {
 }
 
 /// The in-contact part of a cycle: the rows from the first to the last whose force stands out
-/// of the zero-force noise of the approach and retract segments. The noise level is the median
-/// absolute force of the first and last tenth of the rows (out of contact); a force counts as
-/// non-zero above max(8 × that, 1 % of the largest |P|). Returns the index range.
+/// of the zero-force noise of the approach and retract segments. The noise level σ is estimated
+/// from the first and last tenth of the rows as median|ΔP|/(0.954·√2) of successive differences
+/// (a flat noisy baseline gives its σ; a smooth curve, when a file holds only the contact part,
+/// gives nearly zero); a force counts as non-zero above max(8σ, 1 % of the largest |P|). Returns
+/// the index range.
 ///
 /// # Errors
 /// [`Error::DataFile`] when fewer than `min_points` rows are in contact.
 pub fn contact_range(curve: &Curve, path: &Path, min_points: usize) -> Result<std::ops::Range<usize>> {
     let n = curve.force.len();
-    let tenth = (n / 10).max(1);
-    let mut edge: Vec<f64> = curve.force[..tenth]
-        .iter()
-        .chain(&curve.force[n - tenth..])
-        .map(|p| p.abs())
-        .collect();
-    edge.sort_by(f64::total_cmp);
-    let noise = edge[edge.len() / 2];
+    let tenth = (n / 10).max(2).min(n);
+    let diffs = |seg: &[f64]| seg.windows(2).map(|w| (w[1] - w[0]).abs()).collect::<Vec<_>>();
+    let mut d = diffs(&curve.force[..tenth]);
+    d.extend(diffs(&curve.force[n - tenth..]));
+    d.sort_by(f64::total_cmp);
+    let noise = d.get(d.len() / 2).copied().unwrap_or(0.0) / (0.954 * std::f64::consts::SQRT_2);
     let p_max = curve.force.iter().fold(0.0f64, |m, p| m.max(p.abs()));
     let threshold = (8.0 * noise).max(0.01 * p_max);
     let first = curve.force.iter().position(|p| p.abs() > threshold);

@@ -555,3 +555,24 @@ fn accuracy_scene_shows_convergence() {
     let last = tol_series.points.last().unwrap().1;
     assert!(first > 1e-4 && last < 1e-13, "{:?}", tol_series.points);
 }
+
+/// A file with only the in-contact part (no zero-force segments) is fitted with all its points.
+#[test]
+fn contact_only_file() {
+    use adhesion::fit::{fit_curve, simulate_cycle};
+    let x = Experiment::new(TipGeometry::Sphere { radius: 1e-6 }, 2.0e6, 0.04, 0.5).unwrap();
+    let d_o = x.pull_off().unwrap().before.delta;
+    let mut c = simulate_cycle(&x, 1.5 * d_o, 3.0 * x.scales().h, 300).unwrap();
+    let keep: Vec<usize> = (0..c.force.len()).filter(|&k| c.force[k] != 0.0).collect();
+    c.depth = keep.iter().map(|&k| c.depth[k]).collect();
+    c.force = keep.iter().map(|&k| c.force[k]).collect();
+    c.lines = (2..keep.len() + 2).collect();
+    let r = fit_curve(&c, std::path::Path::new("contact.csv"), 1e-6, None, None).unwrap();
+    assert!(
+        r.points_used + 3 >= keep.len(),
+        "{} of {}",
+        r.points_used,
+        keep.len()
+    );
+    assert!(rel(r.work_of_adhesion_j_per_m2.value, 0.04) < 1e-7);
+}
