@@ -1,6 +1,36 @@
 //! Fitting measured force-indentation curves (appendix A.4): the `--fit` command.
+//!
+//! A measured contact cycle (approach, contact, retract) of a spherical tip is read from CSV, its
+//! in-contact part is found, and the work of adhesion w and the plane-strain modulus ℰ are fitted
+//! by nonlinear least squares (Levenberg-Marquardt, [`crate::numerics::least_squares`]) to the
+//! contact relation (2.31b)-(2.32b), which is the JKR relation (1.2):
+//!
+//! ```text
+//! P(h) = P̂ (ā³ − 2ā^(3/2)),  h = ĥ (ā² − (4/3)√ā),  â = (9πwR²/8ℰ)^(1/3), ĥ = â²/R, P̂ = 3πwR/2
+//! ```
+//!
+//! on the stable part ā ≥ ā_D, where h(ā) increases, so the force is a function of the depth.
+//! Appendix A.4 fits the depth as a function of the force (A.4.1); that inverse is two-valued on
+//! the part of the curve an experiment with a compliant cantilever reaches before the pull-off
+//! (between the force minimum and the pull-off), so the residual here is the force at the measured
+//! depth. The machine-stiffness model and JKR share this relation, so both give the same fitted
+//! w and ℰ (as section 2.4 reports); they differ in where the jumps occur, which the report
+//! predicts for both when the cantilever stiffness k_s is given.
+//!
+//! File format: a header naming the depth and force columns with their units (`depth_nm,force_nN`,
+//! `depth_m,force_N`, `depth [um],force [uN]`, `h (nm); P (nN)` and the like; separators comma,
+//! semicolon, tab), comment lines starting with `#`, then rows in acquisition order. Positive
+//! depth is indentation, positive force is compression.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+
+use crate::error::{Error, Result};
+use crate::figure::{Axis, Figure, Series, Style};
+use crate::models::machine_stiffness::{Experiment, Instability, TipGeometry, sphere_radius_at_depth};
+use crate::numerics::least_squares::{LmOptions, levenberg_marquardt};
+use crate::scenes::fig2::{Predictions, ph_panel, predictions};
 
 /// Options of the `--fit` command (flattened into [`crate::cli::Cli`]).
 #[derive(Debug, Clone, Default, clap::Args)]
@@ -8,4 +38,581 @@ pub struct FitArgs {
     /// Fit a measured force-indentation cycle (CSV) with --headless.
     #[arg(long, value_name = "FILE.csv")]
     pub fit: Option<PathBuf>,
+    /// Tip radius R in metres (for --fit).
+    #[arg(long, value_name = "METRES", requires = "fit")]
+    pub tip_radius: Option<f64>,
+    /// Cantilever (machine) stiffness k_s in N/m (for --fit): predicts the pull-in and pull-off.
+    #[arg(long, value_name = "N_PER_M", requires = "fit")]
+    pub spring_constant: Option<f64>,
+    /// Model drawn and reported first (for --fit): jkr, or machine-stiffness (needs
+    /// --spring-constant). Default: machine-stiffness with a spring constant, else jkr.
+    #[arg(long, value_enum, requires = "fit")]
+    pub model: Option<FitModel>,
+}
+
+/// The model of a fit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FitModel {
+    /// JKR (1.2): no machine stiffness.
+    Jkr,
+    /// The machine-stiffness model of chapter 2, (2.31)-(2.32).
+    MachineStiffness,
+}
+
+/// A measured curve in SI units, in acquisition order.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Curve {
+    /// Indentation depth h [m] (positive into the substrate).
+    pub depth: Vec<f64>,
+    /// Contact force P [N] (positive in compression).
+    pub force: Vec<f64>,
+    /// 1-based line number of each row in the file.
+    pub lines: Vec<usize>,
+}
+
+const LENGTH_UNITS: &[(&str, f64)] = &[
+    ("m", 1.0),
+    ("mm", 1e-3),
+    ("um", 1e-6),
+    ("µm", 1e-6),
+    ("μm", 1e-6),
+    ("micron", 1e-6),
+    ("microns", 1e-6),
+    ("nm", 1e-9),
+    ("pm", 1e-12),
+    ("a", 1e-10),
+    ("å", 1e-10),
+    ("angstrom", 1e-10),
+];
+const FORCE_UNITS: &[(&str, f64)] = &[
+    ("n", 1.0),
+    ("mn", 1e-3),
+    ("un", 1e-6),
+    ("µn", 1e-6),
+    ("μn", 1e-6),
+    ("nn", 1e-9),
+    ("pn", 1e-12),
+];
+const DEPTH_NAMES: &[&str] = &["depth", "indentation", "h", "indentation_depth", "separation"];
+const FORCE_NAMES: &[&str] = &["force", "load", "p", "contact_force"];
+
+/// Split a header cell into (name, unit): `depth_nm`, `depth [nm]`, `depth (nm)`, `depth/nm`.
+fn name_and_unit(cell: &str) -> (String, Option<String>) {
+    let c = cell.trim().trim_matches('"').trim();
+    for (open, close) in [('[', ']'), ('(', ')')] {
+        if let (Some(i), Some(j)) = (c.find(open), c.rfind(close))
+            && i < j
+        {
+            return (c[..i].trim().to_lowercase(), Some(c[i + 1..j].trim().to_string()));
+        }
+    }
+    if let Some(i) = c.rfind('/') {
+        return (c[..i].trim().to_lowercase(), Some(c[i + 1..].trim().to_string()));
+    }
+    if let Some(i) = c.rfind('_') {
+        let (name, unit) = (&c[..i], &c[i + 1..]);
+        let u = unit.to_lowercase();
+        if LENGTH_UNITS.iter().chain(FORCE_UNITS).any(|(n, _)| *n == u) {
+            return (name.trim().to_lowercase(), Some(unit.to_string()));
+        }
+        return (c.to_lowercase(), None);
+    }
+    (c.to_lowercase(), None)
+}
+
+fn split_row(line: &str) -> Vec<&str> {
+    let sep = if line.contains(',') {
+        ','
+    } else if line.contains(';') {
+        ';'
+    } else {
+        '\t'
+    };
+    if line.contains(sep) {
+        line.split(sep).map(str::trim).collect()
+    } else {
+        line.split_whitespace().collect()
+    }
+}
+
+/// Parse a measured curve from CSV text; `path` names the file in error messages.
+///
+/// # Errors
+/// [`Error::DataFile`] naming the line: no header, a missing depth or force column, a missing or
+/// unknown unit, a row with too few cells, a cell that is not a finite number, or no data rows.
+pub fn parse_curve(text: &str, path: &Path) -> Result<Curve> {
+    let err = |line: usize, msg: String| Error::data_file(path, line, msg);
+    let mut rows = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l.trim_start_matches('\u{feff}').trim()))
+        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
+    let Some((header_line, header)) = rows.next() else {
+        return Err(err(
+            0,
+            "empty file: expected a header such as `depth_nm,force_nN`".into(),
+        ));
+    };
+    let cells = split_row(header);
+    let mut depth_col = None;
+    let mut force_col = None;
+    for (k, cell) in cells.iter().enumerate() {
+        let (name, unit) = name_and_unit(cell);
+        let is_depth = DEPTH_NAMES.contains(&name.as_str());
+        let is_force = FORCE_NAMES.contains(&name.as_str());
+        if !(is_depth || is_force) {
+            continue;
+        }
+        let (units, what) = if is_depth {
+            (LENGTH_UNITS, "length (m, mm, um, nm, pm, angstrom)")
+        } else {
+            (FORCE_UNITS, "force (N, mN, uN, nN, pN)")
+        };
+        let Some(unit) = unit else {
+            return Err(err(
+                header_line,
+                format!(
+                    "column `{}` has no unit: write e.g. `{name}_nm` or `{name} [nN]`",
+                    cell.trim()
+                ),
+            ));
+        };
+        let Some(&(_, scale)) = units.iter().find(|(n, _)| *n == unit.to_lowercase()) else {
+            return Err(err(
+                header_line,
+                format!(
+                    "unknown unit `{unit}` in column `{}`: expected a {what}",
+                    cell.trim()
+                ),
+            ));
+        };
+        let slot = if is_depth { &mut depth_col } else { &mut force_col };
+        if slot.is_none() {
+            *slot = Some((k, scale));
+        }
+    }
+    let Some((dk, ds)) = depth_col else {
+        return Err(err(
+            header_line,
+            format!("no depth column in header `{header}` (expected e.g. `depth_nm,force_nN`)"),
+        ));
+    };
+    let Some((fk, fs)) = force_col else {
+        return Err(err(
+            header_line,
+            format!("no force column in header `{header}` (expected e.g. `depth_nm,force_nN`)"),
+        ));
+    };
+    let mut curve = Curve::default();
+    for (line, row) in rows {
+        let cells = split_row(row);
+        let need = dk.max(fk) + 1;
+        if cells.len() < need {
+            return Err(err(
+                line,
+                format!(
+                    "{} column(s), the header has {}",
+                    cells.len(),
+                    need.max(cells.len())
+                ),
+            ));
+        }
+        let num = |k: usize, what: &str| -> Result<f64> {
+            let t = cells[k].trim_matches('"');
+            match t.parse::<f64>() {
+                Ok(v) if v.is_finite() => Ok(v),
+                _ => Err(err(line, format!("{what} `{t}` is not a finite number"))),
+            }
+        };
+        curve.depth.push(num(dk, "depth")? * ds);
+        curve.force.push(num(fk, "force")? * fs);
+        curve.lines.push(line);
+    }
+    if curve.depth.is_empty() {
+        return Err(err(header_line, "no data rows after the header".into()));
+    }
+    Ok(curve)
+}
+
+/// Read a measured curve from a CSV file.
+///
+/// # Errors
+/// As [`parse_curve`]; unreadable files.
+pub fn read_curve(path: &Path) -> Result<Curve> {
+    let bytes = std::fs::read(path).map_err(|e| Error::data_file(path, 0, format!("cannot read: {e}")))?;
+    let text = String::from_utf8(bytes).map_err(|_| Error::data_file(path, 0, "not UTF-8 text"))?;
+    parse_curve(&text, path)
+}
+
+/// The in-contact part of a cycle: the rows from the first to the last whose force stands out
+/// of the zero-force noise of the approach and retract segments. The noise level σ is estimated
+/// from the first and last tenth of the rows as median|ΔP|/(0.954·√2) of successive differences
+/// (a flat noisy baseline gives its σ; a smooth curve, when a file holds only the contact part,
+/// gives nearly zero); a force counts as non-zero above max(8σ, 1 % of the largest |P|). Returns
+/// the index range.
+///
+/// # Errors
+/// [`Error::DataFile`] when fewer than `min_points` rows are in contact.
+pub fn contact_range(curve: &Curve, path: &Path, min_points: usize) -> Result<std::ops::Range<usize>> {
+    let n = curve.force.len();
+    let tenth = (n / 10).max(2).min(n);
+    let diffs = |seg: &[f64]| seg.windows(2).map(|w| (w[1] - w[0]).abs()).collect::<Vec<_>>();
+    let mut d = diffs(&curve.force[..tenth]);
+    d.extend(diffs(&curve.force[n - tenth..]));
+    d.sort_by(f64::total_cmp);
+    let noise = d.get(d.len() / 2).copied().unwrap_or(0.0) / (0.954 * std::f64::consts::SQRT_2);
+    let p_max = curve.force.iter().fold(0.0f64, |m, p| m.max(p.abs()));
+    let threshold = (8.0 * noise).max(0.01 * p_max);
+    let first = curve.force.iter().position(|p| p.abs() > threshold);
+    let last = curve.force.iter().rposition(|p| p.abs() > threshold);
+    let range = match (first, last) {
+        (Some(a), Some(b)) => a..b + 1,
+        _ => 0..0,
+    };
+    if range.len() < min_points {
+        let line = curve.lines.get(range.start).copied().unwrap_or(0);
+        return Err(Error::data_file(
+            path,
+            line,
+            format!(
+                "only {} in-contact point(s) (force above {threshold:.3e} N); at least {min_points} are needed",
+                range.len()
+            ),
+        ));
+    }
+    Ok(range)
+}
+
+/// A fitted parameter with its standard error.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Estimate {
+    /// Value (SI).
+    pub value: f64,
+    /// Standard error from the Jacobian (SI).
+    pub std_error: f64,
+}
+
+/// Predicted instabilities of one model, SI.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct InstabilityReport {
+    /// Force just after the pull-in [N].
+    pub pull_in_force_n: f64,
+    /// Change of indentation depth in the pull-in [m].
+    pub pull_in_depth_jump_m: f64,
+    /// Force just before the pull-off [N].
+    pub pull_off_force_n: f64,
+    /// Change of indentation depth in the pull-off [m].
+    pub pull_off_depth_jump_m: f64,
+    /// Depth just before the pull-off [m].
+    pub pull_off_depth_m: f64,
+}
+
+/// The result of a fit.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FitReport {
+    /// The data file.
+    pub file: String,
+    /// Tip radius R [m].
+    pub tip_radius_m: f64,
+    /// Model drawn and reported first.
+    pub model: FitModel,
+    /// Work of adhesion w [J/m²].
+    pub work_of_adhesion_j_per_m2: Estimate,
+    /// Plane-strain modulus ℰ = E/(1-ν²) [Pa].
+    pub plane_strain_modulus_pa: Estimate,
+    /// Root-mean-square force residual [N].
+    pub rms_residual_n: f64,
+    /// Rows in the file.
+    pub points_total: usize,
+    /// In-contact rows used in the fit.
+    pub points_used: usize,
+    /// First and last file line used.
+    pub lines_used: (usize, usize),
+    /// Levenberg-Marquardt iterations.
+    pub iterations: usize,
+    /// Cantilever stiffness k_s [N/m], if given.
+    pub spring_constant_n_per_m: Option<f64>,
+    /// α = k_s/k̂ at the fitted parameters, if k_s is given.
+    pub alpha: Option<f64>,
+    /// Machine-stiffness predictions (with k_s).
+    pub machine_stiffness: Option<InstabilityReport>,
+    /// JKR predictions (pull-in at h = 0, pull-off −5πwR/6, no depth change).
+    pub jkr: InstabilityReport,
+    /// Measured force at the last in-contact row (the pull-off) [N].
+    pub measured_pull_off_force_n: f64,
+    /// Measured most negative force [N].
+    pub measured_min_force_n: f64,
+}
+
+/// Fit w and ℰ to the in-contact rows of a curve (appendix A.4).
+///
+/// # Errors
+/// [`Error::DataFile`] for too few in-contact points; [`Error::InvalidParameter`] for a bad
+/// radius, spring constant or model choice; [`Error::NoConvergence`] if the fit fails.
+pub fn fit_curve(
+    curve: &Curve,
+    path: &Path,
+    radius: f64,
+    spring_constant: Option<f64>,
+    model: Option<FitModel>,
+) -> Result<FitReport> {
+    if !(radius.is_finite() && radius > 0.0) {
+        return Err(Error::invalid("tip-radius", radius, "must be positive (metres)"));
+    }
+    if let Some(k) = spring_constant
+        && !(k.is_finite() && k > 0.0)
+    {
+        return Err(Error::invalid("spring-constant", k, "must be positive (N/m)"));
+    }
+    let model = match (model, spring_constant) {
+        (Some(FitModel::MachineStiffness), None) => {
+            return Err(Error::invalid(
+                "model",
+                "machine-stiffness",
+                "needs --spring-constant (N/m)",
+            ));
+        }
+        (Some(m), _) => m,
+        (None, Some(_)) => FitModel::MachineStiffness,
+        (None, None) => FitModel::Jkr,
+    };
+    let range = contact_range(curve, path, 10)?;
+    let h = &curve.depth[range.clone()];
+    let p = &curve.force[range.clone()];
+    let pi = std::f64::consts::PI;
+    // Start: the force minimum is between −(5/9)P̂ and −P̂; the deepest point is nearly Hertzian.
+    let p_min = p.iter().copied().fold(f64::INFINITY, f64::min);
+    let p_scale = p.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let w0 = if p_min < 0.0 {
+        -p_min / 0.8 / (1.5 * pi * radius)
+    } else {
+        p_scale / (1.5 * pi * radius) * 0.1
+    };
+    // Residuals (model − measured force)/max|P| and their analytic Jacobian in (ln w, ln ℰ):
+    // P = P̂ P̄(h̄), h̄ = h/ĥ with P̂ ∝ w and ĥ ∝ (w/ℰ)^(2/3), so ∂h̄/∂ln w = −(2/3)h̄ = −∂h̄/∂ln ℰ.
+    let eval = |x: &[f64], hs: &[f64], ps: &[f64], with_jac: bool| -> (Vec<f64>, Vec<[f64; 2]>) {
+        let Ok(ex) = Experiment::new(TipGeometry::Sphere { radius }, x[1].exp(), x[0].exp(), 1.0) else {
+            return (vec![f64::NAN; hs.len()], Vec::new());
+        };
+        let sc = ex.scales();
+        let mut r = Vec::with_capacity(hs.len());
+        let mut j = Vec::with_capacity(if with_jac { hs.len() } else { 0 });
+        for (&hh, &pp) in hs.iter().zip(ps) {
+            let hb = hh / sc.h;
+            let a = sphere_radius_at_depth(hb);
+            let pb = a.powi(3) - 2.0 * a.powf(1.5);
+            r.push((sc.force * pb - pp) / p_scale);
+            if with_jac {
+                // dP̄/dh̄ along the branch; zero where the depth is below the branch (clamped).
+                let dh = 2.0 * a - 2.0 / (3.0 * a.sqrt());
+                let slope = if dh > 1e-12 {
+                    (3.0 * a * a - 3.0 * a.sqrt()) / dh
+                } else {
+                    0.0
+                };
+                let d_e = sc.force * slope * (2.0 / 3.0) * hb / p_scale;
+                j.push([sc.force * pb / p_scale - d_e, d_e]);
+            }
+        }
+        (r, j)
+    };
+    let residuals = |x: &[f64]| eval(x, h, p, false).0;
+    let jacobian = |x: &[f64]| {
+        let j = eval(x, h, p, true).1;
+        nalgebra::DMatrix::from_fn(j.len(), 2, |i, k| j[i][k])
+    };
+    // Coarse scan of the modulus on a subsample (the cost is flat far from the answer).
+    let stride = (h.len() / 200).max(1);
+    let (hs, ps): (Vec<f64>, Vec<f64>) = h.iter().zip(p).step_by(stride).map(|(a, b)| (*a, *b)).unzip();
+    let cost = |x: &[f64]| eval(x, &hs, &ps, false).0.iter().map(|r| r * r).sum::<f64>();
+    let (k_max, h_max) = h.iter().zip(p).fold(
+        (0.0f64, 0.0f64),
+        |acc, (&hh, &pp)| if hh > acc.1 { (pp, hh) } else { acc },
+    );
+    let e_guess = if h_max > 0.0 && k_max > 0.0 {
+        0.75 * k_max / (radius.sqrt() * h_max.powf(1.5))
+    } else {
+        1e6
+    };
+    let mut x0 = [w0.ln(), e_guess.ln()];
+    let mut best = cost(&x0);
+    for f in (-20..=20).map(|k| 10f64.powf(k as f64 / 10.0)) {
+        for g in [0.5, 1.0, 2.0] {
+            let x = [(w0 * g).ln(), (e_guess * f).ln()];
+            let c = cost(&x);
+            if c < best {
+                best = c;
+                x0 = x;
+            }
+        }
+    }
+    let sol = levenberg_marquardt(&residuals, Some(&jacobian), &x0, LmOptions::default())?;
+    let (w, e) = (sol.x[0].exp(), sol.x[1].exp());
+    let rms = sol.residual_norm * p_scale / (h.len() as f64).sqrt();
+    let x_for = |k: f64| Experiment::new(TipGeometry::Sphere { radius }, e, w, k);
+    let jkr_pred = predictions(&x_for(1.0)?)?;
+    let jkr = InstabilityReport {
+        pull_in_force_n: jkr_pred.jkr_pull_in_force,
+        pull_in_depth_jump_m: 0.0,
+        pull_off_force_n: jkr_pred.jkr_pull_off_force,
+        pull_off_depth_jump_m: 0.0,
+        pull_off_depth_m: jkr_pred.jkr_pull_off_depth,
+    };
+    let (alpha, machine) = match spring_constant {
+        Some(k) => {
+            let x = x_for(k)?;
+            let pr: Predictions = predictions(&x)?;
+            let rep = |i: &Instability, o: &Instability| InstabilityReport {
+                pull_in_force_n: i.after.force,
+                pull_in_depth_jump_m: i.depth_jump(),
+                pull_off_force_n: o.before.force,
+                pull_off_depth_jump_m: o.depth_jump(),
+                pull_off_depth_m: o.before.h,
+            };
+            (Some(x.alpha()), Some(rep(&pr.pull_in, &pr.pull_off)))
+        }
+        None => (None, None),
+    };
+    Ok(FitReport {
+        file: path.display().to_string(),
+        tip_radius_m: radius,
+        model,
+        work_of_adhesion_j_per_m2: Estimate {
+            value: w,
+            std_error: w * sol.std_errors[0],
+        },
+        plane_strain_modulus_pa: Estimate {
+            value: e,
+            std_error: e * sol.std_errors[1],
+        },
+        rms_residual_n: rms,
+        points_total: curve.depth.len(),
+        points_used: range.len(),
+        lines_used: (curve.lines[range.start], curve.lines[range.end - 1]),
+        iterations: sol.iterations,
+        spring_constant_n_per_m: spring_constant,
+        alpha,
+        machine_stiffness: machine,
+        jkr,
+        measured_pull_off_force_n: p[p.len() - 1],
+        measured_min_force_n: p_min,
+    })
+}
+
+/// The figure of a fit: the measured points (in contact highlighted) over both models' P-h
+/// curves at the fitted parameters, in nm and nN.
+///
+/// # Errors
+/// Model errors.
+pub fn fit_figure(curve: &Curve, report: &FitReport) -> Result<Figure> {
+    let k = report.spring_constant_n_per_m.unwrap_or(1.0);
+    let x = Experiment::new(
+        TipGeometry::Sphere {
+            radius: report.tip_radius_m,
+        },
+        report.plane_strain_modulus_pa.value,
+        report.work_of_adhesion_j_per_m2.value,
+        k,
+    )?;
+    let h_max = curve.depth.iter().copied().fold(0.0f64, f64::max);
+    let depth_norm = (h_max / x.scales().h).max(1.0) * 1.05;
+    let mut panel = ph_panel(&x, "", "fit of the measured curve", depth_norm, 300)?;
+    if report.spring_constant_n_per_m.is_none() {
+        // Without k_s the machine-stiffness jumps are not known: keep JKR only.
+        panel.series.retain(|s| s.name.starts_with("JKR"));
+        panel.markers.retain(|m| m.name.contains("JKR"));
+    }
+    let pts: Vec<(f64, f64)> = curve
+        .depth
+        .iter()
+        .zip(&curve.force)
+        .map(|(h, p)| (h * 1e9, p * 1e9))
+        .collect();
+    let used = report.lines_used;
+    let in_contact: Vec<(f64, f64)> = curve
+        .lines
+        .iter()
+        .zip(&pts)
+        .filter(|(l, _)| **l >= used.0 && **l <= used.1)
+        .map(|(_, p)| *p)
+        .collect();
+    panel
+        .series
+        .insert(0, Series::new("measured", Style::Scatter, pts).with_color(7));
+    panel.series.insert(
+        1,
+        Series::new("measured, fitted", Style::Scatter, in_contact).with_color(2),
+    );
+    panel.x = Axis::linear("Indentation depth h", "nm");
+    let mut fig = Figure::new("fit", "Fit of a measured force-indentation curve").with_panel(panel);
+    fig.result(
+        "work_of_adhesion_J_per_m2",
+        report.work_of_adhesion_j_per_m2.value,
+    );
+    fig.result("plane_strain_modulus_Pa", report.plane_strain_modulus_pa.value);
+    fig.result("rms_residual_N", report.rms_residual_n);
+    fig.result("points_used_count", report.points_used as f64);
+    fig.note(format!(
+        "w = {:.4e} ± {:.2e} J/m^2, plane-strain modulus = {:.4e} ± {:.2e} Pa, {} of {} points in contact",
+        report.work_of_adhesion_j_per_m2.value,
+        report.work_of_adhesion_j_per_m2.std_error,
+        report.plane_strain_modulus_pa.value,
+        report.plane_strain_modulus_pa.std_error,
+        report.points_used,
+        report.points_total
+    ));
+    Ok(fig)
+}
+
+/// A noise-free cycle in displacement control as an experiment records it (approach, contact,
+/// retract), from the machine-stiffness model (Sec. 2.3.1): the states followed from stage
+/// displacement `delta_min` to `delta_max` [m] and back, as (depth, force) rows with `samples`
+/// samples per branch. Useful to test fits and as a template of the input format.
+///
+/// # Errors
+/// Model errors; a range that does not contain the loop.
+pub fn simulate_cycle(x: &Experiment, delta_min: f64, delta_max: f64, samples: usize) -> Result<Curve> {
+    let m = x.model()?;
+    let sc = x.scales();
+    let cycle = m.cycle(delta_min / sc.h, delta_max / sc.h, samples, 1e-14)?;
+    let mut curve = Curve::default();
+    for s in cycle.loading.iter().chain(&cycle.unloading) {
+        let si = x.to_si(*s);
+        curve.depth.push(si.h);
+        curve.force.push(si.force);
+        curve.lines.push(curve.lines.len() + 2);
+    }
+    Ok(curve)
+}
+
+/// The `--fit` command: read, fit, and write `DIR/fit.json`, `fit.png`, `fit.svg`, `fit.csv`.
+/// Everything is computed and rendered before the first file is written.
+///
+/// # Errors
+/// Bad input (one line naming the file and line), fit failures, I/O.
+pub fn command(args: &FitArgs, out: &Path) -> Result<Vec<PathBuf>> {
+    let path = args
+        .fit
+        .as_deref()
+        .ok_or_else(|| Error::invalid("fit", "", "give the CSV file of a measured curve"))?;
+    let radius = args
+        .tip_radius
+        .ok_or_else(|| Error::invalid("tip-radius", "", "--fit needs --tip-radius (metres)"))?;
+    let curve = read_curve(path)?;
+    let report = fit_curve(&curve, path, radius, args.spring_constant, args.model)?;
+    let fig = fit_figure(&curve, &report)?;
+    let json = serde_json::to_string_pretty(&report).expect("the report has finite numbers and string keys");
+    let svg = crate::render::plot::svg_string(&fig)?;
+    let csv = crate::render::data::csv(&fig);
+    std::fs::create_dir_all(out)?;
+    let png_path = out.join("fit.png");
+    crate::render::plot::write_png(&fig, &png_path)?;
+    let mut written = vec![png_path];
+    for (name, text) in [("fit.svg", svg), ("fit.csv", csv), ("fit.json", json)] {
+        let p = out.join(name);
+        crate::render::write_atomic(&p, text.as_bytes())?;
+        written.push(p);
+    }
+    Ok(written)
 }

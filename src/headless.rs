@@ -40,6 +40,12 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
     if cli.reproduce {
         return reproduce_command(&cli.out);
     }
+    if cli.fit.fit.is_some() {
+        for p in crate::fit::command(&cli.fit, &cli.out)? {
+            println!("{}", p.display());
+        }
+        return Ok(ExitCode::SUCCESS);
+    }
     if let Some(id) = &cli.figure {
         let scene = scenes::find(id)?;
         let values = resolve_values(scene, cli.preset.as_deref(), &cli.set, cli.quick)?;

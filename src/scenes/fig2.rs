@@ -1,6 +1,1230 @@
-//! Scenes of chapter/appendix 2.
+//! Chapter 2 scenes: the machine-stiffness model for spherical and conical tips (Figs. 2.4-2.7),
+//! the accuracy of the exact computation against its run time (fig2.5-accuracy), and the
+//! comparison with the experiments of section 2.4 (Fig. 2.8).
 
-use super::SceneDyn;
+use std::time::Instant;
+
+use rayon::prelude::*;
+
+use super::{Registered, Scene, SceneDyn};
+use crate::error::{Error, Result};
+use crate::figure::{Axis, Figure, Marker, MarkerShape, Panel, Series, Style};
+use crate::job::Job;
+use crate::models::machine_stiffness::{
+    Accuracy, Experiment, MachineStiffness, State, SweepPoint, TipGeometry, TipShape,
+};
+use crate::numerics::curve::{linspace, logspace};
+use crate::params::Range;
 
 /// The scenes of this chapter, in figure order.
-pub const SCENES: &[&dyn SceneDyn] = &[];
+pub const SCENES: &[&dyn SceneDyn] = &[
+    &Registered::<Fig2_4>::NEW,
+    &Registered::<Fig2_5>::NEW,
+    &Registered::<Fig2_5Accuracy>::NEW,
+    &Registered::<Fig2_6>::NEW,
+    &Registered::<Fig2_7>::NEW,
+    &Registered::<Fig2_8>::NEW,
+    &Registered::<Fig2_8Fit>::NEW,
+];
+
+const XTOL: f64 = 1e-14;
+
+// ---------------------------------------------------------------------------------------------
+// Figs. 2.4 and 2.6: states vs stage displacement.
+
+const BRANCH_RESULTS: &[(&str, &str)] = &[
+    ("alpha_norm", "alpha = k_s / k_hat"),
+    (
+        "pull_in_radius_norm",
+        "a_i / a_hat, stable contact radius at Delta = 0",
+    ),
+    ("pull_in_depth_norm", "h_i / h_hat, depth just after the pull-in"),
+    ("pull_in_force_norm", "P_i / P_hat, force just after the pull-in"),
+    ("pull_off_radius_norm", "a_o / a_hat, largest root of g-bar"),
+    (
+        "pull_off_depth_norm",
+        "h_o / h_hat, depth just before the pull-off",
+    ),
+    (
+        "pull_off_force_norm",
+        "P_o / P_hat, force just before the pull-off",
+    ),
+    (
+        "pull_off_stage_norm",
+        "Delta_o / h_hat, stage displacement at the pull-off",
+    ),
+    ("pull_in_depth_jump_norm", "change of h / h_hat in the pull-in"),
+    ("pull_off_depth_jump_norm", "change of h / h_hat in the pull-off"),
+    (
+        "hysteresis_norm",
+        "energy loss by Eq. (2.38)/(2.48), chapter units",
+    ),
+    (
+        "hysteresis_loop_norm",
+        "energy loss as the area of the P-Delta loop, chapter units",
+    ),
+];
+
+/// What a states-vs-stage-displacement figure draws.
+struct BranchSpec {
+    tip: TipShape,
+    alpha: f64,
+    delta_min: f64,
+    delta_max: f64,
+    points: usize,
+    markers: usize,
+}
+
+/// A quantity of a state drawn against the stage displacement: axis label and accessor.
+type Quantity = (&'static str, fn(&State) -> f64);
+
+fn branch_figure(id: &str, title: &str, spec: &BranchSpec, job: &Job) -> Result<Figure> {
+    let BranchSpec {
+        tip,
+        alpha,
+        delta_min,
+        delta_max,
+        points,
+        markers,
+    } = *spec;
+    let m = MachineStiffness::new(tip, alpha)?;
+    let pull_in = m.pull_in(XTOL)?;
+    let pull_off = m.pull_off(XTOL)?;
+    if delta_min >= pull_off.before.delta {
+        return Err(Error::invalid(
+            "delta_min",
+            delta_min,
+            format!(
+                "must lie below the pull-off stage displacement {:.4}",
+                pull_off.before.delta
+            ),
+        ));
+    }
+    let cycle = m.cycle(delta_min, delta_max, points, XTOL)?;
+    job.check()?;
+    let a_o = pull_off.before.a;
+    let a_max = cycle.loading.iter().map(|s| s.a).fold(0.0, f64::max);
+    let stable: Vec<State> = linspace(a_o, a_max, points)
+        .into_iter()
+        .map(|a| m.state(a))
+        .collect();
+    let unstable: Vec<State> = (0..points)
+        .map(|k| a_o * (k as f64 / (points - 1) as f64).powi(2))
+        .map(|a| m.state(a))
+        .collect();
+    let free: Vec<State> = linspace(delta_min, 0.0, 2)
+        .into_iter()
+        .map(MachineStiffness::free_state)
+        .collect();
+    // Stationary and solution points at a sample of stage displacements (circles and dots).
+    let mut stationary = Vec::new();
+    let mut solutions = Vec::new();
+    for d in linspace(delta_min, delta_max, markers.max(2)) {
+        stationary.extend(m.stationary_points(d, XTOL)?);
+        solutions.extend(m.solution_points(d, XTOL)?);
+    }
+    job.check()?;
+    let quantities: [Quantity; 3] = [
+        ("Contact radius a/â", |s| s.a),
+        ("Indentation depth h/ĥ", |s| s.h),
+        ("Contact force P/P̂", |s| s.force),
+    ];
+    let mut fig = Figure::new(id, title);
+    for (k, (label, q)) in quantities.iter().enumerate() {
+        let pts = |v: &[State]| v.iter().map(|s| (s.delta, q(s))).collect::<Vec<_>>();
+        let mut panel = Panel::new(
+            Axis::linear("Stage displacement Δ/ĥ", ""),
+            Axis::linear(*label, ""),
+        )
+        .titled(["(b)", "(c)", "(d)"][k], *label);
+        panel.add(Series::new("solution (in contact)", Style::Stable, pts(&stable)).with_color(0));
+        panel.add(Series::new("stationary, unstable", Style::Unstable, pts(&unstable)).with_color(0));
+        panel.add(Series::new("solution (out of contact)", Style::Stable, pts(&free)).with_color(1));
+        panel.add(Series::new("stationary points", Style::Scatter, pts(&stationary)).with_color(2));
+        panel.add(Series::new("solution points", Style::Scatter, pts(&solutions)).with_color(3));
+        for (name, j) in [("pull-in", pull_in), ("pull-off", pull_off)] {
+            panel.add(
+                Series::new(
+                    name,
+                    Style::Jump,
+                    vec![(j.before.delta, q(&j.before)), (j.after.delta, q(&j.after))],
+                )
+                .with_color(1)
+                .without_legend(),
+            );
+        }
+        let (ci, co) = (pull_in.after, pull_off.before);
+        panel.mark(Marker::new("after pull-in", MarkerShape::PullIn, ci.delta, q(&ci)).with_color(1));
+        panel.mark(Marker::new("before pull-off", MarkerShape::PullOff, co.delta, q(&co)).with_color(1));
+        if k == 2 {
+            // Loading (right) on the out-of-contact line, unloading (left) on the contact branch.
+            panel.arrow((delta_min * 0.6, 0.0), (delta_min * 0.4, 0.0), Some(1));
+            let s1 = m.state(a_o + 0.55 * (pull_in.after.a - a_o));
+            let s0 = m.state(a_o + 0.6 * (pull_in.after.a - a_o));
+            panel.arrow((s0.delta, s0.force), (s1.delta, s1.force), Some(0));
+        }
+        fig.panels.push(panel);
+    }
+    let loop_area = cycle.loop_area() * m.energy_factor();
+    let results = [
+        ("alpha_norm", alpha),
+        ("pull_in_radius_norm", pull_in.after.a),
+        ("pull_in_depth_norm", pull_in.after.h),
+        ("pull_in_force_norm", pull_in.after.force),
+        ("pull_off_radius_norm", pull_off.before.a),
+        ("pull_off_depth_norm", pull_off.before.h),
+        ("pull_off_force_norm", pull_off.before.force),
+        ("pull_off_stage_norm", pull_off.before.delta),
+        ("pull_in_depth_jump_norm", pull_in.depth_jump()),
+        ("pull_off_depth_jump_norm", pull_off.depth_jump()),
+        ("hysteresis_norm", m.hysteresis(Accuracy::default())?),
+        ("hysteresis_loop_norm", loop_area),
+    ];
+    for (name, v) in results {
+        fig.result(name, v);
+    }
+    fig.note("solid: solution points (stable, g > 0); dashed: unstable stationary points; triangles: just after the pull-in; squares: just before the pull-off");
+    job.progress(1.0, "done");
+    Ok(fig)
+}
+
+crate::scene_params! {
+    /// Parameters of scene fig2.4. The dissertation does not state the α of its figure; α = 1
+    /// shows both branches and both jumps clearly.
+    pub struct Fig2_4Params {
+        /// Stiffness ratio α = k_s/k̂, k̂ = (9πwℰ²R²/8)^(1/3), Eq. (2.35a).
+        alpha: f64 = 1.0, unit = "", range = Range::positive();
+        /// Smallest stage displacement Δ/ĥ (below the pull-off).
+        delta_min: f64 = -2.5, unit = "", range = Range::open(-1.0e9, 0.0);
+        /// Largest stage displacement Δ/ĥ.
+        delta_max: f64 = 1.5, unit = "", range = Range::open(0.0, 1.0e9);
+        /// Samples per branch.
+        points: usize = 400, unit = "", range = Range::between(20.0, 1.0e6);
+        /// Stage displacements at which the stationary points are marked.
+        markers: usize = 25, unit = "", range = Range::between(2.0, 1.0e4);
+    }
+}
+
+/// Fig. 2.4: spherical tip, contact radius, depth and force vs stage displacement.
+pub struct Fig2_4;
+
+impl Scene for Fig2_4 {
+    type Params = Fig2_4Params;
+    const ID: &'static str = "fig2.4";
+    const CHAPTER: &'static str = "2";
+    const TITLE: &'static str = "Spherical tip with machine stiffness: states vs stage displacement";
+    const CAPTION: &'static str = "Contact radius (b), indentation depth (c) and force (d) vs stage displacement \
+        for a spherical tip, Eqs. (2.34)-(2.36): stationary points (circles), solution points (dots), \
+        the pull-in at zero stage displacement (triangles) and the pull-off at the fold a_o (squares).";
+    const RESULTS: &'static [(&'static str, &'static str)] = BRANCH_RESULTS;
+
+    fn quick(p: &mut Self::Params) {
+        p.points = p.points.min(60);
+        p.markers = p.markers.min(8);
+    }
+
+    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        let spec = BranchSpec {
+            tip: TipShape::Sphere,
+            alpha: p.alpha,
+            delta_min: p.delta_min,
+            delta_max: p.delta_max,
+            points: p.points,
+            markers: p.markers,
+        };
+        branch_figure(Self::ID, Self::TITLE, &spec, job)
+    }
+}
+
+crate::scene_params! {
+    /// Parameters of scene fig2.6. The dissertation does not state the α of its figure; α = 10
+    /// shows both branches and both jumps on one scale.
+    pub struct Fig2_6Params {
+        /// Stiffness ratio α = k_s/k̂, k̂ = w/(π tan²θ), Eq. (2.45a).
+        alpha: f64 = 10.0, unit = "", range = Range::positive();
+        /// Smallest stage displacement Δ/ĥ (below the pull-off).
+        delta_min: f64 = -5.0, unit = "", range = Range::open(-1.0e9, 0.0);
+        /// Largest stage displacement Δ/ĥ.
+        delta_max: f64 = 3.0, unit = "", range = Range::open(0.0, 1.0e9);
+        /// Samples per branch.
+        points: usize = 400, unit = "", range = Range::between(20.0, 1.0e6);
+        /// Stage displacements at which the stationary points are marked.
+        markers: usize = 25, unit = "", range = Range::between(2.0, 1.0e4);
+    }
+}
+
+/// Fig. 2.6: conical tip, as Fig. 2.4.
+pub struct Fig2_6;
+
+impl Scene for Fig2_6 {
+    type Params = Fig2_6Params;
+    const ID: &'static str = "fig2.6";
+    const CHAPTER: &'static str = "2";
+    const TITLE: &'static str = "Conical tip with machine stiffness: states vs stage displacement";
+    const CAPTION: &'static str = "Contact radius (b), indentation depth (c) and force (d) vs stage displacement \
+        for a conical tip, Eqs. (2.44)-(2.46): stationary points (circles), solution points (dots), \
+        the pull-in (triangles) and the pull-off (squares).";
+    const RESULTS: &'static [(&'static str, &'static str)] = BRANCH_RESULTS;
+
+    fn quick(p: &mut Self::Params) {
+        p.points = p.points.min(60);
+        p.markers = p.markers.min(8);
+    }
+
+    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        let spec = BranchSpec {
+            tip: TipShape::Cone,
+            alpha: p.alpha,
+            delta_min: p.delta_min,
+            delta_max: p.delta_max,
+            points: p.points,
+            markers: p.markers,
+        };
+        branch_figure(Self::ID, Self::TITLE, &spec, job)
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Figs. 2.5 and 2.7: α sweeps.
+
+/// Exact sweep points at the given α values, in parallel; cancellable.
+///
+/// # Errors
+/// Model errors; [`Error::Cancelled`].
+pub fn sweep(tip: TipShape, alphas: &[f64], acc: Accuracy, job: &Job) -> Result<Vec<SweepPoint>> {
+    alphas
+        .par_iter()
+        .map(|&a| {
+            job.check()?;
+            MachineStiffness::new(tip, a)?.sweep_point(acc)
+        })
+        .collect()
+}
+
+/// Largest relative errors of the approximations over a sweep: (pull-in, pull-off, hysteresis).
+pub fn fit_errors(tip: TipShape, points: &[SweepPoint]) -> Result<(f64, f64, f64)> {
+    let mut e = (0.0f64, 0.0f64, 0.0f64);
+    for s in points {
+        let m = MachineStiffness::new(tip, s.alpha)?;
+        let rel = |fit: f64, exact: f64| ((fit - exact) / exact).abs();
+        e.0 = e.0.max(rel(m.pull_in_force_fit(), s.pull_in_force));
+        e.1 = e.1.max(rel(m.pull_off_force_fit(), s.pull_off_force));
+        e.2 = e.2.max(rel(m.hysteresis_fit(), s.hysteresis));
+    }
+    Ok(e)
+}
+
+const SWEEP_RESULTS: &[(&str, &str)] = &[
+    (
+        "pull_in_force_at_alpha_min_norm",
+        "P_i / P_hat at the smallest alpha",
+    ),
+    (
+        "pull_off_force_at_alpha_min_norm",
+        "P_o / P_hat at the smallest alpha",
+    ),
+    (
+        "pull_in_force_at_alpha_max_norm",
+        "P_i / P_hat at the largest alpha",
+    ),
+    (
+        "pull_off_force_at_alpha_max_norm",
+        "P_o / P_hat at the largest alpha",
+    ),
+    (
+        "hysteresis_at_alpha_max_norm",
+        "H at the largest alpha, chapter units",
+    ),
+    (
+        "pull_in_fit_max_rel_error_norm",
+        "largest |fit/exact - 1| of the pull-in fit over the alpha range",
+    ),
+    (
+        "pull_off_fit_max_rel_error_norm",
+        "largest |fit/exact - 1| of the pull-off fit over the alpha range",
+    ),
+    (
+        "hysteresis_fit_max_rel_error_norm",
+        "largest |fit/exact - 1| of the hysteresis fit over the alpha range",
+    ),
+];
+
+fn sweep_figure(
+    id: &str,
+    title: &str,
+    tip: TipShape,
+    (alpha_min, alpha_max): (f64, f64),
+    points: usize,
+    fit_names: (&str, &str),
+    job: &Job,
+) -> Result<Figure> {
+    if alpha_min >= alpha_max {
+        return Err(Error::invalid("alpha_min", alpha_min, "must be below alpha_max"));
+    }
+    let alphas = logspace(alpha_min, alpha_max, points);
+    job.progress(0.0, "sweeping alpha");
+    let exact = sweep(tip, &alphas, Accuracy::default(), job)?;
+    let fine = logspace(alpha_min, alpha_max, 400);
+    let fits: Vec<MachineStiffness> = fine
+        .iter()
+        .map(|&a| MachineStiffness::new(tip, a))
+        .collect::<Result<_>>()?;
+    let mut forces = Panel::new(
+        Axis::log("Stiffness ratio α", ""),
+        Axis::linear("Force |P|/P̂", ""),
+    )
+    .titled("(a)", "pull-in and pull-off forces");
+    forces.add(
+        Series::new(
+            "|P_i| exact",
+            Style::Scatter,
+            exact.iter().map(|s| (s.alpha, s.pull_in_force.abs())).collect(),
+        )
+        .with_color(0),
+    );
+    forces.add(
+        Series::new(
+            "|P_o| exact",
+            Style::Scatter,
+            exact.iter().map(|s| (s.alpha, s.pull_off_force.abs())).collect(),
+        )
+        .with_color(1),
+    );
+    forces.add(
+        Series::new(
+            format!("|P_i| fit {}", fit_names.0),
+            Style::Stable,
+            fits.iter()
+                .map(|m| (m.alpha, m.pull_in_force_fit().abs()))
+                .collect(),
+        )
+        .with_color(0),
+    );
+    forces.add(
+        Series::new(
+            format!("|P_o| fit {}", fit_names.0),
+            Style::Stable,
+            fits.iter()
+                .map(|m| (m.alpha, m.pull_off_force_fit().abs()))
+                .collect(),
+        )
+        .with_color(1),
+    );
+    let mut hyst = Panel::new(Axis::log("Stiffness ratio α", ""), Axis::log("Hysteresis H", ""))
+        .titled("(b)", "hysteretic energy loss");
+    hyst.add(
+        Series::new(
+            "H exact (2.38)",
+            Style::Scatter,
+            exact.iter().map(|s| (s.alpha, s.hysteresis)).collect(),
+        )
+        .with_color(2),
+    );
+    hyst.add(
+        Series::new(
+            format!("H fit {}", fit_names.1),
+            Style::Stable,
+            fits.iter().map(|m| (m.alpha, m.hysteresis_fit())).collect(),
+        )
+        .with_color(2),
+    );
+    let (first, last) = (exact[0], exact[exact.len() - 1]);
+    let (e_in, e_off, e_h) = fit_errors(tip, &exact)?;
+    let mut fig = Figure::new(id, title).with_panel(forces).with_panel(hyst);
+    let results = [
+        ("pull_in_force_at_alpha_min_norm", first.pull_in_force),
+        ("pull_off_force_at_alpha_min_norm", first.pull_off_force),
+        ("pull_in_force_at_alpha_max_norm", last.pull_in_force),
+        ("pull_off_force_at_alpha_max_norm", last.pull_off_force),
+        ("hysteresis_at_alpha_max_norm", last.hysteresis),
+        ("pull_in_fit_max_rel_error_norm", e_in),
+        ("pull_off_fit_max_rel_error_norm", e_off),
+        ("hysteresis_fit_max_rel_error_norm", e_h),
+    ];
+    for (name, v) in results {
+        fig.result(name, v);
+    }
+    fig.note(format!(
+        "largest relative error of the fits over alpha in [{alpha_min}, {alpha_max}]: pull-in {:.1} %, pull-off {:.1} %, hysteresis {:.1} %",
+        100.0 * e_in,
+        100.0 * e_off,
+        100.0 * e_h
+    ));
+    job.progress(1.0, "done");
+    Ok(fig)
+}
+
+crate::scene_params! {
+    /// Parameters of scene fig2.5 (Sec. 2.3.1).
+    pub struct Fig2_5Params {
+        /// Smallest stiffness ratio α.
+        alpha_min: f64 = 1.0e-2, unit = "", range = Range::positive();
+        /// Largest stiffness ratio α.
+        alpha_max: f64 = 1.0e3, unit = "", range = Range::positive();
+        /// Number of α values (log-spaced) solved exactly.
+        points: usize = 100, unit = "", range = Range::between(2.0, 1.0e5);
+    }
+}
+
+/// Fig. 2.5: sphere, pull-in and pull-off forces and hysteresis vs α, exact and (2.37), (2.39).
+pub struct Fig2_5;
+
+impl Scene for Fig2_5 {
+    type Params = Fig2_5Params;
+    const ID: &'static str = "fig2.5";
+    const CHAPTER: &'static str = "2";
+    const TITLE: &'static str = "Spherical tip: pull-in, pull-off and hysteresis vs machine stiffness";
+    const CAPTION: &'static str = "Spherical tip. (a) Exact (circles) and approximate (lines, Eq. (2.37)) |P_i| and \
+        |P_o| vs alpha. (b) Exact hysteresis (Eq. (2.38), circles) and its approximation (2.39).";
+    const RESULTS: &'static [(&'static str, &'static str)] = SWEEP_RESULTS;
+
+    fn quick(p: &mut Self::Params) {
+        p.points = p.points.min(12);
+    }
+
+    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        sweep_figure(
+            Self::ID,
+            Self::TITLE,
+            TipShape::Sphere,
+            (p.alpha_min, p.alpha_max),
+            p.points,
+            ("(2.37)", "(2.39)"),
+            job,
+        )
+    }
+}
+
+crate::scene_params! {
+    /// Parameters of scene fig2.7 (Sec. 2.3.2).
+    pub struct Fig2_7Params {
+        /// Smallest stiffness ratio α.
+        alpha_min: f64 = 1.0e-2, unit = "", range = Range::positive();
+        /// Largest stiffness ratio α.
+        alpha_max: f64 = 1.0e3, unit = "", range = Range::positive();
+        /// Number of α values (log-spaced) solved exactly.
+        points: usize = 100, unit = "", range = Range::between(2.0, 1.0e5);
+    }
+}
+
+/// Fig. 2.7: cone, as Fig. 2.5 with the fits (2.47), (2.49).
+pub struct Fig2_7;
+
+impl Scene for Fig2_7 {
+    type Params = Fig2_7Params;
+    const ID: &'static str = "fig2.7";
+    const CHAPTER: &'static str = "2";
+    const TITLE: &'static str = "Conical tip: pull-in, pull-off and hysteresis vs machine stiffness";
+    const CAPTION: &'static str = "Conical tip. (a) Exact (circles) and approximate (lines, Eq. (2.47)) |P_i| and \
+        |P_o| vs alpha. (b) Exact hysteresis (Eq. (2.48), circles) and its approximation (2.49).";
+    const RESULTS: &'static [(&'static str, &'static str)] = SWEEP_RESULTS;
+
+    fn quick(p: &mut Self::Params) {
+        p.points = p.points.min(12);
+    }
+
+    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        sweep_figure(
+            Self::ID,
+            Self::TITLE,
+            TipShape::Cone,
+            (p.alpha_min, p.alpha_max),
+            p.points,
+            ("(2.47)", "(2.49)"),
+            job,
+        )
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// fig2.5-accuracy: error of the exact computation against its cost.
+
+crate::scene_params! {
+    /// Parameters of scene fig2.5-accuracy.
+    pub struct Fig2_5AccuracyParams {
+        /// Smallest stiffness ratio α of the test set.
+        alpha_min: f64 = 1.0e-2, unit = "", range = Range::positive();
+        /// Largest stiffness ratio α of the test set.
+        alpha_max: f64 = 1.0e3, unit = "", range = Range::positive();
+        /// Number of α values (log-spaced) in the test set.
+        points: usize = 20, unit = "", range = Range::between(2.0, 1.0e4);
+        /// Repetitions of each timed run (the time is the mean).
+        repeats: usize = 20, unit = "", range = Range::between(1.0, 1.0e6);
+        /// Measure run times (panel (b)); off, only the error against the setting is drawn.
+        time_runs: bool = true, unit = "", range = Range::any();
+    }
+}
+
+/// fig2.5-accuracy: error of the pull-off force and the hysteresis against run time, as the
+/// root-finding tolerance, the Gauss-Legendre order and the loop sampling vary; the fits (2.37),
+/// (2.39) as the cheapest method.
+pub struct Fig2_5Accuracy;
+
+/// One method setting: its label and accuracy, or loop sampling.
+#[derive(Clone, Copy)]
+enum Method {
+    Exact(Accuracy),
+    Loop(usize),
+    Fits,
+}
+
+/// Largest relative errors (pull-off force, hysteresis) over the α set, against the reference.
+fn method_errors(
+    method: Method,
+    models: &[MachineStiffness],
+    reference: &[SweepPoint],
+) -> Result<(f64, f64)> {
+    let mut e = (0.0f64, 0.0f64);
+    for (m, r) in models.iter().zip(reference) {
+        let (p_off, h) = run_method(method, m)?;
+        e.0 = e.0.max(((p_off - r.pull_off_force) / r.pull_off_force).abs());
+        e.1 = e.1.max(((h - r.hysteresis) / r.hysteresis).abs());
+    }
+    Ok(e)
+}
+
+fn run_method(method: Method, m: &MachineStiffness) -> Result<(f64, f64)> {
+    Ok(match method {
+        Method::Exact(acc) => (m.pull_off(acc.xtol)?.before.force, m.hysteresis(acc)?),
+        Method::Loop(n) => {
+            let po = m.pull_off(1e-10)?;
+            let c = m.cycle(1.1 * po.before.delta - 0.1, 0.1, n, 1e-10)?;
+            (po.before.force, c.loop_area() * m.energy_factor())
+        }
+        Method::Fits => (m.pull_off_force_fit(), m.hysteresis_fit()),
+    })
+}
+
+impl Scene for Fig2_5Accuracy {
+    type Params = Fig2_5AccuracyParams;
+    const ID: &'static str = "fig2.5-accuracy";
+    const CHAPTER: &'static str = "2";
+    const TITLE: &'static str =
+        "Spherical tip: accuracy against run time of the pull-off force and hysteresis";
+    const CAPTION: &'static str = "Largest relative error over a set of alpha values of the pull-off force and the \
+        hysteresis (2.38) of the sphere, as the root-finding tolerance (Brent), the Gauss-Legendre order, \
+        or the sampling of the loop-area method vary, against the setting (a) and the run time (b); \
+        the fits (2.37), (2.39) are the cheapest method.";
+    const RESULTS: &'static [(&'static str, &'static str)] = &[
+        (
+            "reference_time_s",
+            "run time of the reference computation for the whole alpha set",
+        ),
+        (
+            "fits_pull_off_max_rel_error_norm",
+            "largest relative error of (2.37b)",
+        ),
+        (
+            "fits_hysteresis_max_rel_error_norm",
+            "largest relative error of (2.39)",
+        ),
+        (
+            "tolerance_1e-8_pull_off_max_rel_error_norm",
+            "pull-off error with xtol = 1e-8",
+        ),
+        (
+            "order_8_hysteresis_max_rel_error_norm",
+            "hysteresis error with 8 Gauss-Legendre points",
+        ),
+    ];
+
+    fn validate(p: &Self::Params) -> Result<()> {
+        if p.alpha_min >= p.alpha_max {
+            return Err(Error::invalid(
+                "alpha_min",
+                p.alpha_min,
+                "must be below alpha_max",
+            ));
+        }
+        Ok(())
+    }
+
+    fn quick(p: &mut Self::Params) {
+        p.points = p.points.min(4);
+        p.repeats = 1;
+        p.time_runs = false;
+    }
+
+    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        let models: Vec<MachineStiffness> = logspace(p.alpha_min, p.alpha_max, p.points)
+            .into_iter()
+            .map(|a| MachineStiffness::new(TipShape::Sphere, a))
+            .collect::<Result<_>>()?;
+        let reference_acc = Accuracy {
+            xtol: 1e-15,
+            order: 100,
+        };
+        let t0 = Instant::now();
+        let reference: Vec<SweepPoint> = models
+            .iter()
+            .map(|m| m.sweep_point(reference_acc))
+            .collect::<Result<_>>()?;
+        let reference_time = t0.elapsed().as_secs_f64();
+        let tolerances = [1e-2, 1e-3, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-14];
+        let orders = [2usize, 3, 4, 6, 8, 12, 16, 24, 40];
+        let samples = [50usize, 100, 200, 400, 800, 1600, 3200];
+        let families: Vec<(&str, Vec<(f64, Method)>)> = vec![
+            (
+                "Brent tolerance (40-point rule)",
+                tolerances
+                    .iter()
+                    .map(|&t| (t, Method::Exact(Accuracy { xtol: t, order: 40 })))
+                    .collect(),
+            ),
+            (
+                "Gauss-Legendre order (tolerance 1e-14)",
+                orders
+                    .iter()
+                    .map(|&n| {
+                        (
+                            n as f64,
+                            Method::Exact(Accuracy {
+                                xtol: 1e-14,
+                                order: n,
+                            }),
+                        )
+                    })
+                    .collect(),
+            ),
+            (
+                "loop area, samples per branch",
+                samples.iter().map(|&n| (n as f64, Method::Loop(n))).collect(),
+            ),
+            ("fits (2.37), (2.39)", vec![(1.0, Method::Fits)]),
+        ];
+        let floor = 1e-17;
+        let mut by_setting_off = Panel::new(
+            Axis::log("Setting (tolerance, order or samples)", ""),
+            Axis::log("Max relative error", ""),
+        )
+        .titled("(a)", "error against the setting");
+        let mut by_time = Panel::new(Axis::log("Run time", "s"), Axis::log("Max relative error", ""))
+            .titled("(b)", "error against run time");
+        let mut fig = Figure::new(Self::ID, Self::TITLE);
+        let n_fam = families.len();
+        for (k, (name, settings)) in families.into_iter().enumerate() {
+            job.check()?;
+            job.progress(k as f64 / n_fam as f64, name);
+            let mut off_pts = Vec::new();
+            let mut h_pts = Vec::new();
+            let mut off_t = Vec::new();
+            let mut h_t = Vec::new();
+            for (x, method) in settings {
+                let (e_off, e_h) = method_errors(method, &models, &reference)?;
+                let (e_off, e_h) = (e_off.max(floor), e_h.max(floor));
+                if let Method::Fits = method {
+                    fig.result("fits_pull_off_max_rel_error_norm", e_off);
+                    fig.result("fits_hysteresis_max_rel_error_norm", e_h);
+                }
+                if let Method::Exact(acc) = method {
+                    if acc.xtol == 1e-8 && acc.order == 40 {
+                        fig.result("tolerance_1e-8_pull_off_max_rel_error_norm", e_off);
+                    }
+                    if acc.xtol == 1e-14 && acc.order == 8 {
+                        fig.result("order_8_hysteresis_max_rel_error_norm", e_h);
+                    }
+                }
+                if !matches!(method, Method::Fits) {
+                    off_pts.push((x, e_off));
+                    h_pts.push((x, e_h));
+                }
+                if p.time_runs {
+                    let t = Instant::now();
+                    for _ in 0..p.repeats {
+                        for m in &models {
+                            std::hint::black_box(run_method(method, m)?);
+                        }
+                    }
+                    let dt = t.elapsed().as_secs_f64() / p.repeats as f64;
+                    off_t.push((dt, e_off));
+                    h_t.push((dt, e_h));
+                }
+            }
+            if !off_pts.is_empty() {
+                by_setting_off
+                    .add(Series::new(format!("pull-off, {name}"), Style::Stable, off_pts).with_color(k));
+                by_setting_off
+                    .add(Series::new(format!("hysteresis, {name}"), Style::Unstable, h_pts).with_color(k));
+            }
+            if p.time_runs {
+                let style = if off_t.len() == 1 {
+                    Style::Scatter
+                } else {
+                    Style::Stable
+                };
+                by_time.add(Series::new(format!("pull-off, {name}"), style, off_t).with_color(k));
+                let style = if h_t.len() == 1 {
+                    Style::Scatter
+                } else {
+                    Style::Unstable
+                };
+                by_time.add(Series::new(format!("hysteresis, {name}"), style, h_t).with_color(k));
+            }
+        }
+        fig.panels.push(by_setting_off);
+        if p.time_runs {
+            fig.panels.push(by_time);
+        }
+        fig.result("reference_time_s", if p.time_runs { reference_time } else { 0.0 });
+        fig.note(format!(
+            "reference: Brent to 1e-15 and a 100-point Gauss-Legendre rule; errors below {floor:e} are drawn at {floor:e}"
+        ));
+        job.progress(1.0, "done");
+        Ok(fig)
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Fig. 2.8: the experiments of section 2.4.
+
+crate::scene_params! {
+    /// Parameters of scene fig2.8: the best-fit parameters of Sec. 2.4 for Sun et al. (a) and
+    /// Notbohm et al. (b). ℰ is the plane-strain modulus (ERRATA); the Notbohm work of
+    /// adhesion is 25.7 mJ/m² (the text's J/m² is a typo).
+    pub struct Fig2_8Params {
+        /// (a) Sun et al.: tip radius R.
+        sun_radius: f64 = 58.0e-9, unit = "m", range = Range::positive();
+        /// (a) Sun et al.: plane-strain modulus ℰ.
+        sun_modulus: f64 = 6.39e6, unit = "Pa", range = Range::positive();
+        /// (a) Sun et al.: work of adhesion w.
+        sun_work_of_adhesion: f64 = 63.2e-3, unit = "J/m^2", range = Range::positive();
+        /// (a) Sun et al.: cantilever stiffness k_s.
+        sun_spring_constant: f64 = 0.66, unit = "N/m", range = Range::positive();
+        /// (b) Notbohm et al.: tip radius R.
+        notbohm_radius: f64 = 2.5e-6, unit = "m", range = Range::positive();
+        /// (b) Notbohm et al.: plane-strain modulus ℰ.
+        notbohm_modulus: f64 = 0.65e6, unit = "Pa", range = Range::positive();
+        /// (b) Notbohm et al.: work of adhesion w.
+        notbohm_work_of_adhesion: f64 = 25.7e-3, unit = "J/m^2", range = Range::positive();
+        /// (b) Notbohm et al.: cantilever stiffness k_s.
+        notbohm_spring_constant: f64 = 0.642, unit = "N/m", range = Range::positive();
+        /// Largest indentation depth drawn, in units of ĥ = â²/R.
+        max_depth_norm: f64 = 3.0, unit = "", range = Range::open(0.0, 1.0e3);
+        /// Samples per branch.
+        points: usize = 300, unit = "", range = Range::between(20.0, 1.0e6);
+    }
+}
+
+/// Fig. 2.8: P-h cycles of the machine-stiffness model and of JKR at the best-fit parameters of
+/// Sec. 2.4, with the pull-off squares.
+pub struct Fig2_8;
+
+/// Predictions of both models for one experiment, SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Predictions {
+    /// Machine-stiffness pull-in (SI).
+    pub pull_in: crate::models::machine_stiffness::Instability,
+    /// Machine-stiffness pull-off (SI).
+    pub pull_off: crate::models::machine_stiffness::Instability,
+    /// JKR pull-in force (at h = 0) [N].
+    pub jkr_pull_in_force: f64,
+    /// JKR pull-off force, −5πwR/6 [N].
+    pub jkr_pull_off_force: f64,
+    /// JKR pull-off depth h_D [m].
+    pub jkr_pull_off_depth: f64,
+}
+
+/// The predictions of both models for an experiment with a spherical tip (Sec. 2.4).
+///
+/// # Errors
+/// Model errors (invalid parameters).
+pub fn predictions(x: &Experiment) -> Result<Predictions> {
+    let sc = x.scales();
+    let stiff = MachineStiffness::new(TipShape::Sphere, 1.0)?;
+    let a_d = crate::models::machine_stiffness::sphere_depth_minimum_radius();
+    // JKR pull-in at h = 0: ā³/² = 4/3 on h̄ = ā² − (4/3)√ā = 0.
+    let a_b = (4.0f64 / 3.0).powf(2.0 / 3.0);
+    Ok(Predictions {
+        pull_in: x.pull_in()?,
+        pull_off: x.pull_off()?,
+        jkr_pull_in_force: sc.force * stiff.branch_force(a_b),
+        jkr_pull_off_force: sc.force * stiff.branch_force(a_d),
+        jkr_pull_off_depth: sc.h * stiff.depth(a_d),
+    })
+}
+
+/// A P-h panel of both models for one experiment, in nm and nN, with the pull-off squares.
+///
+/// # Errors
+/// Model errors.
+pub fn ph_panel(
+    x: &Experiment,
+    label: &str,
+    title: &str,
+    max_depth_norm: f64,
+    points: usize,
+) -> Result<Panel> {
+    let sc = x.scales();
+    let pr = predictions(x)?;
+    let m = x.model()?;
+    let (nm, nn) = (1e9, 1e9);
+    let a_d = crate::models::machine_stiffness::sphere_depth_minimum_radius();
+    let a_top = crate::models::machine_stiffness::sphere_radius_at_depth(max_depth_norm);
+    let pt = |a: f64| (m.depth(a) * sc.h * nm, m.branch_force(a) * sc.force * nn);
+    let mut panel = Panel::new(
+        Axis::linear("Indentation depth h", "nm"),
+        Axis::linear("Contact force P", "nN"),
+    )
+    .titled(label, title);
+    // Machine-stiffness model: stable from the pull-off radius up; jumps at pull-in and pull-off.
+    let a_o = pr.pull_off.before.a / sc.a;
+    let a_i = pr.pull_in.after.a / sc.a;
+    panel.add(
+        Series::new(
+            "machine stiffness (2.31b)-(2.32b)",
+            Style::Stable,
+            linspace(a_o, a_top.max(a_i), points)
+                .into_iter()
+                .map(pt)
+                .collect(),
+        )
+        .with_color(0),
+    );
+    let jump = |i: &crate::models::machine_stiffness::Instability| {
+        vec![
+            (i.before.h * nm, i.before.force * nn),
+            (i.after.h * nm, i.after.force * nn),
+        ]
+    };
+    panel.add(
+        Series::new("pull-in", Style::Jump, jump(&pr.pull_in))
+            .with_color(0)
+            .without_legend(),
+    );
+    panel.add(
+        Series::new("pull-off", Style::Jump, jump(&pr.pull_off))
+            .with_color(0)
+            .without_legend(),
+    );
+    // JKR (1.2): stable from ā_D; pull-in at h = 0, pull-off at h_D, no depth change.
+    panel.add(
+        Series::new(
+            "JKR (1.2)",
+            Style::Stable,
+            linspace(a_d, a_top.max(a_i), points)
+                .into_iter()
+                .map(pt)
+                .collect(),
+        )
+        .with_color(1),
+    );
+    panel.add(
+        Series::new(
+            "JKR pull-in",
+            Style::Jump,
+            vec![(0.0, 0.0), (0.0, pr.jkr_pull_in_force * nn)],
+        )
+        .with_color(1)
+        .without_legend(),
+    );
+    panel.add(
+        Series::new(
+            "JKR pull-off",
+            Style::Jump,
+            vec![
+                (pr.jkr_pull_off_depth * nm, pr.jkr_pull_off_force * nn),
+                (pr.jkr_pull_off_depth * nm, 0.0),
+            ],
+        )
+        .with_color(1)
+        .without_legend(),
+    );
+    panel.mark(
+        Marker::new(
+            "pull-off (machine stiffness)",
+            MarkerShape::PullOff,
+            pr.pull_off.before.h * nm,
+            pr.pull_off.before.force * nn,
+        )
+        .with_color(0),
+    );
+    panel.mark(
+        Marker::new(
+            "pull-off (JKR)",
+            MarkerShape::PullOff,
+            pr.jkr_pull_off_depth * nm,
+            pr.jkr_pull_off_force * nn,
+        )
+        .with_color(1),
+    );
+    Ok(panel)
+}
+
+impl Scene for Fig2_8 {
+    type Params = Fig2_8Params;
+    const ID: &'static str = "fig2.8";
+    const CHAPTER: &'static str = "2";
+    const TITLE: &'static str = "Machine-stiffness model and JKR at the best fits of section 2.4";
+    const CAPTION: &'static str = "Contact force vs indentation depth of the machine-stiffness model \
+        ((2.31b)-(2.32b) with the jumps of Sec. 2.3.1, blue) and of JKR ((1.2), red) at the best-fit \
+        parameters of Sec. 2.4: (a) Sun et al., R = 58 nm; (b) Notbohm et al., R = 2.5 um. Squares: \
+        the state just before the pull-off. Measured curves: `--fit FILE.csv` or scene fig2.8-fit.";
+    const RESULTS: &'static [(&'static str, &'static str)] = &[
+        ("sun_alpha_norm", "alpha = k_s/k_hat, Sun et al."),
+        (
+            "sun_pull_off_force_nN",
+            "machine-stiffness pull-off force, Sun et al. (printed -14.73)",
+        ),
+        (
+            "sun_jkr_pull_off_force_nN",
+            "JKR pull-off -5 pi w R/6, Sun et al. (printed -9.59)",
+        ),
+        (
+            "sun_pull_in_force_nN",
+            "machine-stiffness pull-in force, Sun et al.",
+        ),
+        (
+            "sun_pull_off_force_exact_sphere_nN",
+            "pull-off force with the exact spherical profile (2.28)",
+        ),
+        (
+            "sun_pull_in_depth_jump_nm",
+            "depth change in the pull-in, Sun et al. (printed 27.4)",
+        ),
+        (
+            "sun_pull_off_depth_jump_nm",
+            "|depth change| in the pull-off, Sun et al. (printed 26)",
+        ),
+        ("notbohm_alpha_norm", "alpha = k_s/k_hat, Notbohm et al."),
+        (
+            "notbohm_pull_off_force_nN",
+            "machine-stiffness pull-off force, Notbohm et al. (printed -281.5)",
+        ),
+        (
+            "notbohm_jkr_pull_off_force_nN",
+            "JKR pull-off -5 pi w R/6, Notbohm et al. (printed -167.5)",
+        ),
+        (
+            "notbohm_pull_in_force_nN",
+            "machine-stiffness pull-in force, Notbohm et al.",
+        ),
+        (
+            "notbohm_pull_off_force_exact_sphere_nN",
+            "pull-off force with the exact spherical profile (2.28)",
+        ),
+        (
+            "notbohm_pull_in_depth_jump_um",
+            "depth change in the pull-in, Notbohm et al. (printed 0.19)",
+        ),
+        (
+            "notbohm_pull_off_depth_jump_um",
+            "|depth change| in the pull-off, Notbohm et al. (printed 0.42)",
+        ),
+    ];
+
+    fn quick(p: &mut Self::Params) {
+        p.points = p.points.min(40);
+    }
+
+    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        let sun = Experiment::new(
+            TipGeometry::Sphere { radius: p.sun_radius },
+            p.sun_modulus,
+            p.sun_work_of_adhesion,
+            p.sun_spring_constant,
+        )?;
+        let notbohm = Experiment::new(
+            TipGeometry::Sphere {
+                radius: p.notbohm_radius,
+            },
+            p.notbohm_modulus,
+            p.notbohm_work_of_adhesion,
+            p.notbohm_spring_constant,
+        )?;
+        let mut fig = Figure::new(Self::ID, Self::TITLE);
+        for (k, (name, x, title, depth_unit)) in [
+            ("sun", sun, "Sun et al.", ("nm", 1e9)),
+            ("notbohm", notbohm, "Notbohm et al.", ("um", 1e6)),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            job.check()?;
+            let pr = predictions(&x)?;
+            fig.panels.push(ph_panel(
+                &x,
+                ["(a)", "(b)"][k],
+                title,
+                p.max_depth_norm,
+                p.points,
+            )?);
+            fig.result(format!("{name}_alpha_norm"), x.alpha());
+            fig.result(
+                format!("{name}_pull_off_force_nN"),
+                pr.pull_off.before.force * 1e9,
+            );
+            fig.result(
+                format!("{name}_jkr_pull_off_force_nN"),
+                pr.jkr_pull_off_force * 1e9,
+            );
+            fig.result(format!("{name}_pull_in_force_nN"), pr.pull_in.after.force * 1e9);
+            let exact = x.model_exact_sphere()?.pull_off(XTOL)?.before.force * x.scales().force;
+            fig.result(format!("{name}_pull_off_force_exact_sphere_nN"), exact * 1e9);
+            fig.result(
+                format!("{name}_pull_in_depth_jump_{}", depth_unit.0),
+                pr.pull_in.depth_jump().abs() * depth_unit.1,
+            );
+            fig.result(
+                format!("{name}_pull_off_depth_jump_{}", depth_unit.0),
+                pr.pull_off.depth_jump().abs() * depth_unit.1,
+            );
+        }
+        fig.note("in this model the depth changes by |P|/k_s in each jump; JKR predicts no change of depth");
+        job.progress(1.0, "done");
+        Ok(fig)
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// fig2.8-fit: Fig. 2.8 for the user's own data (the `--fit` command as a scene).
+
+crate::param_choice! {
+    /// The model drawn and reported first by a fit.
+    pub enum FitModelChoice { Auto = "auto", Jkr = "jkr", MachineStiffness = "machine-stiffness" }
+}
+
+crate::scene_params! {
+    /// Parameters of scene fig2.8-fit. With no data file, a synthetic cycle of the model (with
+    /// the demo parameters and deterministic force noise) is fitted, as a demonstration.
+    pub struct Fig2_8FitParams {
+        /// Measured cycle (CSV with a header such as `depth_nm,force_nN`); empty: a synthetic demonstration cycle.
+        data_file: String = String::new(), unit = "", range = Range::any();
+        /// Tip radius R.
+        tip_radius: f64 = 1.0e-6, unit = "m", range = Range::positive();
+        /// Cantilever stiffness k_s; 0: unknown (JKR only).
+        spring_constant: f64 = 0.5, unit = "N/m", range = Range::non_negative();
+        /// Model drawn and reported first: auto (machine-stiffness when k_s > 0), jkr, machine-stiffness.
+        model: FitModelChoice = FitModelChoice::Auto, unit = "", range = Range::any();
+        /// Demonstration cycle: plane-strain modulus ℰ.
+        demo_modulus: f64 = 2.0e6, unit = "Pa", range = Range::positive();
+        /// Demonstration cycle: work of adhesion w.
+        demo_work_of_adhesion: f64 = 0.04, unit = "J/m^2", range = Range::positive();
+        /// Demonstration cycle: force noise, as a fraction of the largest |P|.
+        demo_noise: f64 = 0.01, unit = "", range = Range::between(0.0, 0.5);
+        /// Demonstration cycle: samples per branch.
+        demo_points: usize = 400, unit = "", range = Range::between(20.0, 1.0e6);
+    }
+}
+
+/// fig2.8-fit: fit a measured force-indentation cycle (appendix A.4) and draw it against both
+/// models, as `adhesion --headless --fit FILE.csv` does.
+pub struct Fig2_8Fit;
+
+/// The synthetic demonstration cycle of [`Fig2_8Fit`]: the model's cycle with deterministic
+/// pseudo-random force noise (uniform, standard deviation `noise` × max |P|).
+///
+/// # Errors
+/// Model errors.
+pub fn demo_cycle(x: &Experiment, noise: f64, samples: usize) -> Result<crate::fit::Curve> {
+    let d_o = x.pull_off()?.before.delta;
+    let mut curve = crate::fit::simulate_cycle(x, 1.5 * d_o, 3.0 * x.scales().h, samples)?;
+    let p_max = curve.force.iter().fold(0.0f64, |m, p| m.max(p.abs()));
+    for (k, p) in curve.force.iter_mut().enumerate() {
+        *p += noise * p_max * 3f64.sqrt() * (((k * 7919) % 1000) as f64 / 500.0 - 1.0);
+    }
+    Ok(curve)
+}
+
+impl Scene for Fig2_8Fit {
+    type Params = Fig2_8FitParams;
+    const ID: &'static str = "fig2.8-fit";
+    const CHAPTER: &'static str = "2";
+    const TITLE: &'static str = "Fit of a measured force-indentation cycle (your data)";
+    const CAPTION: &'static str = "A measured cycle (CSV: depth and force columns with units; positive depth is \
+        indentation) fitted for the work of adhesion and the plane-strain modulus by Levenberg-Marquardt on the \
+        contact relation (2.31b)-(2.32b), appendix A.4; the in-contact part is found automatically. Drawn against \
+        the machine-stiffness model and JKR at the fitted parameters, with their predicted jumps.";
+    const RESULTS: &'static [(&'static str, &'static str)] = &[
+        ("work_of_adhesion_J_per_m2", "fitted w"),
+        ("work_of_adhesion_std_error_J_per_m2", "standard error of w"),
+        (
+            "plane_strain_modulus_Pa",
+            "fitted plane-strain modulus E/(1-nu^2)",
+        ),
+        ("plane_strain_modulus_std_error_Pa", "its standard error"),
+        ("rms_residual_N", "root-mean-square force residual"),
+        ("points_used_count", "in-contact points used"),
+        ("jkr_pull_off_force_N", "JKR pull-off -5 pi w R/6 at the fit"),
+        (
+            "pull_in_force_N",
+            "machine-stiffness pull-in force (k_s > 0 only)",
+        ),
+        (
+            "pull_in_depth_jump_m",
+            "machine-stiffness depth change at the pull-in (k_s > 0 only)",
+        ),
+        (
+            "pull_off_force_N",
+            "machine-stiffness pull-off force (k_s > 0 only)",
+        ),
+        (
+            "pull_off_depth_jump_m",
+            "machine-stiffness depth change at the pull-off (k_s > 0 only)",
+        ),
+    ];
+
+    fn validate(p: &Self::Params) -> Result<()> {
+        if p.model == FitModelChoice::MachineStiffness && p.spring_constant == 0.0 {
+            return Err(Error::invalid(
+                "model",
+                "machine-stiffness",
+                "needs spring_constant > 0",
+            ));
+        }
+        Ok(())
+    }
+
+    fn quick(p: &mut Self::Params) {
+        p.demo_points = p.demo_points.min(80);
+    }
+
+    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        let k = (p.spring_constant > 0.0).then_some(p.spring_constant);
+        let path = std::path::PathBuf::from(if p.data_file.is_empty() {
+            "demonstration"
+        } else {
+            p.data_file.as_str()
+        });
+        let curve = if p.data_file.is_empty() {
+            let x = Experiment::new(
+                TipGeometry::Sphere { radius: p.tip_radius },
+                p.demo_modulus,
+                p.demo_work_of_adhesion,
+                k.unwrap_or(1.0),
+            )?;
+            demo_cycle(&x, p.demo_noise, p.demo_points)?
+        } else {
+            crate::fit::read_curve(&path)?
+        };
+        job.check()?;
+        let model = match p.model {
+            FitModelChoice::Auto => None,
+            FitModelChoice::Jkr => Some(crate::fit::FitModel::Jkr),
+            FitModelChoice::MachineStiffness => Some(crate::fit::FitModel::MachineStiffness),
+        };
+        let report = crate::fit::fit_curve(&curve, &path, p.tip_radius, k, model)?;
+        let mut fig = crate::fit::fit_figure(&curve, &report)?;
+        fig.id = Self::ID.into();
+        fig.title = Self::TITLE.into();
+        fig.result(
+            "work_of_adhesion_std_error_J_per_m2",
+            report.work_of_adhesion_j_per_m2.std_error,
+        );
+        fig.result(
+            "plane_strain_modulus_std_error_Pa",
+            report.plane_strain_modulus_pa.std_error,
+        );
+        fig.result("jkr_pull_off_force_N", report.jkr.pull_off_force_n);
+        if let Some(ms) = report.machine_stiffness {
+            fig.result("pull_in_force_N", ms.pull_in_force_n);
+            fig.result("pull_in_depth_jump_m", ms.pull_in_depth_jump_m);
+            fig.result("pull_off_force_N", ms.pull_off_force_n);
+            fig.result("pull_off_depth_jump_m", ms.pull_off_depth_jump_m);
+        }
+        if p.data_file.is_empty() {
+            fig.note("no data file given: a synthetic demonstration cycle of the model is fitted");
+        }
+        job.progress(1.0, "done");
+        Ok(fig)
+    }
+}
