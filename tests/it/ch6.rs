@@ -369,3 +369,136 @@ fn effective_work_is_the_kendall_work_of_the_maximum_force() {
         );
     }
 }
+
+// The scenes: the user-profile path through a CSV file gives the built-in results (sampled
+// zigzag exactly, sampled sinusoid to the sampling error), and bad files are one-line errors
+// naming the file and line.
+mod scenes {
+    use adhesion::headless::resolve_values;
+    use adhesion::job::Job;
+    use adhesion::scenes;
+
+    use crate::common::{assert_rel, rel};
+
+    fn run(id: &str, sets: &[String]) -> adhesion::Result<adhesion::figure::Figure> {
+        let s = scenes::find(id)?;
+        let values = resolve_values(s, None, sets, true)?;
+        s.run(&values, &Job::quiet())
+    }
+
+    fn write(dir: &std::path::Path, name: &str, text: &str) -> String {
+        let p = dir.join(name);
+        std::fs::write(&p, text).unwrap();
+        format!("profile_file={}", p.display())
+    }
+
+    #[test]
+    fn profile_files_reproduce_the_builtin_scenes() {
+        let dir = tempfile::tempdir().unwrap();
+        // Zigzag (6.24) with λ = 2 µm, A = 0.1 in the file's own units; the corners on samples.
+        let mut zig = String::from("# zigzag, one period\nx_um,y_um\n");
+        for i in 0..=8 {
+            let x = 2.0 * f64::from(i) / 8.0;
+            let y = if x <= 1.0 { 0.4 * x } else { 0.4 * (2.0 - x) };
+            zig.push_str(&format!("{x},{y}\n"));
+        }
+        let zset = write(dir.path(), "zig.csv", &zig);
+        let (builtin, sampled) = (
+            run("fig6.4", &[]).unwrap(),
+            run("fig6.4", std::slice::from_ref(&zset)).unwrap(),
+        );
+        for (name, v) in &builtin.results {
+            assert_rel(name, sampled.result_value(name).unwrap(), *v, 1e-12);
+        }
+        assert!(
+            sampled.notes.iter().any(|n| n.contains("2 corner(s)")),
+            "{:?}",
+            sampled.notes
+        );
+        let (bm, sm) = (run("fig6.5", &[]).unwrap(), run("fig6.5", &[zset]).unwrap());
+        assert_rel(
+            "zigzag map optimum",
+            sm.result_value("optimum_angle_at_max_aspect_ratio_rad").unwrap(),
+            bm.result_value("optimum_angle_at_max_aspect_ratio_rad").unwrap(),
+            // The location of a smooth maximum is resolved to about √ε.
+            1e-7,
+        );
+        // Sinusoid (6.20) sampled with 100 points per period, whitespace separated.
+        let mut sine = String::new();
+        for i in 0..=100 {
+            let x = f64::from(i) / 100.0;
+            sine.push_str(&format!("{x} {}\n", 1.0 - (2.0 * std::f64::consts::PI * x).cos()));
+        }
+        let sset = write(dir.path(), "sine.txt", &sine);
+        let (builtin, sampled) = (run("fig6.2", &[]).unwrap(), run("fig6.2", &[sset]).unwrap());
+        for name in ["max_force_norm", "effective_work_ratio_norm", "min_force_norm"] {
+            let (b, s) = (
+                builtin.result_value(name).unwrap(),
+                sampled.result_value(name).unwrap(),
+            );
+            assert!(rel(s, b) < 1e-6, "{name}: sampled {s} vs {b}");
+        }
+        assert_eq!(
+            sampled.result_value("jumps_count"),
+            builtin.result_value("jumps_count")
+        );
+    }
+
+    #[test]
+    fn bad_profile_files_and_angles_are_one_line_errors() {
+        let dir = tempfile::tempdir().unwrap();
+        let cases = [
+            (
+                "text.csv",
+                "x,y\n0,0\n1,abc\n",
+                "text.csv:3: expected two numbers",
+            ),
+            ("open.csv", "0,0\n1,1\n2,2\n3,1\n", "does not close"),
+            ("short.csv", "0,0\n1,1\n2,0\n", "at least 4 samples"),
+            ("order.csv", "0,0\n2,1\n1,2\n3,0\n", "increase strictly"),
+        ];
+        for (name, text, expected) in cases {
+            let set = write(dir.path(), name, text);
+            let e = run("fig6.2", &[set]).unwrap_err().to_string();
+            assert!(e.contains(expected) && !e.contains('\n'), "{name}: {e}");
+        }
+        let missing = run("fig6.3", &["profile_file=/nonexistent/p.csv".into()])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            missing.contains("/nonexistent/p.csv") && missing.contains("cannot read"),
+            "{missing}"
+        );
+        // An angle the comparability condition excludes (A = 0.05: θ ≥ 17.44°).
+        let e = run("fig6.2", &["peel_angles=10, 90".into()])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("comparability condition") && e.contains("17.4"), "{e}");
+    }
+
+    // Figs. 6.3/6.5 as the text describes them: F_max largest at the lower admissible angle and
+    // smallest at the upper one, w_e smallest at the upper one; the optimum-angle fits (6.23) and
+    // (6.27) within 0.011 rad of the numerical optimum over 0 < A ≤ 0.5 (measured 0.0070 and
+    // 0.0108 rad, largest at the smallest A, where w_e is nearly flat in θ).
+    #[test]
+    fn map_extrema_and_optimum_angle_fits() {
+        for (id, bound) in [("fig6.3", 0.0075), ("fig6.5", 0.011)] {
+            let s = scenes::find(id).unwrap();
+            let fig = s.run(&s.defaults(), &Job::quiet()).unwrap();
+            let r = |n: &str| fig.result_value(n).unwrap();
+            assert!(r("max_force_boundary_deviation_rad") < 1e-7, "{id}");
+            assert!(r("min_force_boundary_deviation_rad") < 1e-7, "{id}");
+            assert!(r("min_work_boundary_deviation_rad") < 1e-7, "{id}");
+            assert!(
+                r("max_deviation_fit_rad") < bound,
+                "{id}: {}",
+                r("max_deviation_fit_rad")
+            );
+            assert!(
+                (r("optimum_angle_at_max_aspect_ratio_rad") - r("fit_angle_at_max_aspect_ratio_rad")).abs()
+                    < 0.005
+            );
+            assert_rel("F_max at θ = 0, A = 0", r("max_force_norm"), 0.1, 1e-12);
+        }
+    }
+}
