@@ -279,8 +279,9 @@ fn sampled(profile: &Profile, n: usize, offset: f64) -> Profile {
 
 // The sampled-profile path reproduces the analytic profiles. Zigzag sampled with its corners on
 // samples: exact (corners detected, straight pieces stay straight). Sinusoid, 64 samples per
-// period: the periodic spline's minimum slope is within 1e-4 relative, F_max and w_e within
-// 1e-5 relative (measured; the error falls as n⁻⁴ — checked between 32 and 64 samples).
+// period: the periodic spline's minimum slope is within 5.2e-7 relative, F_max and w_e within
+// 4.2e-7 (measured; 16 samples: 1.4e-4, 1.1e-4; the error falls as n⁻⁴, see
+// `sampling_error_study`).
 #[test]
 fn sampled_profiles_reproduce_sinusoid_and_zigzag() {
     let z = sampled(&Profile::Zigzag, 8, 0.0);
@@ -333,7 +334,7 @@ fn sampled_profiles_reproduce_sinusoid_and_zigzag() {
     let shifted = sampled(&Profile::Sinusoid, 64, 0.37);
     let p = WavyPeeling::new(&shifted, 0.1, FRAC_PI_2, W_BAR).unwrap();
     let exact = sinusoid_max_force(0.1, FRAC_PI_2, W_BAR);
-    assert!(rel(p.max_force(), exact) < 1e-5);
+    assert!(rel(p.max_force(), exact) < 1e-6);
     // Stability of the sampled sinusoid follows the curvature of the original.
     let s = sampled(&Profile::Sinusoid, 64, 0.0);
     let p = WavyPeeling::new(&s, 0.1, FRAC_PI_2, W_BAR).unwrap();
@@ -499,6 +500,28 @@ mod scenes {
                     < 0.005
             );
             assert_rel("F_max at θ = 0, A = 0", r("max_force_norm"), 0.1, 1e-12);
+        }
+    }
+}
+
+// Sampling-error study of the user-profile path (run with --ignored --nocapture): relative
+// errors of min ρ′, F_max and w_e of a sampled sinusoid (A = 0.1, θ = π/2, w̄ = 0.005) against
+// the closed forms, for 16-512 samples per period, samples aligned and shifted by 0.37λ.
+#[test]
+#[ignore = "study: prints the sampling-error table"]
+fn sampling_error_study() {
+    let exact = WavyPeeling::new(&Profile::Sinusoid, 0.1, FRAC_PI_2, W_BAR).unwrap();
+    println!("n  offset  err(min slope)  err(F_max)  err(w_e)");
+    for n in [16, 32, 64, 128, 256, 512] {
+        for offset in [0.0, 0.37] {
+            let s = sampled(&Profile::Sinusoid, n, offset);
+            let p = WavyPeeling::new(&s, 0.1, FRAC_PI_2, W_BAR).unwrap();
+            println!(
+                "{n:4} {offset:4}  {:.2e}  {:.2e}  {:.2e}",
+                rel(s.slope_range().0, -2.0 * PI),
+                rel(p.max_force(), exact.max_force()),
+                rel(p.effective_work(), exact.effective_work())
+            );
         }
     }
 }
