@@ -525,3 +525,44 @@ fn sampling_error_study() {
         }
     }
 }
+
+// A profile with two force maxima per period (ρ ∝ −cos 2πx̄ + 0.4 sin 4πx̄, sampled): under a
+// rising load the front first snaps from the lower maximum onto the rising branch before the
+// higher one (landing where the equilibrium force equals the load, on a stable branch), then
+// runs away from the global maximum F_max (6.17) one period at a time.
+#[test]
+fn load_path_on_a_two_peak_profile_has_an_intermediate_jump() {
+    let pts: Vec<(f64, f64)> = (0..=400)
+        .map(|i| {
+            let x = f64::from(i) / 400.0;
+            (x, -(2.0 * PI * x).cos() + 0.4 * (4.0 * PI * x).sin())
+        })
+        .collect();
+    let profile = Profile::Sampled(SampledProfile::new(&pts).unwrap());
+    assert!(profile.corners().is_empty());
+    let p = WavyPeeling::new(&profile, 0.05, FRAC_PI_2, W_BAR).unwrap();
+    let curve = p.equilibrium_curve(0.0, 3.0, 400);
+    let path = p.load_path(&curve).unwrap();
+    assert!(path.runaway);
+    let first = path.jumps[0];
+    assert!(first.force < p.max_force() * (1.0 - 1e-3), "{first:?}");
+    assert!(first.to - first.from < 1.0);
+    // The landing point is an equilibrium at the load, on a rising (stable) branch.
+    assert_rel("landing force", p.force(first.to), first.force, 1e-10);
+    assert!(p.force_slope(first.to) > 0.0);
+    assert_eq!(p.stability(first.to), Stability::Stable);
+    // The remaining jumps are at F_max, one period long.
+    let rest: Vec<_> = path
+        .jumps
+        .iter()
+        .filter(|j| j.force >= p.max_force() * (1.0 - 1e-9))
+        .collect();
+    assert!(rest.len() >= 2, "{:?}", path.jumps);
+    for j in &rest {
+        assert!((j.to - j.from - 1.0).abs() < 1e-9, "{j:?}");
+    }
+    // The force on the path never decreases (load control) and never exceeds F_max.
+    for w in path.points.windows(2) {
+        assert!(w[1].1 >= w[0].1 - 1e-15 && w[1].1 <= p.max_force() * (1.0 + 1e-12));
+    }
+}
