@@ -7,6 +7,7 @@
 //! substrate, which then replaces the built-in profile (its shape is normalised to [−1, 1], the
 //! aspect ratio A stays a parameter).
 
+use std::f64::consts::FRAC_PI_2;
 use std::path::Path;
 
 use super::{Registered, Scene, SceneDyn};
@@ -14,10 +15,10 @@ use crate::error::{Error, Result};
 use crate::figure::{Axis, Field, FieldKind, Figure, Marker, MarkerShape, Panel, Series, Style};
 use crate::job::Job;
 use crate::models::peeling::{
-    Profile, SampledProfile, Stability, WavyPeeling, kendall_force, sinusoid_optimum_angle_fit,
+    Profile, SampledProfile, Stability, WavyPeeling, kendall_force, sinusoid_optimum_angle_fit, steep_limits,
     zigzag_optimum_angle_fit,
 };
-use crate::numerics::curve::{golden_min, linspace};
+use crate::numerics::curve::{golden_min, linspace, logspace};
 use crate::params::Range;
 
 /// The chapter's scenes, in figure order.
@@ -26,6 +27,7 @@ pub const SCENES: &[&dyn SceneDyn] = &[
     &Registered::<Fig6_3>::NEW,
     &Registered::<Fig6_4>::NEW,
     &Registered::<Fig6_5>::NEW,
+    &Registered::<Fig6Limits>::NEW,
 ];
 
 /// Palette indices: black for the measured (load-path) lines, purple and yellow for the
@@ -604,6 +606,148 @@ impl Scene for Fig6_5 {
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
         let mut fig = run_map(p, &Profile::Zigzag, zigzag_optimum_angle_fit, "(6.27)", job)?;
         fig.title = Self::TITLE.into();
+        Ok(fig)
+    }
+}
+
+crate::scene_params! {
+    /// Parameters of scene fig6.3-limits (Sec. 6.4): the approach of (6.17)-(6.18) to the flat
+    /// and steep limits (6.28)-(6.31) at θ = π/2. The first w̄ is the section's example (0.1),
+    /// the second the figures' (0.005).
+    pub struct LimitsParams {
+        /// Normalised works of adhesion w̄ = w/(Eh); results are reported for the first.
+        work_of_adhesion_norms: Vec<f64> = vec![0.1, 0.005], unit = "", range = Range::open(0.0, 1.0e3);
+        /// Smallest aspect ratio A.
+        aspect_ratio_min: f64 = 1.0e-3, unit = "", range = Range::open(0.0, 1.0e6);
+        /// Largest aspect ratio A.
+        aspect_ratio_max: f64 = 1.0e3, unit = "", range = Range::open(0.0, 1.0e9);
+        /// Points along A (log-spaced).
+        points: usize = 200, unit = "", range = Range::between(3.0, 1.0e5);
+        /// Substrate profile file replacing the zigzag: CSV of x, y over one period, the last sample repeating the first height (empty: sinusoid and zigzag).
+        profile_file: String = String::new(), unit = "", range = Range::any();
+    }
+}
+
+/// Beyond the dissertation's figures: the limits of Sec. 6.4 reached from (6.17)-(6.18).
+pub struct Fig6Limits;
+
+impl Scene for Fig6Limits {
+    type Params = LimitsParams;
+    const ID: &'static str = "fig6.3-limits";
+    const CHAPTER: &'static str = "6";
+    const TITLE: &'static str = "Flat and steep limits of the peel-force and adhesion enhancement";
+    const CAPTION: &'static str = "Enhancement of (a) the effective peel force F_max/F_flat, (6.17)/(6.11), and (b) the \
+        effective work w_e/w, (6.18), vs aspect ratio A at θ = π/2 for the sinusoid and the zigzag (or a profile file); dotted: the steep \
+        limits α (6.29) and β (6.31) approached as A grows, and 1 as A → 0 (6.28a), (6.30a).";
+    const RESULTS: &'static [(&'static str, &'static str)] = &[
+        (
+            "alpha_norm",
+            "alpha = F_max,steep/F_max,flat, Eq. (6.29), first w",
+        ),
+        (
+            "alpha_approx_norm",
+            "the small-w approximation sqrt(2/w) of (6.29)",
+        ),
+        (
+            "beta_norm",
+            "beta = w_e,steep/w_e,flat = 1 + sqrt(2/w), Eq. (6.31)",
+        ),
+        (
+            "sinusoid_force_ratio_at_max_aspect_ratio_norm",
+            "F_max/F_flat of (6.17) on the sinusoid at the largest A",
+        ),
+        (
+            "sinusoid_work_ratio_at_max_aspect_ratio_norm",
+            "w_e/w of (6.18) on the sinusoid at the largest A",
+        ),
+        (
+            "zigzag_force_ratio_at_max_aspect_ratio_norm",
+            "F_max/F_flat on the zigzag (or the profile file) at the largest A",
+        ),
+        (
+            "zigzag_work_ratio_at_max_aspect_ratio_norm",
+            "w_e/w on the zigzag (or the profile file) at the largest A",
+        ),
+    ];
+
+    fn validate(p: &Self::Params) -> Result<()> {
+        if p.aspect_ratio_min >= p.aspect_ratio_max {
+            return Err(Error::invalid(
+                "aspect_ratio_min",
+                p.aspect_ratio_min,
+                "must be below aspect_ratio_max",
+            ));
+        }
+        profile_of(&p.profile_file, &Profile::Zigzag).map(|_| ())
+    }
+
+    fn quick(p: &mut Self::Params) {
+        p.points = p.points.min(40);
+    }
+
+    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        let second = profile_of(&p.profile_file, &Profile::Zigzag)?;
+        let profiles = [Profile::Sinusoid, second];
+        let a_grid = logspace(p.aspect_ratio_min, p.aspect_ratio_max, p.points);
+        let x_axis = || Axis::log("Aspect ratio A", "");
+        let mut pa =
+            Panel::new(x_axis(), Axis::linear("F_max/F_flat", "")).titled("(a)", "peel force, θ = 90°");
+        let mut pb =
+            Panel::new(x_axis(), Axis::linear("w_e/w", "")).titled("(b)", "work of adhesion, θ = 90°");
+        let mut fig = Figure::new(Self::ID, Self::TITLE);
+        let (a_lo, a_hi) = (a_grid[0], a_grid[a_grid.len() - 1]);
+        for (k, &w) in p.work_of_adhesion_norms.iter().enumerate() {
+            job.check()?;
+            let limits = steep_limits(w);
+            for (m, profile) in profiles.iter().enumerate() {
+                let mut force = Vec::with_capacity(a_grid.len());
+                let mut work = Vec::with_capacity(a_grid.len());
+                for &a in &a_grid {
+                    let peel = WavyPeeling::new(profile, a, FRAC_PI_2, w)?;
+                    force.push((a, peel.max_force() / limits.force_flat));
+                    work.push((a, peel.effective_work() / w));
+                }
+                let name = format!("{}, w = {w}", profile.name());
+                if k == 0 {
+                    let key = if m == 0 { "sinusoid" } else { "zigzag" };
+                    fig.result(
+                        format!("{key}_force_ratio_at_max_aspect_ratio_norm"),
+                        force[force.len() - 1].1,
+                    );
+                    fig.result(
+                        format!("{key}_work_ratio_at_max_aspect_ratio_norm"),
+                        work[work.len() - 1].1,
+                    );
+                }
+                pa.add(Series::new(&name, Style::Stable, force).with_color(2 * k + m));
+                pb.add(Series::new(&name, Style::Stable, work).with_color(2 * k + m));
+            }
+            pa.add(
+                Series::new(
+                    format!("α (6.29), w = {w}"),
+                    Style::Reference,
+                    vec![(a_lo, limits.alpha), (a_hi, limits.alpha)],
+                )
+                .with_color(BLACK),
+            );
+            pb.add(
+                Series::new(
+                    format!("β (6.31), w = {w}"),
+                    Style::Reference,
+                    vec![(a_lo, limits.beta), (a_hi, limits.beta)],
+                )
+                .with_color(BLACK),
+            );
+            if k == 0 {
+                fig.result("alpha_norm", limits.alpha);
+                fig.result("alpha_approx_norm", limits.alpha_approx);
+                fig.result("beta_norm", limits.beta);
+            }
+        }
+        fig.panels = vec![pa, pb];
+        fig.note("for w = 0.1 the text prints alpha = 4.68 (4.6856 by (6.29)) and beta = 5.68, which is 1 + alpha rather than (6.31) = 5.472 (ERRATA)");
+        profile_note(&mut fig, &profiles[1], &p.profile_file);
+        job.progress(1.0, "done");
         Ok(fig)
     }
 }

@@ -477,6 +477,32 @@ mod scenes {
         assert!(e.contains("comparability condition") && e.contains("17.4"), "{e}");
     }
 
+    // Sec. 6.4 numerically: at A = 1000, θ = π/2, (6.17)/(6.18) on both profiles are within
+    // 1e-7 of the steep limits α = 4.6856 and β = 5.4721 for w̄ = 0.1 (the remaining error is
+    // O(1/A²)).
+    #[test]
+    fn limits_scene_reaches_the_steep_limits() {
+        let s = scenes::find("fig6.3-limits").unwrap();
+        let fig = s.run(&s.defaults(), &Job::quiet()).unwrap();
+        let r = |n: &str| fig.result_value(n).unwrap();
+        for key in ["sinusoid", "zigzag"] {
+            assert_rel(
+                key,
+                r(&format!("{key}_force_ratio_at_max_aspect_ratio_norm")),
+                r("alpha_norm"),
+                1e-7,
+            );
+            assert_rel(
+                key,
+                r(&format!("{key}_work_ratio_at_max_aspect_ratio_norm")),
+                r("beta_norm"),
+                1e-7,
+            );
+        }
+        assert_rel("α", r("alpha_norm"), 4.685_557_720_282_966, 1e-12);
+        assert_rel("β", r("beta_norm"), 1.0 + 20f64.sqrt(), 1e-12);
+    }
+
     // Figs. 6.3/6.5 as the text describes them: F_max largest at the lower admissible angle and
     // smallest at the upper one, w_e smallest at the upper one; the optimum-angle fits (6.23) and
     // (6.27) within 0.011 rad of the numerical optimum over 0 < A ≤ 0.5 (measured 0.0070 and
