@@ -171,6 +171,8 @@ impl Profile {
 pub struct SampledProfile {
     /// Spline pieces in unrolled coordinates covering [start, start + 1).
     pieces: Vec<CubicSpline>,
+    /// First knot of each piece.
+    piece_starts: Vec<f64>,
     /// Start of the first piece (the first corner, or 0).
     start: f64,
     corners: Vec<Corner>,
@@ -256,6 +258,7 @@ impl SampledProfile {
             (pieces, start, corner_knots)
         };
         let mut profile = Self {
+            piece_starts: pieces.iter().map(|p| p.knots()[0]).collect(),
             pieces,
             start,
             corners: Vec::new(),
@@ -325,7 +328,7 @@ impl SampledProfile {
     /// Value, slope and second derivative of ρ at x̄ (right-hand or left-hand at a corner).
     fn eval(&self, xi: f64, left: bool) -> (f64, f64, f64) {
         let t = self.start + (xi - self.start).rem_euclid(1.0);
-        let starts: Vec<f64> = self.pieces.iter().map(|p| p.knots()[0]).collect();
+        let starts = &self.piece_starts;
         let mut k = starts.partition_point(|&s| s <= t).saturating_sub(1);
         let mut t = t;
         if left && (t - starts[k]).abs() <= 1e-14 {
@@ -526,6 +529,20 @@ pub struct LoadPath {
 }
 
 /// A peeling configuration: profile, aspect ratio A, peel angle θ, work of adhesion w̄.
+///
+/// ```
+/// use adhesion::models::peeling::{Profile, WavyPeeling, kendall_force};
+/// let theta = std::f64::consts::FRAC_PI_2;
+/// let p = WavyPeeling::new(&Profile::Sinusoid, 0.05, theta, 0.005)?;
+/// // The wavy substrate needs a larger force than the flat one (Kendall, (6.11)).
+/// assert!(p.max_force() > 1.4 * kendall_force(theta, 0.005));
+/// // Under a rising load the front snaps through once the force reaches F_max.
+/// let path = p.load_path(&p.equilibrium_curve(0.0, 2.0, 100))?;
+/// assert!(path.runaway && (path.jumps[0].from - 0.75).abs() < 1e-9);
+/// // Angles where the film would touch the substrate are refused.
+/// assert!(WavyPeeling::new(&Profile::Sinusoid, 0.05, 0.1, 0.005).is_err());
+/// # Ok::<(), adhesion::Error>(())
+/// ```
 #[derive(Debug, Clone, Copy)]
 pub struct WavyPeeling<'p> {
     profile: &'p Profile,
