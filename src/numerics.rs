@@ -1,6 +1,6 @@
 //! Numerical building blocks with no physics in them: root finding, quadrature, curve tracing
 //! (all roots on an interval, turning points, the path along equilibrium branches), and
-//! nonlinear least squares (Levenberg-Marquardt).
+//! nonlinear least squares (Levenberg-Marquardt), and cubic splines for tabulated data.
 //!
 //! Models call these; they know nothing about contact mechanics, figures or front ends.
 
@@ -9,3 +9,4 @@ pub mod least_squares;
 pub mod newton;
 pub mod quadrature;
 pub mod roots;
+pub mod spline;
