@@ -455,8 +455,8 @@ fn sweep_figure(
 }
 
 crate::scene_params! {
-    /// Parameters of scene fig2.5 (Sec. 2.3.1).
-    pub struct Fig2_5Params {
+    /// Parameters of the α sweeps, scenes fig2.5 (Sec. 2.3.1) and fig2.7 (Sec. 2.3.2).
+    pub struct AlphaSweepParams {
         /// Smallest stiffness ratio α.
         alpha_min: f64 = 1.0e-2, unit = "", range = Range::positive();
         /// Largest stiffness ratio α.
@@ -470,7 +470,7 @@ crate::scene_params! {
 pub struct Fig2_5;
 
 impl Scene for Fig2_5 {
-    type Params = Fig2_5Params;
+    type Params = AlphaSweepParams;
     const ID: &'static str = "fig2.5";
     const CHAPTER: &'static str = "2";
     const TITLE: &'static str = "Spherical tip: pull-in, pull-off and hysteresis vs machine stiffness";
@@ -495,23 +495,11 @@ impl Scene for Fig2_5 {
     }
 }
 
-crate::scene_params! {
-    /// Parameters of scene fig2.7 (Sec. 2.3.2).
-    pub struct Fig2_7Params {
-        /// Smallest stiffness ratio α.
-        alpha_min: f64 = 1.0e-2, unit = "", range = Range::positive();
-        /// Largest stiffness ratio α.
-        alpha_max: f64 = 1.0e3, unit = "", range = Range::positive();
-        /// Number of α values (log-spaced) solved exactly.
-        points: usize = 100, unit = "", range = Range::between(2.0, 1.0e5);
-    }
-}
-
 /// Fig. 2.7: cone, as Fig. 2.5 with the fits (2.47), (2.49).
 pub struct Fig2_7;
 
 impl Scene for Fig2_7 {
-    type Params = Fig2_7Params;
+    type Params = AlphaSweepParams;
     const ID: &'static str = "fig2.7";
     const CHAPTER: &'static str = "2";
     const TITLE: &'static str = "Conical tip: pull-in, pull-off and hysteresis vs machine stiffness";
