@@ -246,22 +246,18 @@ pub fn read_curve(path: &Path) -> Result<Curve> {
 }
 
 /// The in-contact part of a cycle: the rows from the first to the last whose force stands out
-/// of the zero-force noise of the approach and retract segments. The noise level σ is estimated
-/// from the first and last tenth of the rows as median|ΔP|/(0.954·√2) of successive differences
-/// (a flat noisy baseline gives its σ; a smooth curve, when a file holds only the contact part,
-/// gives nearly zero); a force counts as non-zero above max(8σ, 1 % of the largest |P|). Returns
-/// the index range.
+/// of the zero-force noise of the approach and retract segments. The noise level σ is
+/// estimated by `noise_level` on the first and on the last tenth of the rows, and the smaller
+/// of the two counts (one end may hold the contact curve, as when a cycle stops soon after the
+/// pull-off). A force counts as non-zero above max(8σ, 1 % of the largest |P|). Returns the
+/// index range.
 ///
 /// # Errors
 /// [`Error::DataFile`] when fewer than `min_points` rows are in contact.
 pub fn contact_range(curve: &Curve, path: &Path, min_points: usize) -> Result<std::ops::Range<usize>> {
     let n = curve.force.len();
     let tenth = (n / 10).max(2).min(n);
-    let diffs = |seg: &[f64]| seg.windows(2).map(|w| (w[1] - w[0]).abs()).collect::<Vec<_>>();
-    let mut d = diffs(&curve.force[..tenth]);
-    d.extend(diffs(&curve.force[n - tenth..]));
-    d.sort_by(f64::total_cmp);
-    let noise = d.get(d.len() / 2).copied().unwrap_or(0.0) / (0.954 * std::f64::consts::SQRT_2);
+    let noise = noise_level(&curve.force[..tenth]).min(noise_level(&curve.force[n - tenth..]));
     let p_max = curve.force.iter().fold(0.0f64, |m, p| m.max(p.abs()));
     let threshold = (8.0 * noise).max(0.01 * p_max);
     let first = curve.force.iter().position(|p| p.abs() > threshold);
@@ -282,6 +278,43 @@ pub fn contact_range(curve: &Curve, path: &Path, min_points: usize) -> Result<st
         ));
     }
     Ok(range)
+}
+
+/// Robust noise level of a segment that is a straight line plus noise: the larger of
+/// median|ΔP|/(0.954·√2) of successive differences (right for white noise) and 1.4826 × the
+/// median absolute residual of a robust straight line through the segment against the row index
+/// (right for correlated noise too, where successive differences underestimate σ). A flat noisy
+/// baseline gives its σ; a smooth curve, when a file holds only the contact part, nearly zero.
+fn noise_level(seg: &[f64]) -> f64 {
+    fn median(mut v: Vec<f64>) -> f64 {
+        if v.is_empty() {
+            return 0.0;
+        }
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    }
+    let n = seg.len();
+    if n < 2 {
+        return 0.0;
+    }
+    let from_diffs =
+        median(seg.windows(2).map(|w| (w[1] - w[0]).abs()).collect()) / (0.954 * std::f64::consts::SQRT_2);
+    // A robust straight line: the median of the slopes between rows half a segment apart, and
+    // the median intercept (a few spikes or a jump at the end do not tilt it).
+    let h = n / 2;
+    let slope = median((0..n - h).map(|k| (seg[k + h] - seg[k]) / h as f64).collect());
+    let intercept = median(
+        seg.iter()
+            .enumerate()
+            .map(|(k, y)| y - slope * k as f64)
+            .collect(),
+    );
+    let residuals = seg
+        .iter()
+        .enumerate()
+        .map(|(k, y)| (y - intercept - slope * k as f64).abs())
+        .collect();
+    from_diffs.max(1.4826 * median(residuals))
 }
 
 /// A fitted parameter with its standard error.

@@ -197,6 +197,11 @@ pub fn evaluate_all() -> Vec<Outcome> {
     claims().par_iter().map(evaluate).collect()
 }
 
+/// Text for a Markdown table cell: a `|` (as in |P_o|) is escaped, not a column break.
+fn cell(text: &str) -> String {
+    text.replace('|', "\\|")
+}
+
 /// The report as Markdown.
 pub fn markdown(outcomes: &[Outcome]) -> String {
     let mut out = String::from(
@@ -214,13 +219,13 @@ pub fn markdown(outcomes: &[Outcome]) -> String {
             "| {} | {} | {} | {} | {} | {:.2e} | {:?}{} | {} |\n",
             o.id,
             o.source,
-            o.quantity,
+            cell(o.quantity),
             o.printed_text,
             format_computed(o.computed),
             o.relative_difference,
             o.status,
             flag,
-            o.reason.replace('|', "/"),
+            cell(&o.reason),
         ));
     }
     let reproduced = outcomes.iter().filter(|o| o.status == Status::Reproduced).count();

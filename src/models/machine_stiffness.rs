@@ -266,8 +266,10 @@ impl MachineStiffness {
     /// cone √(2ā)/2 > 3.
     fn fold_bound(&self) -> f64 {
         match self.tip {
-            // The exact profile is steeper than the paraboloid, so ḡ is larger there.
-            TipShape::Sphere | TipShape::SphereExact { .. } => 1.0,
+            TipShape::Sphere => 1.0,
+            // The exact profile is steeper than the paraboloid, so ḡ is larger there; the grid
+            // of `folds` (up to 1.001 × this bound) must stay below ā = ρ, where h̄ diverges.
+            TipShape::SphereExact { radius_ratio: r } => (r * (1.0 - 1e-12) / 1.001).min(1.0),
             TipShape::Cone => 18.0,
         }
     }

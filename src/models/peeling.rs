@@ -422,10 +422,14 @@ pub fn zigzag_effective_work(aspect_ratio: f64, theta: f64, w_bar: f64) -> f64 {
 /// ```text
 /// w̄_e = ½[cos(θ + φ_min) − cos θ + √((cos(θ + φ_min) − 1)² + 2w̄)]² − ½(cos θ − 1)²
 /// ```
+///
+/// Evaluated without cancellation as w̄_e = ½F̄_e(F̄_e + 2(1 − cos θ)), where
+/// F̄_e = √((cos(θ + φ_min) − 1)² + 2w̄) + cos(θ + φ_min) − 1 is Kendall's force (6.11) at the
+/// angle θ + φ_min: the printed difference of squares loses all digits for w̄ below ~1e-14.
 pub fn effective_work_6_18(theta: f64, phi_min: f64, w_bar: f64) -> f64 {
-    let ce = (theta + phi_min).cos();
-    let c = theta.cos();
-    0.5 * (ce - c + ((ce - 1.0).powi(2) + 2.0 * w_bar).sqrt()).powi(2) - 0.5 * (c - 1.0).powi(2)
+    let f_e = kendall_force(theta + phi_min, w_bar);
+    let u = 2.0 * (0.5 * theta).sin().powi(2); // 1 − cos θ
+    0.5 * f_e * (f_e + 2.0 * u)
 }
 
 /// Optimum peel angle of the effective work on the sinusoid, the empirical fit.

@@ -576,3 +576,46 @@ fn contact_only_file() {
     );
     assert!(rel(r.work_of_adhesion_j_per_m2.value, 0.04) < 1e-7);
 }
+
+/// The fig2.8-fit demonstration (defaults: ℰ = 2 MPa, w = 0.04 J/m², 1 % noise) fits back its
+/// own parameters within 3 standard errors, using only the in-contact rows.
+#[test]
+fn demonstration_fit_recovers_its_parameters() {
+    use adhesion::scenes::Scene;
+    use adhesion::scenes::fig2::{Fig2_8Fit, Fig2_8FitParams};
+    let p = Fig2_8FitParams::default();
+    let fig = Fig2_8Fit::run(&p, &adhesion::job::Job::quiet()).unwrap();
+    let r = |n: &str| fig.result_value(n).unwrap();
+    let (w, sw) = (
+        r("work_of_adhesion_J_per_m2"),
+        r("work_of_adhesion_std_error_J_per_m2"),
+    );
+    let (e, se) = (
+        r("plane_strain_modulus_Pa"),
+        r("plane_strain_modulus_std_error_Pa"),
+    );
+    assert!((w - 0.04).abs() < 3.0 * sw, "w = {w} ± {sw}");
+    assert!((e - 2.0e6).abs() < 3.0 * se, "E = {e} ± {se}");
+    assert!(sw < 0.02 * w && se < 0.02 * e);
+}
+
+/// Correlated baseline noise (a sawtooth, for which successive differences underestimate the
+/// noise level about sixfold) is still recognised as out of contact.
+#[test]
+fn correlated_baseline_noise_is_not_contact() {
+    use adhesion::fit::{contact_range, simulate_cycle};
+    let x = Experiment::new(TipGeometry::Sphere { radius: 1e-6 }, 2.0e6, 0.04, 0.5).unwrap();
+    let d_o = x.pull_off().unwrap().before.delta;
+    let mut c = simulate_cycle(&x, 1.5 * d_o, 3.0 * x.scales().h, 400).unwrap();
+    let in_contact = c.force.iter().filter(|p| **p != 0.0).count();
+    let p_max = c.force.iter().fold(0.0f64, |m, p| m.max(p.abs()));
+    for (k, p) in c.force.iter_mut().enumerate() {
+        *p += 0.01 * p_max * 3f64.sqrt() * (((k * 7919) % 1000) as f64 / 500.0 - 1.0);
+    }
+    let range = contact_range(&c, std::path::Path::new("sawtooth.csv"), 10).unwrap();
+    assert!(
+        range.len() <= in_contact + 2 && range.len() + 10 >= in_contact,
+        "{} rows taken, {in_contact} in contact",
+        range.len()
+    );
+}

@@ -113,10 +113,6 @@ fn enhancement_factors_of_section_6_4() {
         "β = {} is not the printed 5.68",
         l.beta
     );
-    assert!(
-        (1.0 + 4.68 - 5.68f64).abs() < 1e-12,
-        "the printed β is 1 + printed α"
-    );
     // The small-w̄ approximation √(2/w̄) of (6.29).
     assert_rel("α ≈ √(2/w̄)", l.alpha_approx, 20f64.sqrt(), 1e-12);
 
@@ -591,4 +587,28 @@ fn load_path_on_a_two_peak_profile_has_an_intermediate_jump() {
     for w in path.points.windows(2) {
         assert!(w[1].1 >= w[0].1 - 1e-15 && w[1].1 <= p.max_force() * (1.0 + 1e-12));
     }
+}
+
+// (6.18) for a very weak adhesion: the printed difference of two nearly equal squares would lose
+// every digit; the evaluation must reach the small-w̄ limit w̄_e/w̄ → (1 − cos θ)/(1 − cos(θ + φ)),
+// which follows from Kendall's F̄ ≈ w̄/(1 − cos θ) (6.11).
+#[test]
+fn effective_work_keeps_its_digits_for_weak_adhesion() {
+    let (theta, phi) = (FRAC_PI_2, -(2.0 * PI * 0.05f64).atan());
+    let limit = (1.0 - theta.cos()) / (1.0 - (theta + phi).cos());
+    for w in [1e-9, 1e-12, 1e-14, 1e-300] {
+        // The next term of the expansion is O(w̄) relative.
+        assert_rel(
+            "w_e/w small w",
+            effective_work_6_18(theta, phi, w) / w,
+            limit,
+            1e-8,
+        );
+    }
+    assert_rel(
+        "sinusoid w_e/w small w",
+        sinusoid_effective_work(0.05, theta, 1e-14) / 1e-14,
+        limit,
+        1e-8,
+    );
 }
