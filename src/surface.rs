@@ -5,18 +5,27 @@
 //!   α, the asperity density (3.9), and the PDFs (3.7), (3.11);
 //! - [`height_map`]: the sampled surface;
 //! - [`generate`]: FFT filtering of white noise (appendix C.1);
-//! - [`analysis`]: discrete PSD (B.1.8)-(B.1.10) and moments of a map.
+//! - [`analysis`]: discrete PSD (B.1.8)-(B.1.10), autocorrelation, moments and peaks of a map;
+//! - [`psd_fit`]: least-squares fit of (3.16) to an isotropic PSD;
+//! - [`io`]: text matrix and Gwyddion `.gsf` import/export.
 //!
 //! All lengths are SI metres; PSDs follow the convention m0 = σ_rms² of (3.8).
 
 pub mod analysis;
 pub mod generate;
 pub mod height_map;
+pub mod io;
+pub mod psd_fit;
 pub mod spectrum;
 
-pub use analysis::{moments_of_map, periodogram, psd_2d};
+pub use analysis::{
+    PeakStatistics, RadialPsd, autocorrelation, moments_of_map, peak_statistics, peaks, periodogram, psd_2d,
+    radial_model, radial_psd,
+};
 pub use generate::{generate, wavenumber};
 pub use height_map::HeightMap;
+pub use io::{read_height_map, write_height_map};
+pub use psd_fit::{AbcFit, Cutoff, fit_abc};
 pub use spectrum::{
     Moments, PreparedSpectrum, Spectrum, moments_of_psd, nayak_c1, nayak_c2, nayak_curvature_pdf,
     nayak_joint_pdf,

@@ -3,8 +3,9 @@
 
 use adhesion::numerics::quadrature::integrate;
 use adhesion::surface::{
-    HeightMap, Moments, Spectrum, generate, moments_of_map, moments_of_psd, nayak_curvature_pdf,
-    nayak_joint_pdf,
+    Cutoff, HeightMap, Moments, Spectrum, autocorrelation, fit_abc, generate, moments_of_map, moments_of_psd,
+    nayak_curvature_pdf, nayak_joint_pdf, peak_statistics, radial_model, radial_psd, read_height_map,
+    write_height_map,
 };
 
 fn rel(a: f64, b: f64) -> f64 {
@@ -208,4 +209,180 @@ fn invalid_spectra_and_grids_are_rejected_with_the_parameter_named() {
     };
     assert!(bad.moments().unwrap_err().to_string().contains("diverges"));
     let _ = HeightMap::new(2, 2, 1.0, 1.0, vec![0.0; 4]).unwrap();
+}
+
+#[test]
+fn generated_psd_matches_the_requested_psd_within_sampling_error() {
+    // Fig. C.2's check, quantitative: the radial PSD averaged over 8 seeds against the analytic
+    // (C.1.3) averaged over the same rings. Each ring above the first few holds hundreds of bins,
+    // so the seed average has a few per cent scatter; the rings are compared where the PSD is
+    // above 1e-8 of its plateau (below, the FFT's round-off floor is reached eventually).
+    for lc in [0.01, 0.05] {
+        let g = gaussian(lc);
+        let p = g.prepare().unwrap();
+        let n_seeds = 8;
+        let maps: Vec<HeightMap> = (0..n_seeds)
+            .map(|s| generate(&g, 256, 256, 1.0, 1.0, s).unwrap())
+            .collect();
+        let expected = radial_model(&maps[0], |q| p.psd(q));
+        let mut mean = vec![0.0; expected.q.len()];
+        for m in &maps {
+            for (acc, c) in mean.iter_mut().zip(radial_psd(m).c) {
+                *acc += c / n_seeds as f64;
+            }
+        }
+        let plateau = p.psd(0.0);
+        let mut compared = 0;
+        for (k, m) in mean.iter().enumerate() {
+            if expected.c[k] < 1e-8 * plateau {
+                continue;
+            }
+            // Standard error of the seed mean of an exponential (chi-squared 2) variable.
+            let sigma = 1.0 / ((expected.count[k] * n_seeds as usize) as f64).sqrt();
+            let ratio = m / expected.c[k];
+            assert!(
+                (ratio - 1.0).abs() < 5.0 * sigma + 0.01,
+                "Lc = {lc}, q = {}: ratio {ratio}",
+                expected.q[k]
+            );
+            compared += 1;
+        }
+        assert!(compared > 20, "Lc = {lc}: only {compared} rings compared");
+    }
+}
+
+#[test]
+fn autocorrelation_of_a_generated_surface_is_gaussian() {
+    let map = generate(&gaussian(0.05), 256, 256, 1.0, 1.0, 3).unwrap();
+    let r = autocorrelation(&map);
+    assert!(rel(r[0], 100.0) < 1e-12);
+    // R(δ) = σ² e^{-δ²/Lc²} (C.1.1) along x, one realisation (a few per cent of σ²).
+    for px in [3usize, 6, 12] {
+        let d = px as f64 / 256.0;
+        let expect = 100.0 * (-(d / 0.05).powi(2)).exp();
+        assert!((r[px] - expect).abs() < 6.0, "lag {px}: {} vs {expect}", r[px]);
+    }
+}
+
+#[test]
+fn fit_of_3_16_recovers_the_parameters_of_a_generated_surface() {
+    // A surface generated with (3.17) on the 2 µm, 256² grid of Fig. 3.7c; q0 fixed as in the
+    // dissertation. Seed 1 gives σ = 1.445 nm, Lc = 20.4 nm, n = 3.26 (1.1 % off in Lc).
+    let map = generate(&mold(), 256, 256, 2e-6, 2e-6, 1).unwrap();
+    let fit = fit_abc(&radial_psd(&map), Cutoff::Fixed(1e8)).unwrap();
+    for (got, se, want) in [
+        (fit.rms, fit.rms_error, 1.45e-9),
+        (fit.correlation_length, fit.correlation_length_error, 20.1e-9),
+        (fit.exponent, fit.exponent_error, 3.28),
+    ] {
+        assert!(rel(got, want) < 0.03, "{fit:?}");
+        assert!((got - want).abs() < 4.0 * se, "{fit:?}");
+    }
+    // With q0 free the fit finds it near 1e8 within its standard error band.
+    let free = fit_abc(&radial_psd(&map), Cutoff::Free(1e8)).unwrap();
+    assert!((free.cutoff - 1e8).abs() < 4.0 * free.cutoff_error, "{free:?}");
+}
+
+#[test]
+fn peak_density_approaches_nayak_eta_for_a_resolved_surface() {
+    // Lc = 12.8 pixels: the 8-neighbour count is within 10 % of η (3.9) (seed-averaged).
+    let g = gaussian(0.05);
+    let eta = g.moments().unwrap().asperity_density();
+    let n = 4;
+    let d: f64 = (0..n)
+        .map(|s| peak_statistics(&generate(&g, 256, 256, 1.0, 1.0, s).unwrap()).density)
+        .sum::<f64>()
+        / n as f64;
+    assert!(rel(d, eta) < 0.1, "{d} vs {eta}");
+}
+
+#[test]
+fn nearest_peak_distance_of_a_lattice() {
+    // Peaks of cos(2πx/a) cos(2πy/a)... on a square lattice of period a: nearest distance a/√2
+    // (maxima at (0,0) and (a/2, a/2) of the product are both +1).
+    let (n, a) = (64usize, 16usize);
+    let z: Vec<f64> = (0..n * n)
+        .map(|k| {
+            let (i, j) = ((k % n) as f64, (k / n) as f64);
+            let w = 2.0 * std::f64::consts::PI / a as f64;
+            (w * i).cos() * (w * j).cos()
+        })
+        .collect();
+    let map = HeightMap::new(n, n, 1.0, 1.0, z).unwrap();
+    let ps = peak_statistics(&map);
+    assert_eq!(ps.count, 2 * (n / a) * (n / a));
+    let spacing = a as f64 / n as f64;
+    assert!(
+        rel(ps.mean_nearest_distance, spacing / 2f64.sqrt()) < 1e-12,
+        "{ps:?}"
+    );
+}
+
+#[test]
+fn csv_round_trip_is_lossless_and_gsf_round_trip_is_exact_to_f32() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = generate(&mold(), 32, 24, 2e-7, 1.5e-7, 5).unwrap();
+    let csv = dir.path().join("m.csv");
+    write_height_map(&map, &csv).unwrap();
+    assert_eq!(read_height_map(&csv, None).unwrap(), map);
+    let gsf = dir.path().join("m.gsf");
+    write_height_map(&map, &gsf).unwrap();
+    let back = read_height_map(&gsf, None).unwrap();
+    assert_eq!(
+        (back.nx, back.ny, back.lx, back.ly),
+        (map.nx, map.ny, map.lx, map.ly)
+    );
+    for (a, b) in back.z.iter().zip(&map.z) {
+        assert_eq!(*a, f64::from(*b as f32));
+    }
+    // A second GSF round trip is bit-exact.
+    let gsf2 = dir.path().join("m2.gsf");
+    write_height_map(&back, &gsf2).unwrap();
+    assert_eq!(std::fs::read(&gsf).unwrap(), std::fs::read(&gsf2).unwrap());
+    // A plain matrix with the pixel size from the command line.
+    let plain = dir.path().join("plain.txt");
+    std::fs::write(&plain, "1 2 3\n4 5 6\n").unwrap();
+    let m = read_height_map(&plain, Some(1e-9)).unwrap();
+    assert_eq!((m.nx, m.ny), (3, 2));
+    assert!(rel(m.lx, 3e-9) < 1e-15 && rel(m.ly, 2e-9) < 1e-15);
+    assert_eq!(m.at(2, 1), 6.0);
+}
+
+#[test]
+fn bad_height_map_files_give_one_line_errors_naming_the_problem() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = |name: &str, body: &[u8], pixel: Option<f64>| -> String {
+        let p = dir.path().join(name);
+        std::fs::write(&p, body).unwrap();
+        let e = read_height_map(&p, pixel).unwrap_err().to_string();
+        assert!(!e.contains('\n'), "{e}");
+        e
+    };
+    assert!(case("ragged.csv", b"1,2,3\n4,5\n", Some(1e-9)).contains("ragged row"));
+    assert!(case("text.csv", b"1,2\n3,abc\n", Some(1e-9)).contains("`abc` is not a number"));
+    assert!(case("nan.csv", b"1,2\n3,NaN\n", Some(1e-9)).contains("not finite"));
+    assert!(case("nopix.csv", b"1,2\n3,4\n", None).contains("--pixel-size"));
+    assert!(case("negpix.csv", b"1,2\n3,4\n", Some(-1.0)).contains("pixel size"));
+    assert!(case("zeropix.csv", b"1,2\n3,4\n", Some(0.0)).contains("pixel size"));
+    assert!(case("empty.csv", b"# nothing\n", Some(1e-9)).contains("no height values"));
+    assert!(case("line.csv", b"1,2,3\n", Some(1e-9)).contains("at least 2 x 2"));
+    let map = generate(&gaussian(0.1), 8, 8, 1.0, 1.0, 0).unwrap();
+    let bytes = adhesion::surface::io::to_gsf(&map);
+    assert!(case("trunc.gsf", &bytes[..bytes.len() - 5], None).contains("truncated"));
+    assert!(case("magic.gsf", b"Gwyddion Simple Field 2.0\nXRes = 2\n", None).contains("magic"));
+    assert!(
+        case(
+            "nohdr.gsf",
+            b"Gwyddion Simple Field 1.0\nXRes = 2\nYRes = 2\n",
+            None
+        )
+        .contains("truncated")
+    );
+    let missing = dir.path().join("missing.csv");
+    assert!(
+        read_height_map(&missing, Some(1.0))
+            .unwrap_err()
+            .to_string()
+            .contains("cannot read")
+    );
 }
