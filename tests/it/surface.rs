@@ -386,3 +386,135 @@ fn bad_height_map_files_give_one_line_errors_naming_the_problem() {
             .contains("cannot read")
     );
 }
+
+fn adhesion(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_adhesion"))
+        .args(args)
+        .output()
+        .expect("binary runs")
+}
+
+#[test]
+fn command_line_generates_and_analyses_a_surface() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("mold.gsf");
+    let o = adhesion(&[
+        "--headless",
+        "--generate-surface",
+        "--spectrum",
+        "abc",
+        "--rms",
+        "1.45e-9",
+        "--correlation-length",
+        "20.1e-9",
+        "--size",
+        "128",
+        "--length",
+        "1e-6",
+        "--seed",
+        "3",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = adhesion(&["--headless", "--analyze-surface", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(rel(v["sigma_rms"].as_f64().unwrap(), 1.45e-9) < 1e-6);
+    assert!(rel(v["m0"].as_f64().unwrap(), 1.45e-9f64.powi(2)) < 1e-6);
+    for key in [
+        "m2",
+        "m4",
+        "nayak_alpha",
+        "asperity_density",
+        "peak_density",
+        "mean_nearest_peak_distance",
+    ] {
+        assert!(v[key].as_f64().unwrap() > 0.0, "{key}");
+    }
+    assert!(rel(v["psd_fit"]["correlation_length"].as_f64().unwrap(), 20.1e-9) < 0.1);
+}
+
+#[test]
+fn command_line_rejects_bad_surface_requests_in_one_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("plain.csv");
+    std::fs::write(&csv, "1,2\n3,4\n").unwrap();
+    let csv = csv.to_str().unwrap();
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &[
+                "--headless",
+                "--generate-surface",
+                "--rms",
+                "1",
+                "--size",
+                "8",
+                "--length",
+                "1",
+                "--correlation-length",
+                "0.1",
+            ],
+            "--out FILE.csv",
+        ),
+        (
+            &[
+                "--headless",
+                "--generate-surface",
+                "--size",
+                "8",
+                "--length",
+                "1",
+                "--out",
+                "x.csv",
+            ],
+            "rms",
+        ),
+        (
+            &[
+                "--headless",
+                "--generate-surface",
+                "--rms",
+                "1",
+                "--size",
+                "8",
+                "--length",
+                "-1",
+                "--correlation-length",
+                "0.1",
+                "--out",
+                "x.csv",
+            ],
+            "length",
+        ),
+        (&["--headless", "--analyze-surface", csv], "--pixel-size"),
+        (
+            &["--headless", "--analyze-surface", csv, "--pixel-size", "-2"],
+            "pixel size",
+        ),
+        (
+            &[
+                "--headless",
+                "--analyze-surface",
+                csv,
+                "--pixel-size",
+                "1",
+                "--fit-cutoff",
+                "abc",
+            ],
+            "fit-cutoff",
+        ),
+    ];
+    for (args, needle) in cases {
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_adhesion"))
+            .args(*args)
+            .current_dir(dir.path())
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{args:?}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+    }
+    assert!(!dir.path().join("x.csv").exists());
+}
