@@ -518,3 +518,166 @@ fn command_line_rejects_bad_surface_requests_in_one_line() {
     }
     assert!(!dir.path().join("x.csv").exists());
 }
+
+/// Run a scene with its defaults and `sets` (`name=value`), full resolution.
+fn run_scene(id: &str, sets: &[&str]) -> adhesion::figure::Figure {
+    let scene = adhesion::scenes::find(id).unwrap();
+    let sets: Vec<String> = sets.iter().map(|s| (*s).to_string()).collect();
+    let values = adhesion::headless::resolve_values(scene, None, &sets, false).unwrap();
+    scene.run(&values, &adhesion::job::Job::quiet()).unwrap()
+}
+
+fn result(fig: &adhesion::figure::Figure, name: &str) -> f64 {
+    fig.result_value(name)
+        .unwrap_or_else(|| panic!("{}: no result {name}", fig.id))
+}
+
+#[test]
+fn scene_fig_c1_maps_have_the_caption_rms_and_correlation_lengths() {
+    let fig = run_scene("figC.1", &[]);
+    assert_eq!(fig.panels.len(), 7);
+    assert!(fig.panels[..6].iter().all(|p| p.field.is_some()));
+    assert!(result(&fig, "rms_max_error_norm") < 1e-12);
+    // L_c read off the ACF of one 256² realisation: sampling error of a few per cent
+    // (largest for L_c = 0.1, ten correlation lengths per period).
+    assert!(result(&fig, "correlation_length_max_error_norm") < 0.08);
+    // Nayak's α = 3 for a Gaussian ACF (m2 = 2σ²/Lc², m4 = 12σ²/Lc⁴).
+    assert!((result(&fig, "nayak_alpha_mean_norm") - 3.0).abs() < 0.1);
+}
+
+#[test]
+fn scene_fig_c2_numerical_psd_follows_c_1_3() {
+    // Averaging 8 surfaces: the ring-averaged periodogram is within its sampling error of the
+    // ring average of (C.1.3) (relative scatter ~ 1/sqrt(8 × ring count)), and m2, m4 of the maps
+    // within ~1-3 % of 2σ²/Lc², 12σ²/Lc⁴ (L_c = 0.01 is 2.56 pixels: m4 is slightly
+    // under-resolved, the band-limited surface lacks the tail beyond the Nyquist wavenumber).
+    let fig = run_scene("figC.2", &["samples=8"]);
+    for tag in ["a", "b"] {
+        assert!(
+            result(&fig, &format!("psd_log_rms_error_{tag}_norm")) < 0.1,
+            "{tag}"
+        );
+        let m2 = result(&fig, &format!("m2_{tag}_norm"));
+        let m4 = result(&fig, &format!("m4_{tag}_norm"));
+        let m2a = result(&fig, &format!("m2_analytic_{tag}_norm"));
+        let m4a = result(&fig, &format!("m4_analytic_{tag}_norm"));
+        assert!(rel(m2, m2a) < 0.03, "{tag}: m2 {m2} vs {m2a}");
+        assert!(rel(m4, m4a) < 0.05, "{tag}: m4 {m4} vs {m4a}");
+    }
+    assert!(rel(result(&fig, "m2_analytic_a_norm"), 2.0 * 100.0 / 1e-4) < 1e-12);
+}
+
+#[test]
+fn scene_fig3_7d_fit_recovers_3_17_from_a_generated_scan() {
+    // A 2 µm, 256² surface generated with (3.17): the fit of (3.16) with q0 fixed returns
+    // σ_rms, L_c, n within a few standard errors of the values used, as the text's fit did.
+    let fig = run_scene("fig3.7d", &[]);
+    let close = |name: &str, truth: f64, tol: f64| {
+        let v = result(&fig, name);
+        assert!(rel(v, truth) < tol, "{name} = {v:e}, expected {truth:e}");
+    };
+    close("sigma_rms_m", 1.45e-9, 1e-12);
+    close("m0_m2", 1.45e-9f64.powi(2), 1e-12);
+    close("fit_sigma_rms_m", 1.45e-9, 0.03);
+    close("fit_correlation_length_m", 20.1e-9, 0.05);
+    close("fit_exponent_norm", 3.28, 0.03);
+    close("fit_cutoff_per_m", 1.0e8, 1e-15);
+    for (v, e) in [
+        ("fit_sigma_rms_m", "fit_sigma_rms_error_m"),
+        ("fit_correlation_length_m", "fit_correlation_length_error_m"),
+        ("fit_exponent_norm", "fit_exponent_error_norm"),
+    ] {
+        let (v, e) = (result(&fig, v), result(&fig, e));
+        assert!(e > 0.0 && e < 0.05 * v.abs(), "{v} ± {e}");
+    }
+    // The moments of the map against the PSD's (band-limited) moments: within sampling error.
+    let band = mold()
+        .moments_in_band(
+            2.0 * std::f64::consts::PI / 2e-6,
+            256.0 * std::f64::consts::PI / 2e-6,
+        )
+        .unwrap();
+    close("m2_norm", band.m2, 0.05);
+    close("m4_per_m2", band.m4, 0.05);
+}
+
+#[test]
+fn scene_fig3_7d_analyses_a_user_height_map_given_with_surface() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let spectrum = Spectrum::Abc {
+        rms: 3.0e-9,
+        correlation_length: 40e-9,
+        exponent: 2.8,
+        cutoff: Some(1.0e8),
+    };
+    let map = generate(&spectrum, 128, 128, 1.0e-6, 1.0e-6, 7).unwrap();
+    // A plain matrix as an instrument exports it: no header, the pixel size given separately.
+    let csv = dir.path().join("scan.csv");
+    let text = adhesion::surface::io::to_csv(&map);
+    std::fs::write(&csv, text.lines().skip(1).collect::<Vec<_>>().join("\n")).unwrap();
+    let run = |path: &std::path::Path, extra: &[&str]| {
+        let mut args = vec![
+            "--headless",
+            "--figure",
+            "fig3.7d",
+            "--surface",
+            path.to_str().unwrap(),
+            "--format",
+            "json",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        adhesion(&args)
+    };
+    let o = run(&csv, &["--set", "pixel_size=7.8125e-9"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let read = || -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(out.join("fig3.7d.json")).unwrap()).unwrap()
+    };
+    let v = read();
+    let r = &v["results"];
+    assert!(rel(r["sigma_rms_m"].as_f64().unwrap(), 3.0e-9) < 1e-9, "{r}");
+    assert!(
+        rel(r["m2_norm"].as_f64().unwrap(), moments_of_map(&map).m2) < 1e-9,
+        "{r}"
+    );
+    assert!(
+        rel(r["fit_correlation_length_m"].as_f64().unwrap(), 40e-9) < 0.1,
+        "{r}"
+    );
+    assert!(rel(r["fit_exponent_norm"].as_f64().unwrap(), 2.8) < 0.05, "{r}");
+    // A text map without a pixel size is refused with the problem named.
+    let o = run(&csv, &[]);
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("pixel"));
+    // A map that (3.16) cannot describe (Gaussian PSD, the limit n -> inf): the PSD and the
+    // moments are reported, the fit's values are null and a note says why.
+    let gauss = generate(
+        &Spectrum::Gaussian {
+            rms: 2.0e-9,
+            correlation_length: 40e-9,
+        },
+        128,
+        128,
+        1.0e-6,
+        1.0e-6,
+        7,
+    )
+    .unwrap();
+    let gsf = dir.path().join("gauss.gsf");
+    write_height_map(&gauss, &gsf).unwrap();
+    let o = run(&gsf, &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v = read();
+    assert!(rel(v["results"]["sigma_rms_m"].as_f64().unwrap(), 2.0e-9) < 1e-6);
+    // Either no best fit (null, with a note) or a poor one that its log residual shows
+    // (against ~0.1 for a map with a (3.16) spectrum).
+    let res = &v["results"]["fit_log_residual_rms_norm"];
+    if res.is_null() {
+        assert!(v["notes"].to_string().contains("fit of (3.16) failed"), "{v}");
+    } else {
+        assert!(res.as_f64().unwrap() > 1.0, "{v}");
+    }
+}
