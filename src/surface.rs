@@ -21,7 +21,7 @@ pub mod spectrum;
 
 pub use analysis::{
     PeakStatistics, RadialPsd, autocorrelation, moments_of_map, peak_statistics, peaks, periodogram, psd_2d,
-    radial_model, radial_psd,
+    radial_model, radial_psd, radial_psd_and_moments,
 };
 pub use generate::{generate, wavenumber};
 pub use height_map::HeightMap;

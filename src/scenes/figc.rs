@@ -8,7 +8,7 @@ use crate::job::Job;
 use crate::params::Range;
 use crate::surface::{
     AbcFit, Cutoff, HeightMap, Moments, RadialPsd, Spectrum, autocorrelation, fit_abc, generate,
-    moments_of_map, peak_statistics, radial_model, radial_psd, read_height_map,
+    moments_of_map, peak_statistics, radial_model, radial_psd, radial_psd_and_moments, read_height_map,
 };
 
 /// The scenes of this appendix, in figure order (with Fig. 3.7d, chapter 3).
@@ -419,8 +419,7 @@ impl Scene for Fig3_7d {
         }
         job.check()?;
         job.progress(0.3, "PSD");
-        let psd = radial_psd(&map);
-        let m = moments_of_map(&map);
+        let (psd, m) = radial_psd_and_moments(&map);
         let peaks = peak_statistics(&map);
         job.check()?;
         job.progress(0.6, "fit");

@@ -82,6 +82,15 @@ pub fn radial_psd(map: &HeightMap) -> RadialPsd {
     radial_average(map, &psd_2d(map))
 }
 
+/// [`radial_psd`] and [`moments_of_map`] from one Fourier transform of the map.
+pub fn radial_psd_and_moments(map: &HeightMap) -> (RadialPsd, Moments) {
+    let p = periodogram(map);
+    let m = moments_of_periodogram(map, &p);
+    let s = map.lx * map.ly / (4.0 * std::f64::consts::PI.powi(2));
+    let c2d: Vec<f64> = p.into_par_iter().map(|v| v * s).collect();
+    (radial_average(map, &c2d), m)
+}
+
 /// [`radial_psd`] of a 2D PSD already computed.
 pub fn radial_average(map: &HeightMap, c2d: &[f64]) -> RadialPsd {
     let (nx, ny, lx, ly) = (map.nx, map.ny, map.lx, map.ly);

@@ -5,7 +5,7 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use super::analysis::{PeakStatistics, moments_of_map, peak_statistics, radial_psd};
+use super::analysis::{PeakStatistics, peak_statistics, radial_psd_and_moments};
 use super::generate::generate;
 use super::io::{read_height_map, write_height_map};
 use super::psd_fit::{AbcFit, Cutoff, fit_abc};
@@ -52,9 +52,9 @@ pub struct SurfaceReport {
 
 /// Statistics of a map (mean removed first; `remove_tilt` also removes the plane).
 pub fn report(map: &HeightMap, cutoff: Cutoff) -> SurfaceReport {
-    let m: Moments = moments_of_map(map);
+    let (psd, m): (_, Moments) = radial_psd_and_moments(map);
     let peaks: PeakStatistics = peak_statistics(map);
-    let fit = fit_abc(&radial_psd(map), cutoff);
+    let fit = fit_abc(&psd, cutoff);
     SurfaceReport {
         convention: "SI units; m0 = sigma_rms^2, m2, m4 of a profile (3.8), isotropic average",
         nx: map.nx,

@@ -681,3 +681,12 @@ fn scene_fig3_7d_analyses_a_user_height_map_given_with_surface() {
         assert!(res.as_f64().unwrap() > 1.0, "{v}");
     }
 }
+
+#[test]
+fn radial_psd_and_moments_share_one_transform_with_the_same_results() {
+    let map = generate(&mold(), 64, 48, 2e-6, 1.5e-6, 5).unwrap();
+    let (psd, m) = adhesion::surface::radial_psd_and_moments(&map);
+    assert_eq!(psd, radial_psd(&map));
+    let direct = moments_of_map(&map);
+    assert!(rel(m.m0, direct.m0) < 1e-15 && rel(m.m2, direct.m2) < 1e-15 && rel(m.m4, direct.m4) < 1e-15);
+}
