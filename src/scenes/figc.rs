@@ -16,6 +16,7 @@ pub const SCENES: &[&dyn SceneDyn] = &[
     &Registered::<Fig3_7d>::NEW,
     &Registered::<FigC1>::NEW,
     &Registered::<FigC2>::NEW,
+    &Registered::<FigC2Accuracy>::NEW,
 ];
 
 /// Panel letters.
@@ -502,6 +503,205 @@ impl Scene for Fig3_7d {
                 "Height map {}: {} x {} points, {:.4e} m x {:.4e} m.",
                 p.surface, map.nx, map.ny, map.lx, map.ly
             ));
+        }
+        job.progress(1.0, "done");
+        Ok(fig)
+    }
+}
+
+crate::scene_params! {
+    /// Parameters of scene figC.2-accuracy (the Gaussian PSD of figC.2 (b); the grids, sample
+    /// counts and repetitions are choices of ours).
+    pub struct FigC2AccuracyParams {
+        /// RMS height σ_rms.
+        rms: f64 = 10.0, unit = "", range = Range::positive();
+        /// Correlation length, in units of the period L.
+        correlation_length: f64 = 0.05, unit = "", range = Range::open(0.0, 1.0);
+        /// Grid points per side of the sweep.
+        grids: Vec<f64> = vec![32.0, 64.0, 128.0, 256.0, 512.0], unit = "", range = Range::between(8.0, 4096.0);
+        /// Surfaces averaged per estimate.
+        samples: Vec<f64> = vec![1.0, 4.0, 16.0], unit = "", range = Range::between(1.0, 1000.0);
+        /// Independent estimates per (grid, samples); the error shown is their RMS.
+        repetitions: usize = 6, unit = "", range = Range::between(1.0, 100.0);
+        /// Measure the run time (else use the model t = S · t256 · (N/256)² log₂N / 8 with t256 the benchmark median of benches/surface.rs).
+        measure_time: bool = true, unit = "", range = Range::any();
+    }
+}
+
+/// Median of `generate + radial PSD + moments` on 256² in `benches/surface.rs` [s].
+const BENCH_T256: f64 = 10.9e-3;
+
+/// Fig. C.2, accuracy against cost: the error of the map estimates of m2, m4 against (C.1.3)
+/// over grid size and averaging, and against run time.
+pub struct FigC2Accuracy;
+
+/// The expectation of the map estimate of m2, m4 on an `n × n` grid (period 1) over infinitely
+/// many surfaces, relative to the analytic moments, minus one: the resolution bias of the grid
+/// (the band-limited surface is rescaled to σ_rms, so the bias comes from the missing tail and
+/// the square band).
+fn resolution_bias(spectrum: &Spectrum, n: usize) -> Result<(f64, f64)> {
+    use rayon::prelude::*;
+    let psd = spectrum.prepare()?;
+    let (s0, s2, s4) = (0..n * n)
+        .into_par_iter()
+        .filter(|&k| k != 0)
+        .map(|k| {
+            let q = crate::surface::wavenumber(k % n, k / n, n, n, 1.0, 1.0);
+            let c = psd.psd(q);
+            (c, c * q * q, c * q.powi(4))
+        })
+        .reduce(|| (0.0, 0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1, a.2 + b.2));
+    let m = spectrum.moments()?;
+    let s2_rms = spectrum.rms().powi(2);
+    Ok((
+        0.5 * s2 / s0 * s2_rms / m.m2 - 1.0,
+        0.375 * s4 / s0 * s2_rms / m.m4 - 1.0,
+    ))
+}
+
+impl Scene for FigC2Accuracy {
+    type Params = FigC2AccuracyParams;
+    const ID: &'static str = "figC.2-accuracy";
+    const CHAPTER: &'static str = "C";
+    const TITLE: &'static str = "Accuracy of the spectral moments of generated surfaces against cost";
+    const CAPTION: &'static str = "Relative error of m2 and m4 (3.8) estimated from generated maps (Gaussian PSD \
+        (C.1.3)) against their closed forms 2 sigma^2/L_c^2 and 12 sigma^2/L_c^4, over the grid size N and the \
+        number S of surfaces averaged (RMS over repetitions), with the resolution bias of the grid (the \
+        expectation for S -> inf: the removed mean takes the share pi L_c^2/L^2 of the variance, coarse grids \
+        cut the tail); and the error against the run time of generation plus analysis. With L_c/L fixed a \
+        finer grid does not reduce the sampling error, averaging surfaces (or a larger L/L_c) does.";
+    const RESULTS: &'static [(&'static str, &'static str)] = &[
+        (
+            "m2_error_finest_norm",
+            "RMS relative error of m2, largest grid and most samples",
+        ),
+        (
+            "m4_error_finest_norm",
+            "RMS relative error of m4, largest grid and most samples",
+        ),
+        ("m2_bias_finest_norm", "resolution bias of m2 on the largest grid"),
+        ("m4_bias_finest_norm", "resolution bias of m4 on the largest grid"),
+        (
+            "m2_bias_coarsest_norm",
+            "resolution bias of m2 on the smallest grid",
+        ),
+        (
+            "m4_bias_coarsest_norm",
+            "resolution bias of m4 on the smallest grid",
+        ),
+        (
+            "run_time_finest_s",
+            "run time of one estimate, largest grid and most samples",
+        ),
+    ];
+
+    fn validate(p: &Self::Params) -> Result<()> {
+        for (name, list) in [("grids", &p.grids), ("samples", &p.samples)] {
+            if list.iter().any(|v| v.fract() != 0.0) {
+                return Err(Error::invalid(name, format!("{list:?}"), "must be whole numbers"));
+            }
+        }
+        Ok(())
+    }
+
+    fn quick(p: &mut Self::Params) {
+        p.grids = vec![16.0, 32.0, 64.0];
+        p.samples = vec![1.0, 4.0];
+        p.repetitions = 2;
+        p.measure_time = false;
+    }
+
+    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        let spectrum = Spectrum::Gaussian {
+            rms: p.rms,
+            correlation_length: p.correlation_length,
+        };
+        let exact = spectrum.moments()?;
+        let mut grids: Vec<usize> = p.grids.iter().map(|&g| g as usize).collect();
+        grids.sort_unstable();
+        grids.dedup();
+        let mut samples: Vec<usize> = p.samples.iter().map(|&s| s as usize).collect();
+        samples.sort_unstable();
+        samples.dedup();
+        let err_axis = || Axis::log("|relative error|", "");
+        let mut a = Panel::new(Axis::log("Grid points per side N", ""), err_axis()).titled("(a)", "m2");
+        let mut b = Panel::new(Axis::log("Grid points per side N", ""), err_axis()).titled("(b)", "m4");
+        let time_label = if p.measure_time {
+            "Run time"
+        } else {
+            "Run time (model of the benchmark)"
+        };
+        let mut c =
+            Panel::new(Axis::log(time_label, "s"), err_axis()).titled("(c)", "error against run time");
+        // Floor for plotting: a relative error is never shown below 1e-16.
+        let floor = |e: f64| e.abs().max(1e-16);
+        let mut bias = Vec::new();
+        for &n in &grids {
+            bias.push((n, resolution_bias(&spectrum, n)?));
+        }
+        let total = (grids.len() * samples.len()) as f64;
+        let mut done = 0.0;
+        let (mut e2_fin, mut e4_fin, mut t_fin) = (f64::NAN, f64::NAN, f64::NAN);
+        for (si, &s) in samples.iter().enumerate() {
+            let (mut l2, mut l4, mut c2, mut c4) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+            for &n in &grids {
+                job.check()?;
+                job.progress(done / total, &format!("N = {n}, S = {s}"));
+                done += 1.0;
+                let (mut se2, mut se4, mut time) = (0.0, 0.0, 0.0);
+                for r in 0..p.repetitions {
+                    let t0 = std::time::Instant::now();
+                    let (mut m2, mut m4) = (0.0, 0.0);
+                    for k in 0..s {
+                        job.check()?;
+                        let seed = 1_000_000 * (r as u64 + 1) + k as u64;
+                        let map = generate(&spectrum, n, n, 1.0, 1.0, seed)?;
+                        let m = moments_of_map(&map);
+                        m2 += m.m2 / s as f64;
+                        m4 += m.m4 / s as f64;
+                    }
+                    time += t0.elapsed().as_secs_f64() / p.repetitions as f64;
+                    se2 += (m2 / exact.m2 - 1.0).powi(2) / p.repetitions as f64;
+                    se4 += (m4 / exact.m4 - 1.0).powi(2) / p.repetitions as f64;
+                }
+                if !p.measure_time {
+                    let nf = n as f64;
+                    time = s as f64 * BENCH_T256 * (nf / 256.0).powi(2) * nf.log2() / 8.0;
+                }
+                let (e2, e4) = (se2.sqrt(), se4.sqrt());
+                l2.push((n as f64, floor(e2)));
+                l4.push((n as f64, floor(e4)));
+                c2.push((time, floor(e2)));
+                c4.push((time, floor(e4)));
+                (e2_fin, e4_fin, t_fin) = (e2, e4, time);
+            }
+            a.add(Series::new(format!("S = {s}"), Style::Stable, l2).with_color(si + 1));
+            b.add(Series::new(format!("S = {s}"), Style::Stable, l4).with_color(si + 1));
+            c.add(Series::new(format!("m2, S = {s}"), Style::Scatter, c2).with_color(si + 1));
+            c.add(Series::new(format!("m4, S = {s}"), Style::Stable, c4).with_color(si + 1));
+        }
+        let b2: Vec<(f64, f64)> = bias.iter().map(|&(n, (x, _))| (n as f64, floor(x))).collect();
+        let b4: Vec<(f64, f64)> = bias.iter().map(|&(n, (_, y))| (n as f64, floor(y))).collect();
+        a.add(Series::new("resolution bias (S → ∞)", Style::Reference, b2).with_color(0));
+        b.add(Series::new("resolution bias (S → ∞)", Style::Reference, b4).with_color(0));
+        let mut fig = Figure::new(Self::ID, Self::TITLE)
+            .with_panel(a)
+            .with_panel(b)
+            .with_panel(c);
+        let (first, last) = (bias[0].1, bias[bias.len() - 1].1);
+        for (name, v) in [
+            ("m2_error_finest_norm", e2_fin),
+            ("m4_error_finest_norm", e4_fin),
+            ("m2_bias_finest_norm", last.0),
+            ("m4_bias_finest_norm", last.1),
+            ("m2_bias_coarsest_norm", first.0),
+            ("m4_bias_coarsest_norm", first.1),
+            ("run_time_finest_s", t_fin),
+        ] {
+            fig.result(name, v);
+        }
+        if !p.measure_time {
+            fig.note("Run times are the model S t256 (N/256)^2 log2(N)/8 of the benchmark median t256, not measured.");
         }
         job.progress(1.0, "done");
         Ok(fig)

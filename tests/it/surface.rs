@@ -690,3 +690,25 @@ fn radial_psd_and_moments_share_one_transform_with_the_same_results() {
     let direct = moments_of_map(&map);
     assert!(rel(m.m0, direct.m0) < 1e-15 && rel(m.m2, direct.m2) < 1e-15 && rel(m.m4, direct.m4) < 1e-15);
 }
+
+#[test]
+fn scene_fig_c2_accuracy_bias_and_averaging() {
+    // On a fine grid the only bias left is the removed mean: the q = 0 bin holds the share
+    // C(0)(2π/L)² / σ² = π L_c²/L² of the variance, and rescaling to σ_rms inflates m2 and m4 by
+    // 1/(1 − π L_c²/L²).
+    let fig = run_scene(
+        "figC.2-accuracy",
+        &[
+            "grids=64,128",
+            "samples=1,16",
+            "repetitions=4",
+            "measure_time=false",
+        ],
+    );
+    let expected = 1.0 / (1.0 - std::f64::consts::PI * 0.05f64.powi(2)) - 1.0;
+    assert!(rel(result(&fig, "m2_bias_finest_norm"), expected) < 1e-6);
+    assert!(rel(result(&fig, "m4_bias_finest_norm"), expected) < 1e-6);
+    // Averaging 16 surfaces: the sampling error ~ 1/sqrt(16 (L/L_c)²) of a few per cent.
+    assert!(result(&fig, "m2_error_finest_norm") < 0.05);
+    assert!(result(&fig, "m4_error_finest_norm") < 0.06);
+}
