@@ -97,19 +97,40 @@ pub fn radial_average(map: &HeightMap, c2d: &[f64]) -> RadialPsd {
     let dq = 2.0 * std::f64::consts::PI / lx.max(ly);
     let q_nyq = std::f64::consts::PI / map.dx().max(map.dy());
     let n_rings = (q_nyq / dq).floor() as usize;
+    // Partial sums over fixed blocks of rows in parallel, added in block order: the result does
+    // not depend on the number of threads.
+    const ROWS: usize = 32;
+    let partial: Vec<(Vec<f64>, Vec<f64>, Vec<usize>)> = c2d
+        .par_chunks(nx * ROWS)
+        .enumerate()
+        .map(|(b, block)| {
+            let mut sum_q = vec![0.0; n_rings + 1];
+            let mut sum_c = vec![0.0; n_rings + 1];
+            let mut count = vec![0usize; n_rings + 1];
+            for (dl, row) in block.chunks_exact(nx).enumerate() {
+                let l = b * ROWS + dl;
+                for (k, &c) in row.iter().enumerate() {
+                    let q = wavenumber(k, l, nx, ny, lx, ly);
+                    let ring = (q / dq).round() as usize;
+                    if ring == 0 || ring > n_rings {
+                        continue;
+                    }
+                    sum_q[ring] += q;
+                    sum_c[ring] += c;
+                    count[ring] += 1;
+                }
+            }
+            (sum_q, sum_c, count)
+        })
+        .collect();
     let mut sum_q = vec![0.0; n_rings + 1];
     let mut sum_c = vec![0.0; n_rings + 1];
     let mut count = vec![0usize; n_rings + 1];
-    for l in 0..ny {
-        for k in 0..nx {
-            let q = wavenumber(k, l, nx, ny, lx, ly);
-            let ring = (q / dq).round() as usize;
-            if ring == 0 || ring > n_rings {
-                continue;
-            }
-            sum_q[ring] += q;
-            sum_c[ring] += c2d[l * nx + k];
-            count[ring] += 1;
+    for (q, c, n) in &partial {
+        for r in 0..=n_rings {
+            sum_q[r] += q[r];
+            sum_c[r] += c[r];
+            count[r] += n[r];
         }
     }
     let mut out = RadialPsd {
