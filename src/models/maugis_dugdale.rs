@@ -623,7 +623,8 @@ impl MaugisDugdale {
     }
 
     /// The equilibrium curve sampled for drawing: the zone branch (c̄ from 0 to c̄*) and the
-    /// contact branch (ā from 0 to `a_max`), `n` points each, in order along the curve.
+    /// contact branch (ā from 0 to `a_max`), `n` points each plus the fold, in order along the
+    /// curve.
     ///
     /// # Errors
     /// Root-finding failures (not expected).
@@ -631,15 +632,32 @@ impl MaugisDugdale {
         let n = n.max(4);
         let mut out = Vec::with_capacity(2 * n + 1);
         // Cluster the zone samples near c̄ = 0, where the fold of the DMT end lies.
-        for i in 0..=n {
-            let u = i as f64 / n as f64;
-            out.push(self.zone_state(self.c_star * u * u));
+        let mut cs: Vec<f64> = (0..=n)
+            .map(|i| {
+                let u = i as f64 / n as f64;
+                self.c_star * u * u
+            })
+            .collect();
+        let cf = 4.0 * self.chi / PI;
+        if cf < self.c_star {
+            cs.push(cf);
+            cs.sort_by(f64::total_cmp);
         }
-        let (tau_lo, tau_hi) = self.tau_range(1e-9 * self.radius_scale(), a_max)?;
-        for i in 1..=n {
-            let u = i as f64 / n as f64;
-            // τ from near the junction down to the deepest point, clustered near the junction.
-            let tau = tau_hi + (tau_lo - tau_hi) * u;
+        out.extend(cs.into_iter().map(|c| self.zone_state(c)));
+        // ā = a_max u², clustered towards the junction, where the unstable part of the JKR end
+        // and the fold lie; the fold itself is inserted exactly.
+        let fold = self.fold()?;
+        let mut taus: Vec<f64> = (1..=n)
+            .map(|i| {
+                let u = i as f64 / n as f64;
+                self.tau_at_radius(a_max * u * u)
+            })
+            .collect::<Result<_>>()?;
+        if let Loc::Contact(tf) = fold {
+            taus.push(tf);
+        }
+        taus.sort_by(|x, y| y.total_cmp(x));
+        for tau in taus {
             out.push(self.contact_state_at_t(tau.exp()));
         }
         Ok(out)
