@@ -3,21 +3,24 @@
 
 use super::{Registered, Scene, SceneDyn};
 use crate::error::{Error, Result};
-use crate::figure::{Axis, Figure, Marker, MarkerShape, Panel, Series, Style};
+use crate::figure::{Axis, Field, FieldKind, Figure, Marker, MarkerShape, Panel, Series, Style};
 use crate::job::Job;
 use crate::models::classical::SphereContact;
+use crate::models::ddh::{Ddh, JkrNominalArea, LossMethod, area_change_approx};
 use crate::models::maugis_dugdale::{
     C1, LossTable, MaugisDugdale, MdState, c2, dmt_limit_loss, empirical_loss, energy_loss, jkr_limit_loss,
     jkr_loss_constant, scaled_empirical_loss, scaled_loss,
 };
 use crate::numerics::curve::logspace;
 use crate::params::Range;
+use crate::surface::{Moments, Spectrum};
 
 /// The scenes of this chapter, in figure order.
 pub const SCENES: &[&dyn SceneDyn] = &[
     &Registered::<Fig3_4>::NEW,
     &Registered::<Fig3_5>::NEW,
     &Registered::<Fig3_5Accuracy>::NEW,
+    &Registered::<Fig3_8>::NEW,
 ];
 
 /// The classical contact in the variables of chapter 3: R = 1, E* = 1, w = ℓ/π; chapter 1
@@ -553,6 +556,340 @@ impl Scene for Fig3_5Accuracy {
         if !measured {
             fig.note("costs are the benchmark medians of benches/ch3.rs, not measured in this run");
         }
+        job.progress(1.0, "done");
+        Ok(fig)
+    }
+}
+
+crate::param_choice! {
+    /// How the loss per asperity ΔĒ_md is evaluated in (3.13).
+    pub enum LossChoice { Exact = "exact", Empirical = "empirical", Quadrature = "quadrature" }
+}
+
+impl LossChoice {
+    /// The model's method.
+    pub fn method(self) -> LossMethod {
+        match self {
+            LossChoice::Exact => LossMethod::Table,
+            LossChoice::Empirical => LossMethod::Empirical,
+            LossChoice::Quadrature => LossMethod::Quadrature,
+        }
+    }
+}
+
+crate::param_choice! {
+    /// Which nominal contact-area change ΔA_c is used in (3.15).
+    pub enum AreaChoice { Approx = "approx", Exact = "exact" }
+}
+
+crate::scene_params! {
+    /// Parameters of scene fig3.8: the glass bead-PDMS experiments of Sec. 3.3 (Kesari et al.).
+    pub struct Fig3_8Params {
+        /// Tip (bead) radius R_t.
+        tip_radius: f64 = 25.0e-6, unit = "m", range = Range::positive();
+        /// Effective modulus E*.
+        modulus: f64 = 0.75e6, unit = "Pa", range = Range::positive();
+        /// Work of adhesion w of the asperity contacts (Sec. 3.3).
+        work_of_adhesion: f64 = 0.026, unit = "J/m^2", range = Range::positive();
+        /// Work of adhesion of the JKR estimate of the nominal area, App. B.2.
+        jkr_work_of_adhesion: f64 = 0.020, unit = "J/m^2", range = Range::positive();
+        /// σ_rms of the PSD fit (3.17).
+        psd_rms: f64 = 1.45e-9, unit = "m", range = Range::positive();
+        /// Correlation length L_c of (3.17).
+        correlation_length: f64 = 20.1e-9, unit = "m", range = Range::positive();
+        /// Power-law index n of (3.17).
+        exponent: f64 = 3.28, unit = "", range = Range::open(1.0, 100.0);
+        /// Cut-off wavenumber q₀ of (3.17).
+        cutoff: f64 = 1.0e8, unit = "1/m", range = Range::positive();
+        /// Measured RMS roughness of the mold; the model's σ_rms = k × this (Sec. 3.3).
+        measured_rms: f64 = 1.52e-9, unit = "m", range = Range::positive();
+        /// Z₀ of the first pair (Fig. 3.8a, thick line).
+        range_1: f64 = 24.0e-9, unit = "m", range = Range::positive();
+        /// σ_rms of the first pair.
+        sigma_1: f64 = 12.2e-9, unit = "m", range = Range::positive();
+        /// Z₀ of the second pair (thin dashed line).
+        range_2: f64 = 96.0e-9, unit = "m", range = Range::positive();
+        /// σ_rms of the second pair.
+        sigma_2: f64 = 3.0e-9, unit = "m", range = Range::positive();
+        /// Largest maximum depth |h_min| of (a), (b).
+        depth_max: f64 = 1500.0e-9, unit = "m", range = Range::positive();
+        /// Smallest Z₀ of the contour (c).
+        range_min: f64 = 10.0e-9, unit = "m", range = Range::positive();
+        /// Largest Z₀ of the contour.
+        range_max: f64 = 100.0e-9, unit = "m", range = Range::positive();
+        /// Smallest σ_rms of the contour.
+        sigma_min: f64 = 2.0e-9, unit = "m", range = Range::positive();
+        /// Largest σ_rms of the contour.
+        sigma_max: f64 = 14.0e-9, unit = "m", range = Range::positive();
+        /// Grid points per axis of the contour.
+        grid_points: usize = 60, unit = "", range = Range::between(3.0, 1000.0);
+        /// Measured loss per nominal area, drawn as its own contour.
+        measured_level: f64 = 0.0241, unit = "J/m^2", range = Range::positive();
+        /// Loss per asperity: exact (3.4) through the table, empirical (3.6), or quadrature.
+        loss: LossChoice = LossChoice::Exact, unit = "", range = Range::any();
+        /// Nominal area change in (a): approx 4 R_t |h_min| (B.2.3) or exact (B.2.2).
+        area: AreaChoice = AreaChoice::Approx, unit = "", range = Range::any();
+        /// Points per curve of (a), (b).
+        points: usize = 61, unit = "", range = Range::between(3.0, 1.0e5);
+    }
+}
+
+impl Fig3_8Params {
+    /// The spectral moments of the model surface of roughness σ_rms: the PSD (3.16) with (3.17)
+    /// scaled by k² where k = σ_rms / measured_rms (Sec. 3.3).
+    ///
+    /// # Errors
+    /// Invalid PSD parameters.
+    pub fn moments(&self, sigma: f64) -> Result<Moments> {
+        let base = Spectrum::Abc {
+            rms: self.psd_rms,
+            correlation_length: self.correlation_length,
+            exponent: self.exponent,
+            cutoff: Some(self.cutoff),
+        }
+        .moments()?;
+        Ok(base.scaled(sigma / self.measured_rms))
+    }
+
+    /// The DDH model at (Z₀, σ_rms).
+    ///
+    /// # Errors
+    /// Invalid parameters.
+    pub fn model(&self, z0: f64, sigma: f64) -> Result<Ddh> {
+        Ddh::new(
+            self.moments(sigma)?,
+            self.tip_radius,
+            self.modulus,
+            self.work_of_adhesion,
+            z0,
+        )
+    }
+
+    /// The loss per nominal area over the contour grid (Z₀ along x, σ_rms along y), row-major
+    /// in σ_rms, in parallel.
+    ///
+    /// # Errors
+    /// Model errors, cancellation.
+    pub fn loss_grid(
+        &self,
+        method: LossMethod,
+        n: usize,
+        job: &Job,
+    ) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>)> {
+        use rayon::prelude::*;
+        let zs = crate::numerics::curve::linspace(self.range_min, self.range_max, n);
+        let ss = crate::numerics::curve::linspace(self.sigma_min, self.sigma_max, n);
+        let values: Vec<f64> = (0..n * n)
+            .into_par_iter()
+            .map(|k| {
+                job.check()?;
+                let (i, j) = (k % n, k / n);
+                self.model(zs[i], ss[j])?.loss_per_area(method)
+            })
+            .collect::<Result<_>>()?;
+        Ok((zs, ss, values))
+    }
+}
+
+/// Fig. 3.8: depth-dependent loss, loss per area, and its contour over (Z₀, σ_rms).
+pub struct Fig3_8;
+
+impl Scene for Fig3_8 {
+    type Params = Fig3_8Params;
+    const ID: &'static str = "fig3.8";
+    const CHAPTER: &'static str = "3";
+    const TITLE: &'static str = "Depth-dependent hysteresis at large roughness";
+    const CAPTION: &'static str = "(a) Depth-dependent loss (3.15) vs maximum depth for (Z0, sigma_rms) = (24 nm, 12.2 nm) \
+        and (96 nm, 3 nm); (b) loss per nominal area (3.19), the measured 0.0241 J/m^2 dashed; (c) contour of the \
+        loss per area over (Z0, sigma_rms) with the measured level as its own line. PSD (3.16)-(3.17) scaled by k, \
+        Nayak statistics (3.7)-(3.11), MD loss per asperity (3.4) exact or empirical (3.6), JKR area (B.2).";
+    const RESULTS: &'static [(&'static str, &'static str)] = &[
+        (
+            "loss_per_area_1_J_per_m2",
+            "loss per nominal area (3.19) at the first pair, chosen loss",
+        ),
+        (
+            "loss_per_area_2_J_per_m2",
+            "loss per nominal area (3.19) at the second pair, chosen loss",
+        ),
+        (
+            "loss_per_area_1_empirical_J_per_m2",
+            "the same with the empirical loss (3.6)",
+        ),
+        (
+            "loss_per_area_2_empirical_J_per_m2",
+            "the same with the empirical loss (3.6)",
+        ),
+        (
+            "loss_per_area_1_exact_J_per_m2",
+            "the same with the exact loss (3.4), table",
+        ),
+        (
+            "loss_per_area_2_exact_J_per_m2",
+            "the same with the exact loss (3.4), table",
+        ),
+        (
+            "asperity_density_per_m2",
+            "eta (3.9), independent of k (printed 101.4 um^-2)",
+        ),
+        (
+            "m0_unscaled_m2",
+            "m0 of (3.16)-(3.17) at k = 1 (printed 2.1 nm^2)",
+        ),
+        ("m2_unscaled_norm", "m2 at k = 1 (printed 1.3e-3)"),
+        ("m4_unscaled_per_m2", "m4 at k = 1 (printed 4.3 um^-2)"),
+        ("nayak_alpha_norm", "Nayak's alpha = m0 m4/m2^2"),
+        ("chi_1_norm", "chi (3.2) at the first pair"),
+        ("chi_2_norm", "chi (3.2) at the second pair"),
+        (
+            "area_bracket_min_norm",
+            "bracket of (B.2.2) at depth_max (printed 1.19)",
+        ),
+        (
+            "area_bracket_max_norm",
+            "bracket of (B.2.2) as |h_min| -> 0 (printed 1.33)",
+        ),
+        ("ell_jkr_norm", "ell_JKR = pi w/(E* R_t) of B.2 (printed 3.35e-3)"),
+    ];
+
+    fn validate(p: &Self::Params) -> Result<()> {
+        if p.range_min >= p.range_max {
+            return Err(Error::invalid(
+                "range_min",
+                p.range_min,
+                "must be below range_max",
+            ));
+        }
+        if p.sigma_min >= p.sigma_max {
+            return Err(Error::invalid(
+                "sigma_min",
+                p.sigma_min,
+                "must be below sigma_max",
+            ));
+        }
+        p.model(p.range_1, p.sigma_1)?;
+        JkrNominalArea::new(p.tip_radius, p.modulus, p.jkr_work_of_adhesion)?;
+        Ok(())
+    }
+
+    fn quick(p: &mut Self::Params) {
+        p.grid_points = p.grid_points.min(6);
+        p.points = p.points.min(7);
+        if p.loss == LossChoice::Quadrature {
+            p.loss = LossChoice::Exact;
+        }
+    }
+
+    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        job.check()?;
+        let method = p.loss.method();
+        let jkr = JkrNominalArea::new(p.tip_radius, p.modulus, p.jkr_work_of_adhesion)?;
+        let pairs = [(p.range_1, p.sigma_1), (p.range_2, p.sigma_2)];
+        let models = [p.model(pairs[0].0, pairs[0].1)?, p.model(pairs[1].0, pairs[1].1)?];
+        let per_area = [models[0].loss_per_area(method)?, models[1].loss_per_area(method)?];
+        let depths: Vec<f64> = (0..p.points)
+            .map(|i| p.depth_max * i as f64 / (p.points - 1) as f64)
+            .collect();
+        let (e_scale, e_unit) = super::engineering_unit(
+            "J",
+            per_area[0].max(per_area[1]) * 4.0 * p.tip_radius * p.depth_max,
+        );
+        let nm = 1e-9;
+        let mut a = Panel::new(
+            Axis::linear("Maximum depth |h_min|", "nm"),
+            Axis::linear("ΔE_D", e_unit),
+        )
+        .titled("(a)", "depth-dependent loss (3.15)");
+        let mut b = Panel::new(
+            Axis::linear("Maximum depth |h_min|", "nm"),
+            Axis::linear("ΔE_D/(4 R_t |h_min|)", "J/m²"),
+        )
+        .titled("(b)", "loss per nominal area (3.19)");
+        for (k, ((z0, sigma), &pa)) in pairs.iter().zip(&per_area).enumerate() {
+            let name = format!("Z0 = {:.0} nm, σ_rms = {:.1} nm", z0 / nm, sigma / nm);
+            let style = if k == 0 { Style::Stable } else { Style::Reference };
+            let area = |d: f64| -> Result<f64> {
+                match p.area {
+                    AreaChoice::Approx => Ok(area_change_approx(p.tip_radius, d)),
+                    AreaChoice::Exact => jkr.area_change(d),
+                }
+            };
+            let loss: Vec<(f64, f64)> = depths
+                .iter()
+                .map(|&d| Ok((d / nm, pa * area(d)? / e_scale)))
+                .collect::<Result<_>>()?;
+            let per: Vec<(f64, f64)> = depths
+                .iter()
+                .skip(1)
+                .map(|&d| Ok((d / nm, pa * area(d)? / area_change_approx(p.tip_radius, d))))
+                .collect::<Result<_>>()?;
+            a.add(Series::new(name.clone(), style, loss).with_color(k));
+            b.add(Series::new(name, style, per).with_color(k));
+        }
+        b.add(
+            Series::new(
+                "measured 0.0241 J/m²",
+                Style::Reference,
+                vec![(0.0, p.measured_level), (p.depth_max / nm, p.measured_level)],
+            )
+            .with_color(7),
+        );
+        let mut fig = Figure::new(Self::ID, Self::TITLE).with_panel(a).with_panel(b);
+        if job.wants_preview() {
+            job.preview(&fig);
+        }
+        job.progress(0.1, "contour");
+
+        let (zs, ss, values) = p.loss_grid(method, p.grid_points, job)?;
+        let mut field = Field::heat(
+            "Loss per area",
+            "J/m²",
+            zs.iter().map(|z| z / nm).collect(),
+            ss.iter().map(|s| s / nm).collect(),
+            values,
+        );
+        let (lo, hi) = field.value_range().unwrap_or((0.0, 1.0));
+        // Geometric levels: the loss per area spans decades over the grid.
+        let lo = lo.max(hi * 1e-6);
+        let levels: Vec<f64> = (1..8).map(|i| lo * (hi / lo).powf(f64::from(i) / 8.0)).collect();
+        field.kind = FieldKind::Contour { levels, filled: true };
+        field
+            .highlight
+            .push((p.measured_level, format!("measured {} J/m²", p.measured_level)));
+        let mut c = Panel::new(Axis::linear("Z0", "nm"), Axis::linear("σ_rms", "nm"))
+            .titled("(c)", "loss per nominal area");
+        c.field = Some(field);
+        for (k, (z0, sigma)) in pairs.iter().enumerate() {
+            c.mark(Marker::new("pair", MarkerShape::Point, z0 / nm, sigma / nm).with_color(k));
+        }
+        fig.panels.push(c);
+
+        let base = p.moments(p.measured_rms)?;
+        fig.result("loss_per_area_1_J_per_m2", per_area[0]);
+        fig.result("loss_per_area_2_J_per_m2", per_area[1]);
+        for (k, m) in models.iter().enumerate() {
+            fig.result(
+                format!("loss_per_area_{}_empirical_J_per_m2", k + 1),
+                m.loss_per_area(LossMethod::Empirical)?,
+            );
+            fig.result(
+                format!("loss_per_area_{}_exact_J_per_m2", k + 1),
+                m.loss_per_area(LossMethod::Table)?,
+            );
+        }
+        fig.result("asperity_density_per_m2", base.asperity_density());
+        // k = 1: the moments of (3.16)-(3.17) themselves.
+        fig.result("m0_unscaled_m2", base.m0);
+        fig.result("m2_unscaled_norm", base.m2);
+        fig.result("m4_unscaled_per_m2", base.m4);
+        fig.result("nayak_alpha_norm", base.nayak_alpha());
+        fig.result("chi_1_norm", models[0].chi());
+        fig.result("chi_2_norm", models[1].chi());
+        fig.result("area_bracket_min_norm", jkr.area_bracket(p.depth_max)?);
+        fig.result("area_bracket_max_norm", jkr.area_bracket(1e-6 * p.depth_max)?);
+        fig.result("ell_jkr_norm", jkr.ell);
+        fig.note("moments computed from (3.16)-(3.17): they differ from the printed (3.18) (ERRATA.md); eta does not depend on k");
+        fig.note("k = sigma_rms / measured_rms with the measured 1.52 nm, as Sec. 3.3 maps k = 1.97, 8.03 to 3 nm, 12.2 nm");
         job.progress(1.0, "done");
         Ok(fig)
     }
