@@ -728,14 +728,7 @@ struct Segment {
 }
 
 impl Segment {
-    fn build(
-        start: f64,
-        end: f64,
-        sqrt_map: bool,
-        n: usize,
-        f: &(dyn Fn(f64) -> Result<f64> + Sync),
-    ) -> Result<Self> {
-        use rayon::prelude::*;
+    fn build(start: f64, end: f64, sqrt_map: bool, n: usize, f: &dyn Fn(f64) -> Result<f64>) -> Result<Self> {
         let x0 = 0.0;
         let x1 = if sqrt_map {
             (end - start).sqrt()
@@ -744,8 +737,10 @@ impl Segment {
         };
         let dx = (x1 - x0) / n as f64;
         let to_x = |v: f64| if sqrt_map { start + v * v } else { start + v };
+        // Sequential on purpose: the shared table is built inside a `OnceLock` that callers reach
+        // from rayon workers (grids over (Z0, sigma)); a parallel build there would wait for
+        // workers that are themselves blocked on the lock.
         let y: Vec<f64> = (0..=n)
-            .into_par_iter()
             .map(|i| f(to_x(x0 + dx * i as f64)))
             .collect::<Result<_>>()?;
         // Fourth-order slopes: central inside, one-sided (five-point) at the ends.
@@ -831,7 +826,7 @@ pub fn scaled_empirical_loss(s: f64) -> f64 {
 
 impl LossTable {
     /// Build the table with about `per_unit` nodes per unit of ln s (40 gives the error
-    /// stated on [`LossTable`]); a few milliseconds.
+    /// stated on [`LossTable`]); sequential, tens of milliseconds.
     ///
     /// # Errors
     /// Quadrature failures (not expected).

@@ -322,3 +322,117 @@ fn empirical_fit_3_6_largest_error() {
         1e-12,
     );
 }
+
+mod ddh {
+    //! Section 3.2.2-3.3 and appendix B.2: the depth-dependent loss.
+
+    use adhesion::job::Job;
+    use adhesion::models::ddh::{JkrNominalArea, LossMethod, area_change_approx};
+    use adhesion::scenes::fig3::Fig3_8Params;
+
+    use crate::common::{assert_rel, rel};
+
+    /// (B.2.2) equals πR_t²(ā_h² − ā₀²), the area between the two JKR contact radii; its bracket
+    /// runs from 1.33 (|h_min| → 0) to 1.19 (|h_min| = 1500 nm) and ā from 0.189 to 0.327 for
+    /// ℓ_JKR = 3.35e-3 (R_t = 25 µm, E* = 0.75 MPa, w = 20 mJ/m²), all as printed in B.2.
+    #[test]
+    fn nominal_area_b_2_2_and_its_printed_range() {
+        let j = JkrNominalArea::new(25e-6, 0.75e6, 0.020).unwrap();
+        assert_eq!(format!("{:.2e}", j.ell), "3.35e-3");
+        let a0 = j.radius(0.0).unwrap();
+        assert_rel("a0 = (2 ell)^(1/3)", a0, (2.0 * j.ell).cbrt(), 1e-12);
+        assert_eq!(format!("{a0:.3}"), "0.189");
+        let d = 1500e-9;
+        let ah = j.radius(-d / 25e-6).unwrap();
+        assert_eq!(format!("{ah:.3}"), "0.327");
+        let pi = std::f64::consts::PI;
+        assert_rel(
+            "B.2.2",
+            j.area_change(d).unwrap(),
+            pi * 25e-6f64.powi(2) * (ah * ah - a0 * a0),
+            1e-10,
+        );
+        assert_eq!(format!("{:.2}", j.area_bracket(d).unwrap()), "1.19");
+        assert_eq!(format!("{:.2}", j.area_bracket(1e-12).unwrap()), "1.33");
+        // (B.2.3) is within the bracket's range: 4/π = 1.27.
+        assert_rel("B.2.3", area_change_approx(25e-6, d), 4.0 * 25e-6 * d, 1e-15);
+        assert!(j.radius(1e-3).is_err(), "a separation is not an indentation");
+    }
+
+    /// The mean loss (3.13) with the tabulated exact loss equals the one with the loss by
+    /// quadrature at every node (1e-6), at both pairs of Sec. 3.3.
+    #[test]
+    fn mean_loss_table_equals_quadrature() {
+        let p = Fig3_8Params::default();
+        for (z0, sigma) in [(24e-9, 12.2e-9), (96e-9, 3e-9)] {
+            let m = p.model(z0, sigma).unwrap();
+            let t = m.mean_loss(LossMethod::Table).unwrap();
+            let q = m.mean_loss(LossMethod::Quadrature).unwrap();
+            assert_rel("table vs quadrature", t, q, 1e-6);
+        }
+    }
+
+    /// Section 3.3 at the two stated pairs (Z₀, σ_rms) = (24 nm, 12.2 nm) and (96 nm, 3 nm),
+    /// w = 26 mJ/m², E* = 0.75 MPa, R_t = 25 µm, PSD (3.16)-(3.17) scaled by k = σ_rms/1.52 nm.
+    /// The text reads both off a fit to the measured 0.0241 J/m². The model gives (exact loss)
+    /// 0.02209 and 0.03745 J/m², (empirical (3.6)) 0.02513 and 0.02557 J/m²: with (3.6) both
+    /// pairs land near the measured value as the text says; with the exact loss the second pair
+    /// (χ = 0.36, in the range where (3.6) is 30 % low) is 55 % higher. η = 114.4 µm⁻² from the
+    /// moments of (3.16)-(3.17), not the printed 101.4 (ERRATA.md).
+    #[test]
+    fn loss_per_area_at_the_two_pairs_of_section_3_3() {
+        let p = Fig3_8Params::default();
+        let expect = [
+            (24e-9, 12.2e-9, 0.022_09, 0.025_13),
+            (96e-9, 3e-9, 0.037_45, 0.025_57),
+        ];
+        for (z0, sigma, exact, empirical) in expect {
+            let m = p.model(z0, sigma).unwrap();
+            assert_rel("exact", m.loss_per_area(LossMethod::Table).unwrap(), exact, 5e-4);
+            assert_rel(
+                "empirical",
+                m.loss_per_area(LossMethod::Empirical).unwrap(),
+                empirical,
+                5e-4,
+            );
+        }
+        let eta = p.model(24e-9, 12.2e-9).unwrap().asperity_density();
+        assert_rel(
+            "eta independent of k",
+            eta,
+            p.model(24e-9, 3e-9).unwrap().asperity_density(),
+            1e-12,
+        );
+        assert_eq!(format!("{:.1}", eta * 1e-12), "114.4");
+        // (3.15): ΔE_D = η ΔA_c ⟨ΔE_md⟩, linear in ΔA_c.
+        let m = p.model(24e-9, 12.2e-9).unwrap();
+        let a = area_change_approx(25e-6, 1e-6);
+        assert_rel(
+            "3.15",
+            m.depth_dependent_loss(a, LossMethod::Table).unwrap(),
+            eta * a * m.mean_loss(LossMethod::Table).unwrap(),
+            1e-12,
+        );
+    }
+
+    /// Fig. 3.8c: the loss per area falls with σ_rms at fixed Z₀ and with Z₀ at fixed σ_rms
+    /// (Sec. 3.4), on the whole grid.
+    #[test]
+    fn loss_per_area_decreases_with_roughness_and_range() {
+        let p = Fig3_8Params::default();
+        let n = 8;
+        let (zs, ss, v) = p.loss_grid(LossMethod::Table, n, &Job::quiet()).unwrap();
+        assert_eq!((zs.len(), ss.len(), v.len()), (n, n, n * n));
+        for j in 0..n {
+            for i in 0..n {
+                if i + 1 < n {
+                    assert!(v[j * n + i + 1] < v[j * n + i], "Z0 trend at ({i}, {j})");
+                }
+                if j + 1 < n {
+                    assert!(v[(j + 1) * n + i] < v[j * n + i], "sigma trend at ({i}, {j})");
+                }
+            }
+        }
+        assert!(rel(v[0], v[n * n - 1]) > 1.0);
+    }
+}
