@@ -2,6 +2,7 @@
 //! front-end types. Every public function names the equation it implements.
 
 pub mod classical;
+pub mod ddh;
 pub mod fibril;
 pub mod fuller_tabor;
 pub mod machine_stiffness;
