@@ -1,1 +1,177 @@
-//! Tests of ch5.
+//! Chapter 5: fibril mechanics and the single-spring model (section 5.4), the spring arrays of
+//! section 5.5, and the stable sparse Newton solver.
+
+use adhesion::models::fibril::{
+    self, K_CR_BAR, SingleSpring, SpringBranch, critical_stiffness, equivalent_stiffness,
+    tilted_fibril_stiffness,
+};
+
+use crate::common::assert_rel;
+
+// Section 5.4.3: k̄_cr = 0.3 is the maximum of d̄⁻⁴/2 − d̄⁻¹⁰/5, so (5.20) is positive for every
+// gap above it and has two roots below it. Checked on a dense gap grid, not from the constant.
+#[test]
+fn critical_stiffness_is_0_3_sec_5_4_3() {
+    let max = adhesion::numerics::curve::linspace(0.5, 5.0, 200_001)
+        .into_iter()
+        .map(|d| -fibril::lj_curvature(d))
+        .fold(f64::MIN, f64::max);
+    assert!((max - 0.3).abs() < 1e-9, "max of -f'' = {max}");
+    assert!(!SingleSpring::new(0.3 * 1.0001).unwrap().has_instabilities());
+    assert!(SingleSpring::new(0.3 * 0.9999).unwrap().has_instabilities());
+    for d in adhesion::numerics::curve::linspace(0.5, 5.0, 1000) {
+        assert!(SingleSpring::new(2.0 * K_CR_BAR).unwrap().curvature(d) > 0.0);
+    }
+}
+
+// Section 5.4.3, k̄ = 0.5 k̄_cr: the minimizer is non-unique for 1.791 ≤ ū ≤ 2.043; pull-in at
+// ū = 1.791, pull-off at ū = 2.043 (printed to 3 decimals: half a unit in the last digit).
+#[test]
+fn pull_in_and_pull_off_displacements_at_half_critical_stiffness() {
+    let s = SingleSpring::new(0.5 * K_CR_BAR).unwrap();
+    let pin = s.pull_in().unwrap().unwrap();
+    let poff = s.pull_off().unwrap().unwrap();
+    assert!((pin.before.u - 1.791).abs() < 5e-4, "pull-in {}", pin.before.u);
+    assert!((poff.before.u - 2.043).abs() < 5e-4, "pull-off {}", poff.before.u);
+    // The states before the jumps are folds, the states after are stable equilibria.
+    assert!(s.curvature(pin.before.d).abs() < 1e-10);
+    assert!(s.curvature(poff.before.d).abs() < 1e-10);
+    for j in [pin, poff] {
+        assert!(j.after.stable);
+        assert!(s.residual(j.after.u, j.after.d).abs() < 1e-10);
+        assert!(j.energy_released > 0.0);
+    }
+    // Pull-in moves into contact (gap shrinks), pull-off out of it.
+    assert!(pin.after.d < pin.before.d && poff.after.d > poff.before.d);
+    // Two stable minimizers strictly inside the bistable range, one outside.
+    let u = 1.9;
+    let dc = s.gap(u, SpringBranch::Contact).unwrap();
+    let df = s.gap(u, SpringBranch::Free).unwrap();
+    assert!(df - dc > 0.3);
+    assert!(s.gap(1.7, SpringBranch::Free).is_err());
+    assert!(s.gap(2.1, SpringBranch::Contact).is_err());
+}
+
+// Section 5.4.3 / Fig. 5.4: for k̄ ≥ k̄_cr loading and unloading coincide (no hysteresis); for
+// k̄ = 0.5 k̄_cr the loop's area equals the energy released at the two jumps.
+#[test]
+fn hysteresis_is_the_loop_area_and_vanishes_above_critical_stiffness() {
+    for k in [K_CR_BAR, 2.0 * K_CR_BAR] {
+        let s = SingleSpring::new(k).unwrap();
+        let c = s.cycle(4.0, 0.0, 400).unwrap();
+        assert!(c.jumps.is_empty());
+        assert_eq!(s.hysteresis().unwrap(), 0.0);
+        for (a, b) in c.loading.iter().zip(c.unloading.iter().rev()) {
+            assert!((a.d - b.d).abs() < 1e-12);
+        }
+        assert!(c.loop_area().abs() < 1e-12);
+    }
+    let s = SingleSpring::new(0.5 * K_CR_BAR).unwrap();
+    let c = s.cycle(4.0, 0.0, 20_001).unwrap();
+    assert_eq!(c.jumps.len(), 2);
+    let h = s.hysteresis().unwrap();
+    assert!(h > 0.0);
+    // Trapezoid rule with Δū = 2e-4 and the jumps inserted exactly: O(Δū²) error.
+    assert_rel("loop area vs jump energies", c.loop_area(), h, 1e-5);
+}
+
+// Fig. 5.5: the pull-off force magnitude decreases monotonically with k̄ (the text's "pull-in"
+// is a typo, ERRATA.md); the pull-in force magnitude first increases, then decreases; the
+// hysteresis decreases with k̄ and vanishes at k̄_cr.
+#[test]
+fn pull_in_pull_off_forces_and_hysteresis_against_stiffness_fig_5_5() {
+    let ks = adhesion::numerics::curve::linspace(0.01, 0.299, 60);
+    let mut off = Vec::new();
+    let mut inn = Vec::new();
+    let mut hys = Vec::new();
+    for &k in &ks {
+        let s = SingleSpring::new(k).unwrap();
+        off.push(s.pull_off().unwrap().unwrap().before.force.abs());
+        inn.push(s.pull_in().unwrap().unwrap().after.force.abs());
+        hys.push(s.hysteresis().unwrap());
+    }
+    assert!(
+        off.windows(2).all(|w| w[1] < w[0]),
+        "pull-off magnitude decreasing"
+    );
+    assert!(hys.windows(2).all(|w| w[1] < w[0]), "hysteresis decreasing");
+    let imax = inn
+        .iter()
+        .enumerate()
+        .max_by(|a, b| a.1.total_cmp(b.1))
+        .unwrap()
+        .0;
+    assert!(
+        imax > 0 && imax < inn.len() - 1,
+        "pull-in magnitude has an interior maximum"
+    );
+    assert!(*hys.last().unwrap() < 1e-3 * hys[0]);
+    // Soft limit: pull-off at the largest attraction, g((2/5)^(1/6)).
+    let soft = SingleSpring::new(1e-6).unwrap().pull_off().unwrap().unwrap();
+    assert_rel(
+        "soft pull-off force",
+        -soft.before.force,
+        fibril::lj_traction(fibril::max_traction_gap()),
+        1e-3,
+    );
+}
+
+// Section 5.5.2: k_e = π N/m from (5.11) with E = 2 GPa, R_f = 50 nm, l_f = 5 µm, θ = π/2;
+// k_cr = 0.3 c w π R_e² / σ² = 5349.87 N/m with c = 8.174, w = 25 mJ/m², σ = 0.3 nm
+// (ERRATA: the printed formula lacks 1/σ²); k_e/k_cr = 5.87e-4.
+#[test]
+fn gecko_branch_stiffness_numbers_sec_5_5_2() {
+    let k_e = tilted_fibril_stiffness(2e9, 50e-9, 5e-6, std::f64::consts::FRAC_PI_2).unwrap();
+    assert_rel("k_e", k_e, std::f64::consts::PI, 1e-12);
+    assert!((fibril::c_lj() - 8.174).abs() < 5e-4);
+    let k_cr = critical_stiffness(0.025, 50e-9, 0.3e-9);
+    assert!((k_cr - 5349.87).abs() < 0.5, "k_cr = {k_cr}");
+    assert!((k_e / k_cr - 5.87e-4).abs() < 5e-6);
+    // 2^-6 and 2^-11 as printed.
+    assert!((2f64.powi(-6) - 1.56e-2).abs() < 5e-5);
+    assert!((2f64.powi(-11) - 4.88e-4).abs() < 5e-7);
+}
+
+// Section 5.4.1 (ERRATA): the fibril is stiffest at θ = π/2 (compression) and most compliant
+// at θ = 0 (bending), with k_f increasing monotonically in between; the limits are EA/l and
+// 3EI/l³.
+#[test]
+fn tilted_fibril_stiffness_limits_and_monotonicity() {
+    let (e, r, l) = (2e9, 0.1, 1.0);
+    let area = std::f64::consts::PI * r * r;
+    let inertia = std::f64::consts::PI * r.powi(4) / 4.0;
+    let k0 = tilted_fibril_stiffness(e, r, l, 0.0).unwrap();
+    let k90 = tilted_fibril_stiffness(e, r, l, std::f64::consts::FRAC_PI_2).unwrap();
+    assert_rel("bending limit", k0, 3.0 * e * inertia / l.powi(3), 1e-12);
+    assert_rel("compression limit", k90, e * area / l, 1e-12);
+    let th = adhesion::numerics::curve::linspace(0.0, std::f64::consts::FRAC_PI_2, 100);
+    let ks: Vec<f64> = th
+        .iter()
+        .map(|&t| tilted_fibril_stiffness(e, r, l, t).unwrap())
+        .collect();
+    assert!(ks.windows(2).all(|w| w[1] > w[0]));
+    // (5.11) as printed, away from θ = 0.
+    let t: f64 = 0.7;
+    let printed = area * e / (l * t.sin().powi(2) * (1.0 + 4.0 * l * l / (t.tan().powi(2) * 3.0 * r * r)));
+    assert_rel(
+        "(5.11)",
+        tilted_fibril_stiffness(e, r, l, t).unwrap(),
+        printed,
+        1e-12,
+    );
+    assert!(tilted_fibril_stiffness(e, r, l, 2.0).is_err());
+    // (5.13): n branches on one seta.
+    let ke = equivalent_stiffness(10.0, 1.0, 100).unwrap();
+    assert_rel("(5.13)", ke, 1.0 / (100.0 / 10.0 + 1.0), 1e-15);
+    assert!(ke < 1.0);
+}
+
+// Section 5.3: w = A/(16π Z0²) = 22.1 mJ/m² for A = 1e-19 J, Z0 = 0.3 nm; the JKR spatula force
+// (3/2)πwR = 10.4 nN for R = 100 nm.
+#[test]
+fn spatula_work_of_adhesion_and_force_sec_5_3() {
+    let w = fibril::work_of_adhesion(1e-19, 0.3e-9);
+    assert!((w - 0.0221).abs() < 5e-5, "w = {w}");
+    let f = 1.5 * std::f64::consts::PI * w * 100e-9;
+    assert!((f - 10.4e-9).abs() < 0.05e-9, "force = {f}");
+}
