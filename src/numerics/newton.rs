@@ -11,8 +11,9 @@
 //! - with `H` positive definite it takes the Newton step, with a backtracking (Armijo) line
 //!   search on the energy;
 //! - with `H` indefinite it shifts, `(H + λI) p = −g` with the smallest λ (found by growing it
-//!   geometrically) for which the factorisation succeeds, and searches along `p` for lower
-//!   energy, extrapolating while the energy keeps falling (a jump to a distant state);
+//!   geometrically) for which the factorisation succeeds, and backtracks along `p` for lower
+//!   energy: a damped step that moves the unstable modes downhill while the stable parts of the
+//!   system stay in their basins (the state an experiment reaches after the jump);
 //! - at a stationary point that is not a minimum (gradient zero, `H` indefinite) it leaves
 //!   along a direction of negative curvature found by inverse iteration with the shifted matrix.
 //!
@@ -272,8 +273,9 @@ impl StableNewton {
                 rep.energy = energy.energy(x);
                 return Ok(rep);
             }
-            // Line search on the energy: backtrack from t = 1; where the start was unstable,
-            // first extrapolate while the energy keeps falling.
+            // Backtracking (Armijo) line search on the energy from the full step. No
+            // extrapolation: a longer step could carry a metastable part of the system over
+            // its energy barrier, and the state must follow the branch an experiment follows.
             let slack = 1e-14 * e0.abs().max(1.0);
             let armijo = |t: f64, e: f64| e <= e0 + 1e-4 * t * slope + slack;
             let eval = |t: f64, trial: &mut Vec<f64>| {
@@ -284,24 +286,12 @@ impl StableNewton {
             };
             let mut t = 1.0;
             let mut e1 = eval(t, &mut trial);
-            if !definite && e1.is_finite() && armijo(t, e1) {
-                loop {
-                    let e2 = eval(2.0 * t, &mut trial);
-                    if e2.is_finite() && e2 < e1 {
-                        t *= 2.0;
-                        e1 = e2;
-                    } else {
-                        break;
-                    }
+            while !(e1.is_finite() && armijo(t, e1)) {
+                t *= 0.5;
+                if t < 1e-20 {
+                    break;
                 }
-            } else {
-                while !(e1.is_finite() && armijo(t, e1)) {
-                    t *= 0.5;
-                    if t < 1e-20 {
-                        break;
-                    }
-                    e1 = eval(t, &mut trial);
-                }
+                e1 = eval(t, &mut trial);
             }
             if t < 1e-20 {
                 // No decrease along the step: at roundoff level already.

@@ -175,3 +175,161 @@ fn spatula_work_of_adhesion_and_force_sec_5_3() {
     let f = 1.5 * std::f64::consts::PI * w * 100e-9;
     assert!((f - 10.4e-9).abs() < 0.05e-9, "force = {f}");
 }
+
+// ---------------------------------------------------------------------------------------------
+// Spring arrays (section 5.5) and the stable Newton solver.
+
+use adhesion::models::spring_array::{
+    SpringArray, adhesion_efficiency, coupled_cycle, uncoupled_cycle, uncoupled_cycle_binned,
+};
+use adhesion::numerics::newton::{NewtonOptions, StableNewton, plain_newton};
+
+/// Independent Gaussian heights with standard deviation `sigma` and zero mean (a fixed seed);
+/// the tests of the solvers need heights, not a correlated surface.
+fn gaussian_heights(n: usize, sigma: f64, seed: u64) -> Vec<f64> {
+    use rand::SeedableRng;
+    use rand_distr::{Distribution, StandardNormal};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let mut z: Vec<f64> = (0..n).map(|_| StandardNormal.sample(&mut rng)).collect();
+    let mean = z.iter().sum::<f64>() / n as f64;
+    z.iter_mut().for_each(|v| *v = sigma * (*v - mean));
+    z
+}
+
+// Section 5.4.3 with the array solver: one spring, k = 0.5 k_cr, ū = 1.9 (inside the bistable
+// range). Plain Newton from d = 1.1 converges to the middle equilibrium, a maximum of the
+// energy (unstable, (5.20) < 0); the stable solver from the same start reaches a minimum.
+#[test]
+fn plain_newton_accepts_the_unstable_spring_state_the_stable_solver_does_not() {
+    let s = SingleSpring::new(0.15).unwrap();
+    let a = SpringArray::new(1, 1, 0.15, 0.0, vec![0.0]).unwrap();
+    let e = a.energy_at(1.9);
+    let opts = NewtonOptions::default();
+    let mut x = vec![1.1];
+    plain_newton(&e, &mut x, &opts).unwrap();
+    assert!(s.residual(1.9, x[0]).abs() < 1e-9, "plain Newton converged");
+    assert!(s.curvature(x[0]) < 0.0, "to an unstable state d = {}", x[0]);
+    let mut solver = StableNewton::new(&e).unwrap();
+    assert!(!solver.is_stable(&e, &x).unwrap());
+    let mut y = vec![1.1];
+    let rep = solver.minimize(&e, &mut y, &opts).unwrap();
+    assert!(rep.left_unstable_state());
+    assert!(s.curvature(y[0]) > 0.0 && s.residual(1.9, y[0]).abs() < 1e-9);
+    assert!(solver.is_stable(&e, &y).unwrap());
+}
+
+// Consistency of the two paths (issue, "What to build" 4): with k_μ = 0 the coupled solver
+// must reproduce the uncoupled result: the same contact state at every step (so the same
+// jumps) and the same force to solver tolerance.
+#[test]
+fn coupled_solver_at_zero_coupling_reproduces_the_uncoupled_cycle() {
+    let k_e = 0.3 * 2f64.powi(-5);
+    let z = gaussian_heights(12 * 10, 8.0, 7);
+    let a = SpringArray::new(12, 10, k_e, 0.0, z.clone()).unwrap();
+    let s = a.single().unwrap();
+    let (u_in, u_off) = s.bistable_range().unwrap();
+    let (u_max, u_min, n) = (u_off + 30.0, -25.0, 301);
+    let exact = uncoupled_cycle(&a, u_max, u_min, n).unwrap();
+    let coupled = coupled_cycle(&a, u_max, u_min, n, &NewtonOptions::default(), |_| Ok(())).unwrap();
+    assert!(coupled.all_stable);
+    let scale = a.len() as f64 * 0.17;
+    for (x, y) in exact
+        .loading
+        .iter()
+        .chain(&exact.unloading)
+        .zip(coupled.loading.iter().chain(&coupled.unloading))
+    {
+        assert_eq!(x.u, y.u);
+        assert_eq!(x.contact_ratio, y.contact_ratio, "contact state at u = {}", x.u);
+        assert!((x.force - y.force).abs() < 1e-8 * scale, "force at u = {}", x.u);
+    }
+    // The jumps: at each step, the springs whose shifted displacement crossed a fold.
+    let grid = adhesion::numerics::curve::linspace(u_max, u_min, n);
+    let mut expected = Vec::new();
+    for w in grid.windows(2) {
+        let c = z
+            .iter()
+            .filter(|&&zi| w[1] - zi <= u_in && w[0] - zi > u_in)
+            .count();
+        if c > 0 {
+            expected.push((w[1], c, 0));
+        }
+    }
+    let touched = |zi: f64| u_min - zi <= u_in;
+    for w in grid.windows(2).rev() {
+        let c = z
+            .iter()
+            .filter(|&&zi| touched(zi) && w[0] - zi >= u_off && w[1] - zi < u_off)
+            .count();
+        if c > 0 {
+            expected.push((w[0], 0, c));
+        }
+    }
+    let got: Vec<(f64, usize, usize)> = coupled
+        .jumps
+        .iter()
+        .map(|j| (j.u, j.into_contact, j.out_of_contact))
+        .collect();
+    assert_eq!(got, expected);
+}
+
+// For k_μ > 0 every accepted state has a positive-definite tangent (checked by Cholesky at
+// every step inside the cycle and asserted here), and coupling lowers the adhesion and the
+// contact ratio on unloading (Figs. 5.10, 5.11).
+#[test]
+fn coupled_states_are_stable_and_coupling_reduces_adhesion() {
+    let k_e = 0.3 * 2f64.powi(-6);
+    let z = gaussian_heights(64, 20.0, 3);
+    let mut eff = Vec::new();
+    let mut ratio = Vec::new();
+    for mult in [0.0, 2.0, 10.0] {
+        let a = SpringArray::new(64, 1, k_e, mult * k_e, z.clone()).unwrap();
+        let c = coupled_cycle(&a, 80.0, -60.0, 400, &NewtonOptions::default(), |_| Ok(())).unwrap();
+        assert!(c.all_stable, "k_mu = {mult} k_e");
+        eff.push(adhesion_efficiency(&c, a.len()));
+        let mid = c.unloading.len() / 2;
+        ratio.push(c.unloading[mid].contact_ratio);
+        if mult > 0.0 {
+            assert!(!c.jumps.is_empty());
+        }
+    }
+    assert!(eff[0] > eff[1] && eff[1] > eff[2], "efficiency {eff:?}");
+    assert!(
+        ratio[0] >= ratio[1] && ratio[1] >= ratio[2],
+        "contact ratio {ratio:?}"
+    );
+}
+
+// The binned (convolution) path against the exact uncoupled path on 64 x 64 heights: force
+// curves within 0.5 % of N·M·|P_m| at every step, efficiency within 0.5 %.
+#[test]
+fn binned_uncoupled_cycle_matches_the_exact_one() {
+    let k_e = 0.3 * 2f64.powi(-7);
+    let z = gaussian_heights(64 * 64, 20.0, 11);
+    let a = SpringArray::new(64, 64, k_e, 0.0, z.clone()).unwrap();
+    let (u_max, u_min, n) = (120.0, -80.0, 401);
+    let exact = uncoupled_cycle(&a, u_max, u_min, n).unwrap();
+    let binned = uncoupled_cycle_binned(&z, k_e, u_max, u_min, n, 8).unwrap();
+    let scale = a.len() as f64 * 0.1757;
+    for (x, y) in exact
+        .loading
+        .iter()
+        .chain(&exact.unloading)
+        .zip(binned.loading.iter().chain(&binned.unloading))
+    {
+        assert!(
+            (x.force - y.force).abs() < 5e-3 * scale,
+            "u = {}: {} vs {}",
+            x.u,
+            x.force,
+            y.force
+        );
+        assert!((x.contact_ratio - y.contact_ratio).abs() < 5e-3);
+    }
+    let (ea, eb) = (
+        adhesion_efficiency(&exact, a.len()),
+        adhesion_efficiency(&binned, a.len()),
+    );
+    assert!((ea - eb).abs() < 5e-3, "{ea} vs {eb}");
+    assert!(ea > 0.0 && ea < 1.0);
+}
