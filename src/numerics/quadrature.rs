@@ -143,6 +143,43 @@ pub fn integrate_with_limit(
     }
 }
 
+/// ∫_a^∞ f adaptively: [a, a + scale] directly, the tail through x = a + scale/t, t ∈ (0, 1]
+/// (dx = scale/t² dt). `scale` should be the length over which f changes; f must decay faster
+/// than 1/x.
+///
+/// # Errors
+/// As [`integrate`], and [`Error::InvalidParameter`] when `scale` is not positive and finite.
+pub fn integrate_to_infinity(
+    f: impl Fn(f64) -> f64,
+    a: f64,
+    scale: f64,
+    abs_tol: f64,
+    rel_tol: f64,
+) -> Result<Integral> {
+    if !(scale > 0.0 && scale.is_finite()) {
+        return Err(Error::invalid("scale", scale, "must be positive and finite"));
+    }
+    let head = integrate(&f, a, a + scale, 0.5 * abs_tol, rel_tol)?;
+    let tail = integrate(
+        |t: f64| {
+            if t <= 0.0 {
+                0.0
+            } else {
+                f(a + scale / t) * scale / (t * t)
+            }
+        },
+        0.0,
+        1.0,
+        0.5 * abs_tol,
+        rel_tol,
+    )?;
+    Ok(Integral {
+        value: head.value + tail.value,
+        error: head.error + tail.error,
+        evaluations: head.evaluations + tail.evaluations,
+    })
+}
+
 /// Nodes and weights of the n-point Gauss-Legendre rule on [-1, 1], by Newton's method on the
 /// Legendre polynomial from Chebyshev-like initial guesses (accurate to a few ulps for n ≤ 200).
 ///
@@ -279,6 +316,14 @@ mod tests {
         let g = GaussLegendre::new(30);
         let got = g.integrate(f64::exp, 0.0, 1.0);
         assert!((got - (1f64.exp() - 1.0)).abs() < 1e-14);
+    }
+
+    #[test]
+    fn semi_infinite_integral_of_a_lorentzian_and_an_exponential() {
+        let i = integrate_to_infinity(|x| 1.0 / (1.0 + x * x), 0.0, 1.0, 0.0, 1e-12).unwrap();
+        assert!((i.value - std::f64::consts::FRAC_PI_2).abs() < 1e-11);
+        let e = integrate_to_infinity(|x| (-x).exp(), 2.0, 1.0, 0.0, 1e-12).unwrap();
+        assert!((e.value - (-2.0f64).exp()).abs() < 1e-13);
     }
 
     #[test]

@@ -1,0 +1,159 @@
+//! A sampled height map z(x, y) on a periodic rectangular grid (appendix B.1).
+
+use serde::Serialize;
+
+use crate::error::{Error, Result};
+
+/// Heights [m] on an `nx × ny` grid of physical size `lx × ly` [m], row-major:
+/// `z[j*nx + i]` is the height at x = i·lx/nx, y = j·ly/ny. Periodic in both directions
+/// (the convention of (B.1.8)).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct HeightMap {
+    /// Points in x (columns).
+    pub nx: usize,
+    /// Points in y (rows).
+    pub ny: usize,
+    /// Period in x [m].
+    pub lx: f64,
+    /// Period in y [m].
+    pub ly: f64,
+    /// Heights [m], row-major, `nx * ny` values.
+    pub z: Vec<f64>,
+}
+
+impl HeightMap {
+    /// A validated height map.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] when the grid is smaller than 2 × 2, the sizes are not
+    /// positive and finite, the data length is not `nx * ny`, or a height is not finite.
+    pub fn new(nx: usize, ny: usize, lx: f64, ly: f64, z: Vec<f64>) -> Result<Self> {
+        let map = Self { nx, ny, lx, ly, z };
+        map.validate()?;
+        Ok(map)
+    }
+
+    /// Check the invariants listed at [`HeightMap::new`].
+    ///
+    /// # Errors
+    /// As [`HeightMap::new`].
+    pub fn validate(&self) -> Result<()> {
+        if self.nx < 2 || self.ny < 2 {
+            return Err(Error::invalid(
+                "grid",
+                format!("{}x{}", self.nx, self.ny),
+                "needs at least 2 points in each direction",
+            ));
+        }
+        for (name, v) in [("length", self.lx), ("length-y", self.ly)] {
+            if !(v > 0.0 && v.is_finite()) {
+                return Err(Error::invalid(name, v, "must be positive and finite"));
+            }
+        }
+        if self.z.len() != self.nx * self.ny {
+            return Err(Error::invalid(
+                "heights",
+                self.z.len(),
+                format!("expected nx*ny = {} values", self.nx * self.ny),
+            ));
+        }
+        if let Some(k) = self.z.iter().position(|v| !v.is_finite()) {
+            return Err(Error::invalid(
+                "heights",
+                self.z[k],
+                format!(
+                    "height at column {}, row {} is not finite",
+                    k % self.nx,
+                    k / self.nx
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Grid spacing in x, lx/nx [m].
+    pub fn dx(&self) -> f64 {
+        self.lx / self.nx as f64
+    }
+
+    /// Grid spacing in y, ly/ny [m].
+    pub fn dy(&self) -> f64 {
+        self.ly / self.ny as f64
+    }
+
+    /// Height at column i, row j.
+    pub fn at(&self, i: usize, j: usize) -> f64 {
+        self.z[j * self.nx + i]
+    }
+
+    /// Mean height [m].
+    pub fn mean(&self) -> f64 {
+        self.z.iter().sum::<f64>() / self.z.len() as f64
+    }
+
+    /// RMS height about the mean [m], the discrete (B.1.1).
+    pub fn rms(&self) -> f64 {
+        let m = self.mean();
+        (self.z.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / self.z.len() as f64).sqrt()
+    }
+
+    /// Subtract the mean height, so that the mean plane is z = 0 (section 3.2.2).
+    pub fn remove_mean(&mut self) {
+        let m = self.mean();
+        self.z.iter_mut().for_each(|v| *v -= m);
+    }
+
+    /// Subtract the least-squares plane z = a + b x + c y (tilt of a measured map) and the mean.
+    pub fn remove_tilt(&mut self) {
+        let (nx, ny) = (self.nx as f64, self.ny as f64);
+        // Centred coordinates make the normal equations diagonal.
+        let xc = |i: usize| i as f64 - 0.5 * (nx - 1.0);
+        let yc = |j: usize| j as f64 - 0.5 * (ny - 1.0);
+        let (mut sxz, mut syz, mut sxx, mut syy) = (0.0, 0.0, 0.0, 0.0);
+        let mean = self.mean();
+        for j in 0..self.ny {
+            for i in 0..self.nx {
+                let z = self.z[j * self.nx + i] - mean;
+                sxz += xc(i) * z;
+                syz += yc(j) * z;
+                sxx += xc(i) * xc(i);
+                syy += yc(j) * yc(j);
+            }
+        }
+        let (b, c) = (sxz / sxx, syz / syy);
+        for j in 0..self.ny {
+            for i in 0..self.nx {
+                self.z[j * self.nx + i] -= mean + b * xc(i) + c * yc(j);
+            }
+        }
+    }
+
+    /// Multiply every height by `k`.
+    pub fn scale(&mut self, k: f64) {
+        self.z.iter_mut().for_each(|v| *v *= k);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tilt_removal_leaves_zero_for_a_plane() {
+        let (nx, ny) = (5, 4);
+        let z = (0..nx * ny)
+            .map(|k| 3.0 + 0.5 * (k % nx) as f64 - 0.25 * (k / nx) as f64)
+            .collect();
+        let mut m = HeightMap::new(nx, ny, 1.0, 1.0, z).unwrap();
+        m.remove_tilt();
+        assert!(m.z.iter().all(|v| v.abs() < 1e-12));
+    }
+
+    #[test]
+    fn bad_maps_are_rejected() {
+        assert!(HeightMap::new(1, 4, 1.0, 1.0, vec![0.0; 4]).is_err());
+        assert!(HeightMap::new(2, 2, 0.0, 1.0, vec![0.0; 4]).is_err());
+        assert!(HeightMap::new(2, 2, 1.0, 1.0, vec![0.0; 3]).is_err());
+        assert!(HeightMap::new(2, 2, 1.0, 1.0, vec![0.0, f64::NAN, 0.0, 0.0]).is_err());
+    }
+}
