@@ -344,7 +344,7 @@ pub fn uncoupled_cycle(array: &SpringArray, u_max: f64, u_min: f64, n: usize) ->
 /// branches and from smearing each spring's jump over one bin.
 ///
 /// # Errors
-/// Grid errors; [`Error::InvalidParameter`] for `oversample` = 0.
+/// Grid errors; [`Error::InvalidParameter`] for `oversample` = 0 or no heights.
 pub fn uncoupled_cycle_binned(
     heights: &[f64],
     k_e: f64,
@@ -353,109 +353,169 @@ pub fn uncoupled_cycle_binned(
     n: usize,
     oversample: usize,
 ) -> Result<ArrayCycle> {
-    let grid = cycle_grid(u_max, u_min, n)?;
-    if oversample == 0 {
-        return Err(Error::invalid("oversample", 0, "must be at least 1"));
-    }
-    if heights.is_empty() {
-        return Err(Error::invalid("heights", 0, "must not be empty"));
-    }
-    let s = SingleSpring::new(k_e)?;
-    let r = oversample as i64;
-    let du = (u_max - u_min) / (n - 1) as f64;
-    let delta = du / oversample as f64;
-    // Bin coordinate of a height: s = (u_max − z)/δ, so ū_j − z = δ (s − j r).
-    let (mut m_lo, mut m_hi) = (i64::MAX, i64::MIN);
-    let coords: Vec<f64> = heights.iter().map(|z| (u_max - z) / delta).collect();
-    for &c in &coords {
-        m_lo = m_lo.min(c.floor() as i64);
-        m_hi = m_hi.max(c.floor() as i64 + 1);
-    }
-    let n_bins = (m_hi - m_lo + 1) as usize;
-    let mut weight = vec![0.0; n_bins];
-    for &c in &coords {
-        let m = c.floor();
-        let phi = c - m;
-        let b = (m as i64 - m_lo) as usize;
-        weight[b] += 1.0 - phi;
-        weight[b + 1] += phi;
-    }
-    // Branch tables at ū = δ q for every q reached: q = m − j r.
-    let j_max = (n - 1) as i64;
-    let q_lo = m_lo - j_max * r;
-    let q_hi = m_hi;
-    let n_q = (q_hi - q_lo + 1) as usize;
-    let (u_in, u_off) = s
-        .bistable_range()
-        .unwrap_or((f64::NEG_INFINITY, f64::NEG_INFINITY));
-    let mut contact_force = vec![f64::NAN; n_q];
-    let mut free_force = vec![f64::NAN; n_q];
-    let ubar = |q: usize| delta * (q as i64 + q_lo) as f64;
-    for q in 0..n_q {
-        let u = ubar(q);
-        let has_instab = s.has_instabilities();
-        if !has_instab || u < u_off {
-            let d = s.gap(u, SpringBranch::Contact)?;
-            contact_force[q] = k_e * (d - u);
+    let (lo, hi) = heights
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &z| {
+            (a.min(z), b.max(z))
+        });
+    BinnedBranches::new(k_e, u_max, u_min, n, oversample, (lo, hi))?.cycle(heights)
+}
+
+/// The single-spring branches tabulated at the nodes of the binned path, for every height in a
+/// range: build once, then run [`BinnedBranches::cycle`] for many surfaces (samples).
+#[derive(Debug, Clone)]
+pub struct BinnedBranches {
+    spring: SingleSpring,
+    k_e: f64,
+    grid: Vec<f64>,
+    u_max: f64,
+    delta: f64,
+    r: i64,
+    m_lo: i64,
+    m_hi: i64,
+    q_lo: i64,
+    contact_force: Vec<f64>,
+    free_force: Vec<f64>,
+}
+
+impl BinnedBranches {
+    /// Tabulate the branches for a cycle from `u_max` down to `u_min` in `n` steps, bins of
+    /// Δū/`oversample`, and heights within `height_range`.
+    ///
+    /// # Errors
+    /// Grid errors; [`Error::InvalidParameter`] for `oversample` = 0 or an empty height range.
+    pub fn new(
+        k_e: f64,
+        u_max: f64,
+        u_min: f64,
+        n: usize,
+        oversample: usize,
+        height_range: (f64, f64),
+    ) -> Result<Self> {
+        let grid = cycle_grid(u_max, u_min, n)?;
+        if oversample == 0 {
+            return Err(Error::invalid("oversample", 0, "must be at least 1"));
         }
-        if !has_instab || u > u_in {
-            let d = s.gap(u, SpringBranch::Free)?;
-            free_force[q] = k_e * (d - u);
+        let (z_lo, z_hi) = height_range;
+        if !(z_lo <= z_hi && z_lo.is_finite() && z_hi.is_finite()) {
+            return Err(Error::invalid(
+                "heights",
+                format!("[{z_lo}, {z_hi}]"),
+                "must be a finite range",
+            ));
         }
-    }
-    let contact_gap_free = |q: usize| -> bool {
-        // Whether the free-branch gap at this node is below σ (only for stiff springs).
-        !s.has_instabilities() && free_force[q] / k_e + ubar(q) < CONTACT_GAP
-    };
-    let mut out = ArrayCycle {
-        all_stable: true,
-        ..ArrayCycle::default()
-    };
-    let total: f64 = weight.iter().sum();
-    let step = |j: i64, loading: bool| -> ArrayStep {
-        let mut force = 0.0;
-        let mut contact = 0.0;
-        for (b, &w) in weight.iter().enumerate() {
-            if w == 0.0 {
-                continue;
+        let spring = SingleSpring::new(k_e)?;
+        let r = oversample as i64;
+        let du = (u_max - u_min) / (n - 1) as f64;
+        let delta = du / oversample as f64;
+        // Bin coordinate of a height: s = (u_max − z)/δ, so ū_j − z = δ (s − j r).
+        let m_lo = ((u_max - z_hi) / delta).floor() as i64;
+        let m_hi = ((u_max - z_lo) / delta).floor() as i64 + 1;
+        let j_max = (n - 1) as i64;
+        let q_lo = m_lo - j_max * r;
+        let n_q = (m_hi - q_lo + 1) as usize;
+        let (u_in, u_off) = spring
+            .bistable_range()
+            .unwrap_or((f64::NEG_INFINITY, f64::NEG_INFINITY));
+        let mut contact_force = vec![f64::NAN; n_q];
+        let mut free_force = vec![f64::NAN; n_q];
+        for q in 0..n_q {
+            let u = delta * (q as i64 + q_lo) as f64;
+            let has_instab = spring.has_instabilities();
+            if !has_instab || u < u_off {
+                contact_force[q] = k_e * (spring.gap(u, SpringBranch::Contact)? - u);
             }
-            let m = b as i64 + m_lo;
-            let q = (m - j * r - q_lo) as usize;
-            let u = ubar(q);
-            // Touched on loading: ū at the lowest step reached the pull-in displacement.
-            let touched = delta * (m - j_max * r) as f64 <= u_in;
-            let in_contact = if !s.has_instabilities() {
-                contact_gap_free(q)
-            } else if loading {
-                u <= u_in
-            } else {
-                touched && u < u_off
-            };
-            let f = if !s.has_instabilities() {
-                free_force[q]
-            } else if in_contact {
-                contact_force[q]
-            } else {
-                free_force[q]
-            };
-            force += w * f;
-            if in_contact {
-                contact += w;
+            if !has_instab || u > u_in {
+                free_force[q] = k_e * (spring.gap(u, SpringBranch::Free)? - u);
             }
         }
-        ArrayStep {
-            u: grid[j as usize],
-            force,
-            contact_ratio: contact / total,
+        Ok(Self {
+            spring,
+            k_e,
+            grid,
+            u_max,
+            delta,
+            r,
+            m_lo,
+            m_hi,
+            q_lo,
+            contact_force,
+            free_force,
+        })
+    }
+
+    /// The cycle over one surface.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for no heights or heights outside the tabulated range.
+    pub fn cycle(&self, heights: &[f64]) -> Result<ArrayCycle> {
+        if heights.is_empty() {
+            return Err(Error::invalid("heights", 0, "must not be empty"));
         }
-    };
-    for j in 0..=j_max {
-        out.loading.push(step(j, true));
+        let n_bins = (self.m_hi - self.m_lo + 1) as usize;
+        let mut weight = vec![0.0; n_bins];
+        for &z in heights {
+            let c = (self.u_max - z) / self.delta;
+            let m = c.floor();
+            let phi = c - m;
+            let b = m as i64 - self.m_lo;
+            if b < 0 || b + 1 >= n_bins as i64 {
+                return Err(Error::invalid("heights", z, "outside the tabulated height range"));
+            }
+            weight[b as usize] += 1.0 - phi;
+            weight[b as usize + 1] += phi;
+        }
+        let s = &self.spring;
+        let (u_in, u_off) = s
+            .bistable_range()
+            .unwrap_or((f64::NEG_INFINITY, f64::NEG_INFINITY));
+        let j_max = (self.grid.len() - 1) as i64;
+        let total: f64 = weight.iter().sum();
+        let step = |j: i64, loading: bool| -> ArrayStep {
+            let mut force = 0.0;
+            let mut contact = 0.0;
+            for (b, &w) in weight.iter().enumerate() {
+                if w == 0.0 {
+                    continue;
+                }
+                let m = b as i64 + self.m_lo;
+                let q = (m - j * self.r - self.q_lo) as usize;
+                let u = self.delta * (m - j * self.r) as f64;
+                let (f, in_contact) = if s.has_instabilities() {
+                    // Touched on loading: ū at the lowest step reached the pull-in displacement.
+                    let touched = self.delta * (m - j_max * self.r) as f64 <= u_in;
+                    let c = if loading { u <= u_in } else { touched && u < u_off };
+                    (
+                        if c {
+                            self.contact_force[q]
+                        } else {
+                            self.free_force[q]
+                        },
+                        c,
+                    )
+                } else {
+                    let f = self.free_force[q];
+                    (f, f / self.k_e + u < CONTACT_GAP)
+                };
+                force += w * f;
+                if in_contact {
+                    contact += w;
+                }
+            }
+            ArrayStep {
+                u: self.grid[j as usize],
+                force,
+                contact_ratio: contact / total,
+            }
+        };
+        let mut out = ArrayCycle {
+            all_stable: true,
+            ..ArrayCycle::default()
+        };
+        out.loading = (0..=j_max).map(|j| step(j, true)).collect();
+        out.unloading = (0..=j_max).rev().map(|j| step(j, false)).collect();
+        Ok(out)
     }
-    for j in (0..=j_max).rev() {
-        out.unloading.push(step(j, false));
-    }
-    Ok(out)
 }
 
 /// Coupled cycle, Eqs. (5.31)-(5.34): at each displacement step the gaps are found by
