@@ -23,7 +23,8 @@ fn gecko_critical_stiffness() -> f64 {
 }
 
 /// Chapter 5 claims: the LJ constants and spatula force (5.3), the critical stiffness and the
-/// pull-in/pull-off displacements (5.4.3), the gecko stiffness numbers (5.5.2), and Johnson's
+/// pull-in/pull-off displacements (5.4.3), the gecko stiffness numbers and the parameter ranges
+/// of the array study (5.5.2), and Johnson's
 /// wavy-surface bound (5.1).
 pub fn claims() -> Vec<Claim> {
     vec![
@@ -145,6 +146,46 @@ pub fn claims() -> Vec<Claim> {
             precision: Precision::Relative(0.1),
             code: "reproduction::ch5 (arithmetic)",
             compute: || Ok(256.0 * 256.0 / 1.0e4),
+            expect: Expect::Reproduced,
+        },
+        Claim {
+            id: "ch5.stiffest_array_spring",
+            source: "Sec. 5.5.2",
+            quantity: "k_e/k_cr = 2^-n at n = 6, the stiffest springs of the arrays",
+            printed: "1.56e-2",
+            precision: Precision::Printed,
+            code: "reproduction::ch5 (arithmetic)",
+            compute: || Ok(2f64.powi(-6)),
+            expect: Expect::Reproduced,
+        },
+        Claim {
+            id: "ch5.softest_array_spring",
+            source: "Sec. 5.5.2",
+            quantity: "k_e/k_cr = 2^-n at n = 11, the softest springs of the arrays",
+            printed: "4.88e-4",
+            precision: Precision::Printed,
+            code: "reproduction::ch5 (arithmetic)",
+            compute: || Ok(2f64.powi(-11)),
+            expect: Expect::Reproduced,
+        },
+        Claim {
+            id: "ch5.smallest_roughness_nm",
+            source: "Sec. 5.5.2",
+            quantity: "sigma_rms [nm] at sigma_rms/sigma = 10, sigma = 0.3 nm",
+            printed: "3",
+            precision: Precision::Printed,
+            code: "reproduction::ch5 (arithmetic)",
+            compute: || Ok(10.0 * 0.3),
+            expect: Expect::Reproduced,
+        },
+        Claim {
+            id: "ch5.largest_roughness_nm",
+            source: "Sec. 5.5.2",
+            quantity: "sigma_rms [nm] at sigma_rms/sigma = 1500, sigma = 0.3 nm",
+            printed: "450",
+            precision: Precision::Printed,
+            code: "reproduction::ch5 (arithmetic)",
+            compute: || Ok(1500.0 * 0.3),
             expect: Expect::Reproduced,
         },
     ]

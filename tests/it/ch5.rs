@@ -333,3 +333,103 @@ fn binned_uncoupled_cycle_matches_the_exact_one() {
     assert!((ea - eb).abs() < 5e-3, "{ea} vs {eb}");
     assert!(ea > 0.0 && ea < 1.0);
 }
+
+// Fig. 5.8 at reduced size (64 x 64 springs, 4 samples, 300 steps): the efficiency falls with
+// the roughness for a given stiffness and rises as the springs soften (larger n), as the text
+// of section 5.5.2 states, and it follows the empirical fit (5.37) within 0.04 RMS for every
+// n = 6..11. (The text finds (5.37) deviating for n = 9..11; this model does not: see the
+// ERRATA note on Fig. 5.8.)
+#[test]
+fn efficiency_falls_with_roughness_rises_with_softness_and_follows_the_fit_5_37() {
+    use adhesion::job::Job;
+    use adhesion::scenes::Scene;
+    use adhesion::scenes::fig5::{Fig5_8, Fig5_8Params};
+    let p = Fig5_8Params {
+        springs: 64,
+        samples: 4,
+        steps: 300,
+        roughness_points: 5,
+        ..Default::default()
+    };
+    let fig = Fig5_8::run(&p, &Job::quiet()).unwrap();
+    let means: Vec<Vec<(f64, f64)>> = fig.panels[0]
+        .series
+        .iter()
+        .filter(|s| s.style == adhesion::figure::Style::Scatter)
+        .map(|s| s.points.clone())
+        .collect();
+    assert_eq!(means.len(), 6);
+    for (k, m) in means.iter().enumerate() {
+        for w in m.windows(2) {
+            assert!(w[1].1 <= w[0].1 + 1e-12, "n = {}: not decreasing {m:?}", k + 6);
+        }
+        assert!(m[0].1 > 0.5 && m[0].1 < 1.0, "n = {}: {m:?}", k + 6);
+    }
+    for w in means.windows(2) {
+        for (a, b) in w[0].iter().zip(&w[1]) {
+            assert!(b.1 >= a.1 - 1e-12, "softer springs adhere less at {}", a.0);
+        }
+    }
+    let max_dev = fig.result_value("fit_rms_deviation_max_norm").unwrap();
+    assert!(max_dev < 0.04, "RMS deviation from (5.37): {max_dev}");
+}
+
+// Fig. 5.9: the uncoupled efficiency depends on the height distribution only, so the
+// correlation length changes it little (the text: "no appreciable dependence").
+#[test]
+fn efficiency_barely_depends_on_the_correlation_length_fig_5_9() {
+    use adhesion::job::Job;
+    use adhesion::scenes::Scene;
+    use adhesion::scenes::fig5::{Fig5_9, Fig5_9Params};
+    let p = Fig5_9Params {
+        springs: 64,
+        samples: 4,
+        steps: 300,
+        correlation_lengths: vec![0.01, 0.05, 0.1],
+        ..Default::default()
+    };
+    let fig = Fig5_9::run(&p, &Job::quiet()).unwrap();
+    let spread = fig.result_value("max_relative_spread_norm").unwrap();
+    assert!(spread < 0.15, "relative spread over L_c: {spread}");
+}
+
+// Fig. 5.11: at every displacement step the contact ratio on unloading is at least that on
+// loading (springs stay attached past their pull-in point), for each coupling; and the contact
+// ratio summed over unloading falls as the coupling grows.
+#[test]
+fn contact_ratio_on_unloading_exceeds_loading_and_falls_with_coupling_fig_5_11() {
+    let k_e = 0.3 * 2f64.powi(-8);
+    let z = gaussian_heights(96, 40.0, 5);
+    let mut attached = Vec::new();
+    for mult in [0.0, 2.0, 10.0] {
+        let a = SpringArray::new(96, 1, k_e, mult * k_e, z.clone()).unwrap();
+        let c = coupled_cycle(&a, 250.0, -150.0, 400, &NewtonOptions::default(), |_| Ok(())).unwrap();
+        assert!(c.all_stable);
+        for (l, u) in c.loading.iter().zip(c.unloading.iter().rev()) {
+            assert_eq!(l.u, u.u);
+            assert!(
+                u.contact_ratio >= l.contact_ratio,
+                "k_mu = {mult} k_e, u = {}: unloading {} < loading {}",
+                l.u,
+                u.contact_ratio,
+                l.contact_ratio
+            );
+        }
+        attached.push(c.unloading.iter().map(|s| s.contact_ratio).sum::<f64>());
+    }
+    assert!(
+        attached[0] > attached[1] && attached[1] > attached[2],
+        "contact ratio summed over unloading: {attached:?}"
+    );
+}
+
+// The binned tables reject heights outside the range they were built for, with an error.
+#[test]
+fn binned_tables_reject_heights_outside_their_range() {
+    use adhesion::models::spring_array::BinnedBranches;
+    let t = BinnedBranches::new(0.3 / 128.0, 100.0, -50.0, 200, 4, (-10.0, 10.0)).unwrap();
+    assert!(t.cycle(&[0.0, 5.0, -9.0]).is_ok());
+    assert!(t.cycle(&[0.0, 50.0]).is_err());
+    assert!(t.cycle(&[]).is_err());
+    assert!(BinnedBranches::new(0.01, 100.0, -50.0, 200, 0, (-1.0, 1.0)).is_err());
+}
