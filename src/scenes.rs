@@ -143,9 +143,10 @@ impl<S: Scene> SceneDyn for Registered<S> {
     }
 }
 
-/// Every scene, in chapter order.
+/// Every scene, in chapter order (chapters 1-6, then the appendices; a scene registered in
+/// another chapter's file, like fig3.7d in `figc`, joins its own chapter).
 pub fn all() -> Vec<&'static dyn SceneDyn> {
-    [
+    let mut scenes = [
         fig1::SCENES,
         fig2::SCENES,
         fig3::SCENES,
@@ -153,7 +154,9 @@ pub fn all() -> Vec<&'static dyn SceneDyn> {
         fig6::SCENES,
         figc::SCENES,
     ]
-    .concat()
+    .concat();
+    scenes.sort_by_key(|s| s.info().chapter);
+    scenes
 }
 
 /// Look a scene up by id.
