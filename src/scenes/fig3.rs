@@ -404,9 +404,13 @@ crate::param_choice! {
     pub enum CostSource { Measured = "measured", Benchmark = "benchmark" }
 }
 
-/// Benchmark medians per evaluation [s] (benches/ch3.rs, release, this class of machine): the
-/// exact loss by quadrature, the table lookup, the empirical function (3.6).
-pub const BENCH_COST_S: [f64; 3] = [2.0e-5, 6.0e-8, 4.0e-8];
+/// Benchmark medians per evaluation [s] (benches/ch3.rs, release, 2 cores): the exact loss by
+/// quadrature (transition case), the table lookup, the empirical function (3.6).
+pub const BENCH_COST_S: [f64; 3] = [3.3e-5, 6.7e-8, 2.9e-8];
+
+/// Benchmark medians per grid point of fig3.8c [s] (benches/ch3.rs, release, 2 cores): the loss
+/// per area with quadrature at every node (one point), with the table and with (3.6) (60 x 60).
+pub const BENCH_GRID_COST_S: [f64; 3] = [5.7e-3, 9.1e-5, 6.8e-5];
 
 crate::scene_params! {
     /// Parameters of scene fig3.5-accuracy.
@@ -421,6 +425,8 @@ crate::scene_params! {
         table_densities: Vec<f64> = vec![5.0, 10.0, 20.0, 40.0], unit = "", range = Range::between(1.0, 1000.0);
         /// Cost per evaluation: measured now (wall clock), or the benchmark medians (reproducible).
         cost: CostSource = CostSource::Measured, unit = "", range = Range::any();
+        /// Grid points per axis of the fig3.8c comparison (c); the reference costs about 6 ms per point.
+        grid_points: usize = 8, unit = "", range = Range::between(2.0, 60.0);
     }
 }
 
@@ -449,8 +455,23 @@ impl Scene for Fig3_5Accuracy {
     const TITLE: &'static str = "Loss per asperity: accuracy against cost";
     const CAPTION: &'static str = "Relative error of the loss per asperity against the quadrature of (3.4): (a) over \
         s = chi^3/ell for the tables and the empirical function (3.6); (b) the largest error against the cost per \
-        evaluation.";
+        evaluation; (c) fig3.8c: the largest error of the loss per nominal area (3.19) over a (Z0, sigma_rms) grid \
+        with the table and with (3.6), against the quadrature at every node, vs the run time per grid point.";
     const RESULTS: &'static [(&'static str, &'static str)] = &[
+        (
+            "grid_table_max_error_norm",
+            "fig3.8c grid: largest |table/quadrature - 1| of the loss per area",
+        ),
+        (
+            "grid_empirical_max_error_norm",
+            "fig3.8c grid: largest |(3.6)/quadrature - 1| of the loss per area",
+        ),
+        (
+            "grid_quadrature_cost_s",
+            "fig3.8c: run time per grid point, quadrature",
+        ),
+        ("grid_table_cost_s", "fig3.8c: run time per grid point, table"),
+        ("grid_empirical_cost_s", "fig3.8c: run time per grid point, (3.6)"),
         (
             "empirical_max_error_norm",
             "largest |(3.6)/exact - 1| on the scan",
@@ -484,6 +505,7 @@ impl Scene for Fig3_5Accuracy {
         p.points = p.points.min(25);
         p.table_densities = vec![5.0, 20.0];
         p.cost = CostSource::Benchmark;
+        p.grid_points = p.grid_points.min(3);
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
@@ -547,7 +569,56 @@ impl Scene for Fig3_5Accuracy {
             )
             .with_color(7),
         );
-        let mut fig = Figure::new(Self::ID, Self::TITLE).with_panel(a).with_panel(b);
+        // (c): the same comparison for the contour of fig3.8c.
+        job.progress(0.8, "fig3.8c grid");
+        let grid = Fig3_8Params::default();
+        let n = p.grid_points;
+        // The shared table is built once per process; keep its construction out of the timing.
+        crate::models::maugis_dugdale::loss_table()?;
+        let timed = |method: LossMethod| -> Result<(Vec<f64>, f64)> {
+            let t0 = std::time::Instant::now();
+            let (_, _, v) = grid.loss_grid(method, n, job)?;
+            Ok((v, t0.elapsed().as_secs_f64() / (n * n) as f64))
+        };
+        let (reference, quad_time) = timed(LossMethod::Quadrature)?;
+        let (tabled, table_time) = timed(LossMethod::Table)?;
+        let (empirical, emp_time) = timed(LossMethod::Empirical)?;
+        let max_err = |v: &[f64]| {
+            v.iter()
+                .zip(&reference)
+                .map(|(x, r)| (x / r - 1.0).abs().max(1e-16))
+                .fold(0.0, f64::max)
+        };
+        let (grid_table_err, grid_emp_err) = (max_err(&tabled), max_err(&empirical));
+        let [quad_time, table_time, emp_time] = if measured {
+            [quad_time, table_time, emp_time]
+        } else {
+            BENCH_GRID_COST_S
+        };
+        let mut c = Panel::new(
+            Axis::log("Run time per grid point", "s"),
+            Axis::log("Largest relative error", ""),
+        )
+        .titled("(c)", "fig3.8c: loss per area over (Z0, σ_rms)");
+        c.add(Series::new("table", Style::Scatter, vec![(table_time, grid_table_err)]).with_color(1));
+        c.add(Series::new("empirical (3.6)", Style::Scatter, vec![(emp_time, grid_emp_err)]).with_color(0));
+        c.add(
+            Series::new(
+                "quadrature at every node, tolerance 1e-7",
+                Style::Scatter,
+                vec![(quad_time, 1e-7)],
+            )
+            .with_color(7),
+        );
+        let mut fig = Figure::new(Self::ID, Self::TITLE)
+            .with_panel(a)
+            .with_panel(b)
+            .with_panel(c);
+        fig.result("grid_table_max_error_norm", grid_table_err);
+        fig.result("grid_empirical_max_error_norm", grid_emp_err);
+        fig.result("grid_quadrature_cost_s", quad_time);
+        fig.result("grid_table_cost_s", table_time);
+        fig.result("grid_empirical_cost_s", emp_time);
         fig.result("empirical_max_error_norm", emp_max);
         fig.result("table_max_error_norm", table_max);
         fig.result("exact_cost_s", exact_cost);
