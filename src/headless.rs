@@ -40,9 +40,25 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
     if cli.reproduce {
         return reproduce_command(&cli.out);
     }
+    if cli.surface.generate_surface || cli.surface.analyze_surface.is_some() {
+        print!("{}", crate::surface::command::run(&cli.surface, &cli.out)?);
+        return Ok(ExitCode::SUCCESS);
+    }
     if let Some(id) = &cli.figure {
         let scene = scenes::find(id)?;
-        let values = resolve_values(scene, cli.preset.as_deref(), &cli.set, cli.quick)?;
+        let mut sets = cli.set.clone();
+        if let Some(path) = &cli.surface.surface {
+            if !scene.specs().iter().any(|s| s.name == "surface") {
+                return Err(crate::error::Error::invalid(
+                    "surface",
+                    path.display(),
+                    format!("scene {id} takes no height map (use --surface with fig3.7d)"),
+                )
+                .into());
+            }
+            sets.push(format!("surface={}", path.display()));
+        }
+        let values = resolve_values(scene, cli.preset.as_deref(), &sets, cli.quick)?;
         let written = export_scene(scene, &values, &cli.out, &formats, &progress_job(id))?;
         for p in written {
             println!("{}", p.display());

@@ -63,3 +63,220 @@ pub fn moments_of_periodogram(map: &HeightMap, p: &[f64]) -> Moments {
         m4: 0.375 * s4,
     }
 }
+
+/// The isotropic PSD C̃^iso(q) of (B.1.10) by radial averaging of [`psd_2d`].
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct RadialPsd {
+    /// Mean wavenumber of each ring [1/m].
+    pub q: Vec<f64>,
+    /// Mean C̃ over the ring [m⁴], convention of (3.8).
+    pub c: Vec<f64>,
+    /// Number of Fourier bins in the ring.
+    pub count: Vec<usize>,
+}
+
+/// The isotropic PSD (B.1.10): C̃ averaged over rings of width Δq = 2π/max(L1, L2) centred on
+/// multiples of Δq, from Δq up to the Nyquist wavenumber π/max(Δx, Δy) (the largest full
+/// circle on the grid). Empty rings are left out.
+pub fn radial_psd(map: &HeightMap) -> RadialPsd {
+    radial_average(map, &psd_2d(map))
+}
+
+/// The isotropic PSD (B.1.10) ([`radial_psd`]) and the spectral moments (3.8)
+/// ([`moments_of_map`]) from one Fourier transform of the map.
+pub fn radial_psd_and_moments(map: &HeightMap) -> (RadialPsd, Moments) {
+    let p = periodogram(map);
+    let m = moments_of_periodogram(map, &p);
+    let s = map.lx * map.ly / (4.0 * std::f64::consts::PI.powi(2));
+    let c2d: Vec<f64> = p.into_par_iter().map(|v| v * s).collect();
+    (radial_average(map, &c2d), m)
+}
+
+/// [`radial_psd`] of a 2D PSD already computed.
+pub fn radial_average(map: &HeightMap, c2d: &[f64]) -> RadialPsd {
+    let (nx, ny, lx, ly) = (map.nx, map.ny, map.lx, map.ly);
+    let dq = 2.0 * std::f64::consts::PI / lx.max(ly);
+    let q_nyq = std::f64::consts::PI / map.dx().max(map.dy());
+    let n_rings = (q_nyq / dq).floor() as usize;
+    // Partial sums over fixed blocks of rows in parallel, added in block order: the result does
+    // not depend on the number of threads.
+    const ROWS: usize = 32;
+    let partial: Vec<(Vec<f64>, Vec<f64>, Vec<usize>)> = c2d
+        .par_chunks(nx * ROWS)
+        .enumerate()
+        .map(|(b, block)| {
+            let mut sum_q = vec![0.0; n_rings + 1];
+            let mut sum_c = vec![0.0; n_rings + 1];
+            let mut count = vec![0usize; n_rings + 1];
+            for (dl, row) in block.chunks_exact(nx).enumerate() {
+                let l = b * ROWS + dl;
+                for (k, &c) in row.iter().enumerate() {
+                    let q = wavenumber(k, l, nx, ny, lx, ly);
+                    let ring = (q / dq).round() as usize;
+                    if ring == 0 || ring > n_rings {
+                        continue;
+                    }
+                    sum_q[ring] += q;
+                    sum_c[ring] += c;
+                    count[ring] += 1;
+                }
+            }
+            (sum_q, sum_c, count)
+        })
+        .collect();
+    let mut sum_q = vec![0.0; n_rings + 1];
+    let mut sum_c = vec![0.0; n_rings + 1];
+    let mut count = vec![0usize; n_rings + 1];
+    for (q, c, n) in &partial {
+        for r in 0..=n_rings {
+            sum_q[r] += q[r];
+            sum_c[r] += c[r];
+            count[r] += n[r];
+        }
+    }
+    let mut out = RadialPsd {
+        q: Vec::new(),
+        c: Vec::new(),
+        count: Vec::new(),
+    };
+    for r in 1..=n_rings {
+        if count[r] > 0 {
+            out.q.push(sum_q[r] / count[r] as f64);
+            out.c.push(sum_c[r] / count[r] as f64);
+            out.count.push(count[r]);
+        }
+    }
+    out
+}
+
+/// The autocorrelation R(k Δx, l Δy) = (1/N) Σ z(i, j) z(i + k, j + l) of the mean-free map
+/// (periodic, the discrete (B.1.2)/(C.1.9)), row-major with lags k, l ≥ 0 wrapping; R(0, 0) = σ².
+pub fn autocorrelation(map: &HeightMap) -> Vec<f64> {
+    let p = periodogram(map);
+    let mut data: Vec<Complex64> = p.into_iter().map(|v| Complex64::new(v, 0.0)).collect();
+    // R = Σ p e^{+2πi…}: the inverse transform without its 1/N.
+    fft2(&mut data, map.nx, map.ny, Direction::Inverse);
+    let n = (map.nx * map.ny) as f64;
+    data.into_iter().map(|c| c.re * n).collect()
+}
+
+/// Local maxima of a map: points higher than their 8 neighbours (periodic), section B.4.
+/// Returned as (column, row) indices.
+pub fn peaks(map: &HeightMap) -> Vec<(usize, usize)> {
+    let (nx, ny) = (map.nx, map.ny);
+    (0..ny)
+        .into_par_iter()
+        .flat_map_iter(|j| {
+            (0..nx).filter_map(move |i| {
+                let z = map.at(i, j);
+                for dj in [ny - 1, 0, 1] {
+                    for di in [nx - 1, 0, 1] {
+                        if di == 0 && dj == 0 {
+                            continue;
+                        }
+                        if map.at((i + di) % nx, (j + dj) % ny) >= z {
+                            return None;
+                        }
+                    }
+                }
+                Some((i, j))
+            })
+        })
+        .collect()
+}
+
+/// Peak statistics of section B.4.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct PeakStatistics {
+    /// Number of 8-neighbour local maxima.
+    pub count: usize,
+    /// Peaks per unit area [1/m²] (compare with Nayak's η (3.9)).
+    pub density: f64,
+    /// Mean distance from each peak to its nearest neighbour (periodic) [m]; NaN with < 2 peaks.
+    pub mean_nearest_distance: f64,
+}
+
+/// Count the peaks of a map and the mean distance from each to its nearest neighbour
+/// (section B.4), with a cell list so the cost stays near-linear in the number of peaks.
+pub fn peak_statistics(map: &HeightMap) -> PeakStatistics {
+    let pk = peaks(map);
+    let (lx, ly) = (map.lx, map.ly);
+    let pos: Vec<(f64, f64)> = pk
+        .iter()
+        .map(|&(i, j)| (i as f64 * map.dx(), j as f64 * map.dy()))
+        .collect();
+    let n = pos.len();
+    let density = n as f64 / (lx * ly);
+    if n < 2 {
+        return PeakStatistics {
+            count: n,
+            density,
+            mean_nearest_distance: f64::NAN,
+        };
+    }
+    // Cells of about one peak each.
+    let cell = (lx * ly / n as f64).sqrt();
+    let cx = ((lx / cell).floor() as usize).max(1);
+    let cy = ((ly / cell).floor() as usize).max(1);
+    let (wx, wy) = (lx / cx as f64, ly / cy as f64);
+    let mut cells: Vec<Vec<usize>> = vec![Vec::new(); cx * cy];
+    let cell_of = |x: f64, y: f64| (((x / wx) as usize).min(cx - 1), ((y / wy) as usize).min(cy - 1));
+    for (k, &(x, y)) in pos.iter().enumerate() {
+        let (a, b) = cell_of(x, y);
+        cells[b * cx + a].push(k);
+    }
+    let periodic = |d: f64, l: f64| {
+        let d = d.abs() % l;
+        d.min(l - d)
+    };
+    let total: f64 = (0..n)
+        .into_par_iter()
+        .map(|k| {
+            let (x, y) = pos[k];
+            let (a, b) = cell_of(x, y);
+            let mut best = f64::INFINITY;
+            let max_ring = cx.max(cy) / 2 + 1;
+            for ring in 0..=max_ring {
+                // Every point outside rings 0..ring is farther than ring·min(wx, wy).
+                if best <= ring.saturating_sub(1) as f64 * wx.min(wy) {
+                    break;
+                }
+                let r = ring as isize;
+                for db in -r..=r {
+                    for da in -r..=r {
+                        if da.abs() != r && db.abs() != r {
+                            continue;
+                        }
+                        let ca = (a as isize + da).rem_euclid(cx as isize) as usize;
+                        let cb = (b as isize + db).rem_euclid(cy as isize) as usize;
+                        for &o in &cells[cb * cx + ca] {
+                            if o == k {
+                                continue;
+                            }
+                            let d = periodic(pos[o].0 - x, lx).hypot(periodic(pos[o].1 - y, ly));
+                            best = best.min(d);
+                        }
+                    }
+                }
+            }
+            best
+        })
+        .sum();
+    PeakStatistics {
+        count: n,
+        density,
+        mean_nearest_distance: total / n as f64,
+    }
+}
+
+/// An analytic PSD averaged over the same rings as [`radial_psd`] of `map`: the expectation of
+/// the estimate. The rings are Δq wide, so where C changes fast on the scale Δq the ring average
+/// exceeds C(q̄) (C is convex there); comparing with this removes that bias.
+pub fn radial_model(map: &HeightMap, psd: impl Fn(f64) -> f64 + Sync) -> RadialPsd {
+    let (nx, ny, lx, ly) = (map.nx, map.ny, map.lx, map.ly);
+    let c2d: Vec<f64> = (0..nx * ny)
+        .into_par_iter()
+        .map(|k| psd(wavenumber(k % nx, k / nx, nx, ny, lx, ly)))
+        .collect();
+    radial_average(map, &c2d)
+}

@@ -48,14 +48,24 @@ pub fn generate(spectrum: &Spectrum, nx: usize, ny: usize, lx: f64, ly: f64, see
     let noise = white_noise(nx * ny, seed);
     let mut data: Vec<Complex64> = noise.into_iter().map(|v| Complex64::new(v, 0.0)).collect();
     fft2(&mut data, nx, ny, Direction::Forward);
-    data.par_chunks_mut(nx).enumerate().for_each(|(l, row)| {
-        for (k, v) in row.iter_mut().enumerate() {
-            let h = if k == 0 && l == 0 {
+    // |q| depends on |signed k|, |signed l| only: the filter H = C^(1/2) (C.1.12) on one quadrant
+    // of (hx × hy) bins serves all four (bit for bit the same values).
+    let (hx, hy) = (nx / 2 + 1, ny / 2 + 1);
+    let filter: Vec<f64> = (0..hx * hy)
+        .into_par_iter()
+        .map(|i| {
+            let (k, l) = (i % hx, i / hx);
+            if k == 0 && l == 0 {
                 0.0
             } else {
                 psd.psd(wavenumber(k, l, nx, ny, lx, ly)).sqrt()
-            };
-            *v *= h;
+            }
+        })
+        .collect();
+    data.par_chunks_mut(nx).enumerate().for_each(|(l, row)| {
+        let frow = &filter[l.min(ny - l) * hx..][..hx];
+        for (k, v) in row.iter_mut().enumerate() {
+            *v *= frow[k.min(nx - k)];
         }
     });
     fft2(&mut data, nx, ny, Direction::Inverse);

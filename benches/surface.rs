@@ -1,0 +1,49 @@
+//! Rough surfaces: generation (FFT filtering of white noise), isotropic PSD with the spectral
+//! moments (one transform), peak statistics and the (3.16) fit, on 256² and 1024² grids with the
+//! Si mold's spectrum (3.16), (3.17) on a 2 µm scan.
+
+use std::hint::black_box;
+
+use adhesion::surface::{Cutoff, Spectrum, fit_abc, generate, peak_statistics, radial_psd_and_moments};
+use criterion::{Criterion, criterion_group, criterion_main};
+
+fn mold() -> Spectrum {
+    Spectrum::Abc {
+        rms: 1.45e-9,
+        correlation_length: 20.1e-9,
+        exponent: 3.28,
+        cutoff: Some(1.0e8),
+    }
+}
+
+fn surface(c: &mut Criterion) {
+    let s = mold();
+    let mut group = c.benchmark_group("surface");
+    group.sample_size(10);
+    for n in [256usize, 1024] {
+        let map = generate(&s, n, n, 2e-6, 2e-6, 1).expect("generate");
+        group.bench_function(format!("generate {n}x{n}"), |b| {
+            b.iter(|| black_box(generate(&s, n, n, 2e-6, 2e-6, 1).expect("generate")));
+        });
+        group.bench_function(format!("radial PSD + moments {n}x{n}"), |b| {
+            b.iter(|| black_box(radial_psd_and_moments(&map)));
+        });
+        group.bench_function(format!("generate + radial PSD + moments {n}x{n}"), |b| {
+            b.iter(|| {
+                let m = generate(&s, n, n, 2e-6, 2e-6, 1).expect("generate");
+                black_box(radial_psd_and_moments(&m))
+            });
+        });
+        group.bench_function(format!("peak statistics {n}x{n}"), |b| {
+            b.iter(|| black_box(peak_statistics(&map)));
+        });
+        let (psd, _) = radial_psd_and_moments(&map);
+        group.bench_function(format!("fit (3.16) to the radial PSD of {n}x{n}"), |b| {
+            b.iter(|| black_box(fit_abc(&psd, Cutoff::Fixed(1.0e8)).expect("fit")));
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, surface);
+criterion_main!(benches);

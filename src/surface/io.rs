@@ -1,0 +1,289 @@
+//! Import and export of height maps: a plain text matrix (CSV or whitespace separated; rows are
+//! y, columns x; heights in metres) and Gwyddion's simple field format (`.gsf`).
+//!
+//! A text matrix carries no grid size, so the pixel size comes from the command line, unless the
+//! file starts with the comment this module writes,
+//! `# adhesion height map: nx=… ny=… lx=… ly=… (SI units, rows are y)`. Written values use
+//! Rust's shortest round-trip form, so CSV export and import are lossless. GSF stores 32-bit
+//! floats: a GSF round trip is exact to f32 precision.
+
+use std::path::Path;
+
+use super::height_map::HeightMap;
+use crate::error::{Error, Result};
+use crate::render::write_atomic;
+
+/// Magic first line of a Gwyddion simple field file.
+const GSF_MAGIC: &str = "Gwyddion Simple Field 1.0\n";
+/// Start of the header comment written by [`to_csv`].
+const CSV_HEADER: &str = "# adhesion height map:";
+
+/// File formats of height maps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MapFormat {
+    /// Text matrix.
+    Csv,
+    /// Gwyddion simple field.
+    Gsf,
+}
+
+impl MapFormat {
+    /// The format of a path by its extension: `.gsf` is GSF, anything else text.
+    pub fn of(path: &Path) -> MapFormat {
+        match path.extension().and_then(|e| e.to_str()) {
+            Some(e) if e.eq_ignore_ascii_case("gsf") => MapFormat::Gsf,
+            _ => MapFormat::Csv,
+        }
+    }
+}
+
+/// The map as a text matrix with the header comment.
+pub fn to_csv(map: &HeightMap) -> String {
+    let mut s = format!(
+        "{CSV_HEADER} nx={} ny={} lx={:e} ly={:e} (SI units, rows are y)\n",
+        map.nx, map.ny, map.lx, map.ly
+    );
+    for row in map.z.chunks(map.nx) {
+        let line: Vec<String> = row.iter().map(|v| format!("{v:e}")).collect();
+        s.push_str(&line.join(","));
+        s.push('\n');
+    }
+    s
+}
+
+/// Parse a text matrix. `pixel_size` [m] (square pixels) overrides the header comment; one of
+/// the two must be present.
+///
+/// # Errors
+/// [`Error::DataFile`] naming the line for a ragged row, a non-number, a non-finite height, an
+/// empty file, a missing or non-positive pixel size.
+pub fn parse_csv(text: &str, path: &Path, pixel_size: Option<f64>) -> Result<HeightMap> {
+    let mut header: Option<(usize, usize, f64, f64)> = None;
+    let mut z = Vec::new();
+    let mut nx = 0usize;
+    let mut ny = 0usize;
+    for (ln, line) in text.lines().enumerate() {
+        let ln = ln + 1;
+        let t = line.trim();
+        if let Some(rest) = t.strip_prefix(CSV_HEADER) {
+            header = Some(parse_header(rest, path, ln)?);
+            continue;
+        }
+        if t.is_empty() || t.starts_with('#') {
+            continue;
+        }
+        let mut count = 0;
+        for field in t.split(|c: char| c == ',' || c == ';' || c.is_whitespace()) {
+            if field.is_empty() {
+                continue;
+            }
+            let v: f64 = field
+                .parse()
+                .map_err(|_| Error::data_file(path, ln, format!("`{field}` is not a number")))?;
+            if !v.is_finite() {
+                return Err(Error::data_file(
+                    path,
+                    ln,
+                    format!("height `{field}` is not finite"),
+                ));
+            }
+            z.push(v);
+            count += 1;
+        }
+        if ny == 0 {
+            nx = count;
+        } else if count != nx {
+            return Err(Error::data_file(
+                path,
+                ln,
+                format!("ragged row: {count} values, the first row has {nx}"),
+            ));
+        }
+        ny += 1;
+    }
+    if ny == 0 {
+        return Err(Error::data_file(path, 0, "no height values"));
+    }
+    if nx < 2 || ny < 2 {
+        return Err(Error::data_file(
+            path,
+            0,
+            format!("a height map needs at least 2 x 2 values, found {nx} x {ny}"),
+        ));
+    }
+    let (lx, ly) = match (pixel_size, header) {
+        (Some(p), _) => {
+            if !(p > 0.0 && p.is_finite()) {
+                return Err(Error::data_file(
+                    path,
+                    0,
+                    format!("pixel size {p} must be positive and finite"),
+                ));
+            }
+            (p * nx as f64, p * ny as f64)
+        }
+        (None, Some((hx, hy, lx, ly))) => {
+            if (hx, hy) != (nx, ny) {
+                return Err(Error::data_file(
+                    path,
+                    0,
+                    format!("header says {hx} x {hy} points, the data has {nx} x {ny}"),
+                ));
+            }
+            (lx, ly)
+        }
+        (None, None) => {
+            return Err(Error::data_file(
+                path,
+                0,
+                "no pixel size: give --pixel-size METRES for a plain text matrix",
+            ));
+        }
+    };
+    HeightMap::new(nx, ny, lx, ly, z).map_err(|e| Error::data_file(path, 0, e.to_string()))
+}
+
+fn parse_header(rest: &str, path: &Path, ln: usize) -> Result<(usize, usize, f64, f64)> {
+    let mut vals = [None; 4];
+    for tok in rest.split_whitespace() {
+        if let Some((k, v)) = tok.split_once('=') {
+            let idx = match k {
+                "nx" => 0,
+                "ny" => 1,
+                "lx" => 2,
+                "ly" => 3,
+                _ => continue,
+            };
+            let parsed: f64 = v
+                .parse()
+                .map_err(|_| Error::data_file(path, ln, format!("header value `{tok}` is not a number")))?;
+            vals[idx] = Some(parsed);
+        }
+    }
+    match vals {
+        [Some(nx), Some(ny), Some(lx), Some(ly)]
+            if lx > 0.0 && ly > 0.0 && lx.is_finite() && ly.is_finite() =>
+        {
+            Ok((nx as usize, ny as usize, lx, ly))
+        }
+        _ => Err(Error::data_file(
+            path,
+            ln,
+            "header needs nx, ny and positive lx, ly",
+        )),
+    }
+}
+
+/// The map in Gwyddion simple field format (little-endian f32 heights after a text header
+/// padded with NUL bytes to a multiple of 4).
+pub fn to_gsf(map: &HeightMap) -> Vec<u8> {
+    let mut h = format!(
+        "{GSF_MAGIC}XRes = {}\nYRes = {}\nXReal = {:e}\nYReal = {:e}\nXYUnits = m\nZUnits = m\nTitle = adhesion height map\n",
+        map.nx, map.ny, map.lx, map.ly
+    )
+    .into_bytes();
+    let pad = 4 - h.len() % 4;
+    h.extend(std::iter::repeat_n(0u8, pad));
+    h.reserve(4 * map.z.len());
+    for v in &map.z {
+        h.extend_from_slice(&(*v as f32).to_le_bytes());
+    }
+    h
+}
+
+/// Parse a Gwyddion simple field file.
+///
+/// # Errors
+/// [`Error::DataFile`] for a missing magic line, a missing or bad XRes/YRes/XReal/YReal, a
+/// header without its NUL padding, truncated data, or non-finite heights.
+pub fn parse_gsf(bytes: &[u8], path: &Path) -> Result<HeightMap> {
+    if !bytes.starts_with(GSF_MAGIC.as_bytes()) {
+        return Err(Error::data_file(
+            path,
+            1,
+            "not a Gwyddion simple field file (bad magic line)",
+        ));
+    }
+    let Some(nul) = bytes.iter().position(|&b| b == 0) else {
+        return Err(Error::data_file(
+            path,
+            0,
+            "truncated .gsf: header has no NUL padding",
+        ));
+    };
+    let header = std::str::from_utf8(&bytes[..nul])
+        .map_err(|_| Error::data_file(path, 0, "header of .gsf is not UTF-8"))?;
+    let mut xres = None;
+    let mut yres = None;
+    let mut xreal = None;
+    let mut yreal = None;
+    for (ln, line) in header.lines().enumerate().skip(1) {
+        let Some((k, v)) = line.split_once('=') else {
+            continue;
+        };
+        let (k, v) = (k.trim(), v.trim());
+        let bad = || Error::data_file(path, ln + 1, format!("{k} = `{v}` is not a valid value"));
+        match k {
+            "XRes" => xres = Some(v.parse::<usize>().map_err(|_| bad())?),
+            "YRes" => yres = Some(v.parse::<usize>().map_err(|_| bad())?),
+            "XReal" => xreal = Some(v.parse::<f64>().map_err(|_| bad())?),
+            "YReal" => yreal = Some(v.parse::<f64>().map_err(|_| bad())?),
+            _ => {}
+        }
+    }
+    let (Some(nx), Some(ny)) = (xres, yres) else {
+        return Err(Error::data_file(path, 0, ".gsf header lacks XRes or YRes"));
+    };
+    // Gwyddion: XReal, YReal default to 1 (in XYUnits); we require them explicitly.
+    let (Some(lx), Some(ly)) = (xreal, yreal) else {
+        return Err(Error::data_file(path, 0, ".gsf header lacks XReal or YReal"));
+    };
+    let start = (nul / 4 + 1) * 4;
+    let need = nx
+        .checked_mul(ny)
+        .and_then(|n| n.checked_mul(4))
+        .ok_or_else(|| Error::data_file(path, 0, "XRes x YRes overflows"))?;
+    if bytes.len() < start + need {
+        return Err(Error::data_file(
+            path,
+            0,
+            format!(
+                "truncated .gsf: {} bytes of data, XRes x YRes = {nx} x {ny} needs {need}",
+                bytes.len().saturating_sub(start)
+            ),
+        ));
+    }
+    let z: Vec<f64> = bytes[start..start + need]
+        .chunks_exact(4)
+        .map(|c| f64::from(f32::from_le_bytes([c[0], c[1], c[2], c[3]])))
+        .collect();
+    HeightMap::new(nx, ny, lx, ly, z).map_err(|e| Error::data_file(path, 0, e.to_string()))
+}
+
+/// Read a height map, the format by extension (`.gsf`, else text). `pixel_size` [m] is needed
+/// for a text matrix without the header comment and overrides it; ignored for `.gsf`.
+///
+/// # Errors
+/// [`Error::DataFile`] as [`parse_csv`] and [`parse_gsf`], or when the file cannot be read.
+pub fn read_height_map(path: &Path, pixel_size: Option<f64>) -> Result<HeightMap> {
+    let bytes = std::fs::read(path).map_err(|e| Error::data_file(path, 0, format!("cannot read: {e}")))?;
+    match MapFormat::of(path) {
+        MapFormat::Gsf => parse_gsf(&bytes, path),
+        MapFormat::Csv => {
+            let text =
+                std::str::from_utf8(&bytes).map_err(|_| Error::data_file(path, 0, "not a text file"))?;
+            parse_csv(text, path, pixel_size)
+        }
+    }
+}
+
+/// Write a height map atomically, the format by extension (`.gsf`, else text matrix).
+///
+/// # Errors
+/// File-system errors.
+pub fn write_height_map(map: &HeightMap, path: &Path) -> Result<()> {
+    match MapFormat::of(path) {
+        MapFormat::Gsf => write_atomic(path, &to_gsf(map)),
+        MapFormat::Csv => write_atomic(path, to_csv(map).as_bytes()),
+    }
+}
