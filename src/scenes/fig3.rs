@@ -13,7 +13,7 @@ use crate::models::maugis_dugdale::{
 };
 use crate::numerics::curve::logspace;
 use crate::params::Range;
-use crate::surface::{Moments, Spectrum};
+use crate::surface::{Moments, Spectrum, moments_of_map, read_height_map};
 
 /// The scenes of this chapter, in figure order.
 pub const SCENES: &[&dyn SceneDyn] = &[
@@ -674,6 +674,12 @@ crate::scene_params! {
         cutoff: f64 = 1.0e8, unit = "1/m", range = Range::positive();
         /// Measured RMS roughness of the mold; the model's σ_rms = k × this (Sec. 3.3).
         measured_rms: f64 = 1.52e-9, unit = "m", range = Range::positive();
+        /// A measured height map (.csv/.txt matrix or Gwyddion .gsf) replacing the PSD (3.16)-(3.17); empty: the PSD.
+        surface: String = String::new(), unit = "", range = Range::any();
+        /// Pixel size of a text height map (0: the file must carry it, as .gsf does).
+        pixel_size: f64 = 0.0, unit = "m", range = Range::non_negative();
+        /// Subtract the least-squares plane of the height map (else only its mean).
+        remove_tilt: bool = false, unit = "", range = Range::any();
         /// Z₀ of the first pair (Fig. 3.8a, thick line).
         range_1: f64 = 24.0e-9, unit = "m", range = Range::positive();
         /// σ_rms of the first pair.
@@ -706,34 +712,74 @@ crate::scene_params! {
 }
 
 impl Fig3_8Params {
-    /// The spectral moments of the model surface of roughness σ_rms: the PSD (3.16) with (3.17)
-    /// scaled by k² where k = σ_rms / measured_rms (Sec. 3.3).
+    /// The substrate's spectral moments at k = 1 and the roughness they stand for: the PSD (3.16)
+    /// with (3.17) and the measured mold roughness `measured_rms` (Sec. 3.3), or, when `surface`
+    /// names a height map, the moments of that map ([`crate::surface::moments_of_map`], mean or
+    /// plane removed) and its own RMS height.
     ///
     /// # Errors
-    /// Invalid PSD parameters.
-    pub fn moments(&self, sigma: f64) -> Result<Moments> {
-        let base = Spectrum::Abc {
-            rms: self.psd_rms,
-            correlation_length: self.correlation_length,
-            exponent: self.exponent,
-            cutoff: Some(self.cutoff),
+    /// Invalid PSD parameters; an unreadable or invalid height map.
+    pub fn base_moments(&self) -> Result<(Moments, f64)> {
+        if self.surface.is_empty() {
+            let m = Spectrum::Abc {
+                rms: self.psd_rms,
+                correlation_length: self.correlation_length,
+                exponent: self.exponent,
+                cutoff: Some(self.cutoff),
+            }
+            .moments()?;
+            return Ok((m, self.measured_rms));
         }
-        .moments()?;
-        Ok(base.scaled(sigma / self.measured_rms))
+        let pixel = (self.pixel_size > 0.0).then_some(self.pixel_size);
+        let mut map = read_height_map(std::path::Path::new(&self.surface), pixel)?;
+        if self.remove_tilt {
+            map.remove_tilt();
+        } else {
+            map.remove_mean();
+        }
+        let m = moments_of_map(&map);
+        let rms = m.m0.sqrt();
+        if rms.is_nan() || rms <= 0.0 {
+            return Err(Error::invalid(
+                "surface",
+                &self.surface,
+                "is flat (zero RMS height)",
+            ));
+        }
+        Ok((m, rms))
     }
 
-    /// The DDH model at (Z₀, σ_rms).
+    /// The spectral moments of the model surface of roughness σ_rms: the base moments
+    /// ([`Fig3_8Params::base_moments`]) scaled by k² where k = σ_rms / (their roughness), as
+    /// Sec. 3.3 scales (3.16)-(3.17) with k = σ_rms / 1.52 nm.
+    ///
+    /// # Errors
+    /// As [`Fig3_8Params::base_moments`].
+    pub fn moments(&self, sigma: f64) -> Result<Moments> {
+        let (base, rms) = self.base_moments()?;
+        Ok(base.scaled(sigma / rms))
+    }
+
+    /// The DDH model at (Z₀, σ_rms) on given base moments (see [`Fig3_8Params::base_moments`]).
     ///
     /// # Errors
     /// Invalid parameters.
-    pub fn model(&self, z0: f64, sigma: f64) -> Result<Ddh> {
+    pub fn model_on(&self, base: (Moments, f64), z0: f64, sigma: f64) -> Result<Ddh> {
         Ddh::new(
-            self.moments(sigma)?,
+            base.0.scaled(sigma / base.1),
             self.tip_radius,
             self.modulus,
             self.work_of_adhesion,
             z0,
         )
+    }
+
+    /// The DDH model at (Z₀, σ_rms).
+    ///
+    /// # Errors
+    /// Invalid parameters; an unreadable height map.
+    pub fn model(&self, z0: f64, sigma: f64) -> Result<Ddh> {
+        self.model_on(self.base_moments()?, z0, sigma)
     }
 
     /// The loss per nominal area over the contour grid (Z₀ along x, σ_rms along y), row-major
@@ -748,6 +794,7 @@ impl Fig3_8Params {
         job: &Job,
     ) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>)> {
         use rayon::prelude::*;
+        let base = self.base_moments()?;
         let zs = crate::numerics::curve::linspace(self.range_min, self.range_max, n);
         let ss = crate::numerics::curve::linspace(self.sigma_min, self.sigma_max, n);
         let values: Vec<f64> = (0..n * n)
@@ -755,7 +802,7 @@ impl Fig3_8Params {
             .map(|k| {
                 job.check()?;
                 let (i, j) = (k % n, k / n);
-                self.model(zs[i], ss[j])?.loss_per_area(method)
+                self.model_on(base, zs[i], ss[j])?.loss_per_area(method)
             })
             .collect::<Result<_>>()?;
         Ok((zs, ss, values))
@@ -810,6 +857,10 @@ impl Scene for Fig3_8 {
         ("m2_unscaled_norm", "m2 at k = 1 (printed 1.3e-3)"),
         ("m4_unscaled_per_m2", "m4 at k = 1 (printed 4.3 um^-2)"),
         ("nayak_alpha_norm", "Nayak's alpha = m0 m4/m2^2"),
+        (
+            "base_rms_m",
+            "RMS height the k = 1 moments stand for: measured_rms, or the height map's",
+        ),
         ("chi_1_norm", "chi (3.2) at the first pair"),
         ("chi_2_norm", "chi (3.2) at the second pair"),
         (
@@ -856,7 +907,11 @@ impl Scene for Fig3_8 {
         let method = p.loss.method();
         let jkr = JkrNominalArea::new(p.tip_radius, p.modulus, p.jkr_work_of_adhesion)?;
         let pairs = [(p.range_1, p.sigma_1), (p.range_2, p.sigma_2)];
-        let models = [p.model(pairs[0].0, pairs[0].1)?, p.model(pairs[1].0, pairs[1].1)?];
+        let base_moments = p.base_moments()?;
+        let models = [
+            p.model_on(base_moments, pairs[0].0, pairs[0].1)?,
+            p.model_on(base_moments, pairs[1].0, pairs[1].1)?,
+        ];
         let per_area = [models[0].loss_per_area(method)?, models[1].loss_per_area(method)?];
         let depths: Vec<f64> = (0..p.points)
             .map(|i| p.depth_max * i as f64 / (p.points - 1) as f64)
@@ -935,7 +990,7 @@ impl Scene for Fig3_8 {
         }
         fig.panels.push(c);
 
-        let base = p.moments(p.measured_rms)?;
+        let base = base_moments.0;
         fig.result("loss_per_area_1_J_per_m2", per_area[0]);
         fig.result("loss_per_area_2_J_per_m2", per_area[1]);
         for (k, m) in models.iter().enumerate() {
@@ -959,8 +1014,17 @@ impl Scene for Fig3_8 {
         fig.result("area_bracket_min_norm", jkr.area_bracket(p.depth_max)?);
         fig.result("area_bracket_max_norm", jkr.area_bracket(1e-6 * p.depth_max)?);
         fig.result("ell_jkr_norm", jkr.ell);
-        fig.note("moments computed from (3.16)-(3.17): they differ from the printed (3.18) (ERRATA.md); eta does not depend on k");
-        fig.note("k = sigma_rms / measured_rms with the measured 1.52 nm, as Sec. 3.3 maps k = 1.97, 8.03 to 3 nm, 12.2 nm");
+        fig.result("base_rms_m", base_moments.1);
+        if p.surface.is_empty() {
+            fig.note("moments computed from (3.16)-(3.17): they differ from the printed (3.18) (ERRATA.md); eta does not depend on k");
+            fig.note("k = sigma_rms / measured_rms with the measured 1.52 nm, as Sec. 3.3 maps k = 1.97, 8.03 to 3 nm, 12.2 nm");
+        } else {
+            fig.note(format!(
+                "moments from the height map {} (RMS {:.3} nm); k = sigma_rms / that RMS",
+                p.surface,
+                base_moments.1 / nm
+            ));
+        }
         job.progress(1.0, "done");
         Ok(fig)
     }
