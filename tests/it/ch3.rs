@@ -521,3 +521,63 @@ fn loss_per_area_from_a_height_map() {
     let e = p.model(24e-9, 12.2e-9).unwrap_err().to_string();
     assert!(e.contains("missing.gsf") && !e.contains('\n'), "{e}");
 }
+
+/// `adhesion --headless --figure fig3.8 --surface FILE`: the moments come from the map (its η
+/// in the JSON results, its RMS as the k = 1 roughness), the loss per area at the first pair is
+/// within 10 % of the PSD's 0.02209 J/m² (a 2 µm × 2 µm, 256² sample of (3.16)-(3.17), like the
+/// scan of Fig. 3.7c); a missing file fails in one line and writes nothing.
+#[test]
+fn command_line_fig3_8_on_a_height_map() {
+    use adhesion::surface::{Spectrum, generate, moments_of_map, write_height_map};
+    let spectrum = Spectrum::Abc {
+        rms: 1.45e-9,
+        correlation_length: 20.1e-9,
+        exponent: 3.28,
+        cutoff: Some(1.0e8),
+    };
+    let map = generate(&spectrum, 256, 256, 2e-6, 2e-6, 3).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("mold.gsf");
+    write_height_map(&map, &path).unwrap();
+    let out = dir.path().join("out");
+    let run = |surface: &std::path::Path| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_adhesion"))
+            .args([
+                "--headless",
+                "--figure",
+                "fig3.8",
+                "--quick",
+                "--format",
+                "json",
+                "--out",
+            ])
+            .arg(&out)
+            .arg("--surface")
+            .arg(surface)
+            .output()
+            .unwrap()
+    };
+    let o = run(&path);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("fig3.8.json")).unwrap()).unwrap();
+    let r = &v["results"];
+    let get = |k: &str| r[k].as_f64().unwrap_or_else(|| panic!("{k} in {r}"));
+    assert_rel(
+        "eta",
+        get("asperity_density_per_m2"),
+        moments_of_map(&map).asperity_density(),
+        1e-4,
+    );
+    assert_rel("base rms", get("base_rms_m"), 1.45e-9, 1e-4);
+    assert!(rel(get("loss_per_area_1_exact_J_per_m2"), 0.022_09) < 0.1, "{r}");
+    std::fs::remove_dir_all(&out).unwrap();
+    let o = run(&dir.path().join("missing.gsf"));
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("missing.gsf") && err.trim().lines().count() == 1,
+        "{err}"
+    );
+    assert!(!out.join("fig3.8.json").exists());
+}
