@@ -954,7 +954,7 @@ impl Scene for Fig3_8 {
         }
         b.add(
             Series::new(
-                "measured 0.0241 J/m²",
+                format!("measured {} J/m²", p.measured_level),
                 Style::Reference,
                 vec![(0.0, p.measured_level), (p.depth_max / nm, p.measured_level)],
             )
