@@ -54,6 +54,14 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
         let scene = scenes::find(id)?;
         let mut sets = cli.set.clone();
         if let Some(path) = &cli.surface.surface {
+            if !scene.specs().iter().any(|s| s.name == "surface") {
+                return Err(crate::error::Error::invalid(
+                    "surface",
+                    path.display(),
+                    format!("scene {id} takes no height map (use --surface with fig3.7d)"),
+                )
+                .into());
+            }
             sets.push(format!("surface={}", path.display()));
         }
         let values = resolve_values(scene, cli.preset.as_deref(), &sets, cli.quick)?;

@@ -1,13 +1,12 @@
 //! The printed numbers of chapter 3 and its appendix B: the limits and constants of the
-//! Maugis-Dugdale loss (3.5a), (3.5b), (3.6), the error claim of Sec. 3.2.1, the moments (3.18)
-//! and density (3.9) of the PSD (3.16)-(3.17), the comparison of Sec. 3.3 (loss per area at the
-//! two pairs, the best-fit ranges Z₀), the JKR nominal area of B.2, the roughness arithmetic of
-//! Sec. 3.3, Sec. 3.5 and B.3.
+//! Maugis-Dugdale loss (3.5a), (3.5b), (3.6), the error claim of Sec. 3.2.1, the comparison of
+//! Sec. 3.3 (loss per area at the two pairs, the best-fit ranges Z₀), the JKR nominal area of
+//! B.2, the roughness arithmetic of Sec. 3.3, Sec. 3.5 and B.3.
 //!
-//! Not registered: numbers that are measurements or literature values the workbench cannot
-//! compute (the fit parameters (3.17) of the mold's measured PSD, the measured 0.0241 J/m², the
-//! roughness of the beads and molds, the 17 nm nearest-asperity distance of B.4, which needs the
-//! measured mold topography).
+//! Registered with the rough surfaces (`appc.rs`): the moments (3.18), the density η (3.9) and
+//! the nearest-peak distance of B.4. Not registered: measurements and literature values the
+//! workbench cannot compute (the fit parameters (3.17) of the mold's measured PSD, the measured
+//! 0.0241 J/m², the roughness of the beads and molds, the Z₀ of Table 3.1).
 
 use super::{Claim, Expect, Precision};
 use crate::error::Result;
@@ -15,7 +14,6 @@ use crate::models::ddh::{JkrNominalArea, LossMethod};
 use crate::models::maugis_dugdale::{energy_loss, jkr_loss_constant, scaled_empirical_loss, scaled_loss};
 use crate::numerics::roots::brent;
 use crate::scenes::fig3::Fig3_8Params;
-use crate::surface::Moments;
 
 /// The limit (3.5a) from the exact loss alone: G(s) = ΔĒ_md/ℓ^(5/3) approaches its limit as
 /// 1/λ (λ³ = 9s/2), so two quadratures at s = 1e10 and 1e12 extrapolate it (Richardson).
@@ -56,12 +54,6 @@ fn empirical_max_error() -> Result<f64> {
         }
     }
     Ok(err((0.5 * (lo + hi)).exp())?.max(best.0))
-}
-
-/// The moments of (3.16)-(3.17) at k = 1.
-fn base_moments() -> Result<Moments> {
-    let p = Fig3_8Params::default();
-    p.moments(p.measured_rms)
 }
 
 /// Loss per nominal area (3.19) [J/m²] at (Z₀, σ_rms) of Sec. 3.3.
@@ -106,7 +98,6 @@ fn pdms_modulus() -> f64 {
     0.75e6 * (1.0 - 0.25)
 }
 
-const WHY_MOMENTS: &str = "(3.16)-(3.17) integrated by (3.8) give these moments; the printed m2, m4 do not follow from the printed q0 (ERRATA.md)";
 const WHY_PAIRS: &str = "the text reads the pairs off a fit to the measured 0.0241 J/m^2 with its own moments (eta = 101.4 um^-2); with the moments of (3.16)-(3.17) (eta = 114.4 um^-2) the model gives this value";
 const WHY_EXACT: &str = "with the exact loss (3.4) instead of (3.6); (3.6) is up to 36 % off near lambda = 0.7, where the 96 nm pair lies (chi = 0.36)";
 
@@ -174,46 +165,6 @@ pub fn claims() -> Vec<Claim> {
             expect: Expect::Differs(
                 "the largest error is 36 % at chi^3/ell = 0.087 (lambda = 0.73); it exceeds 15 % for chi^3/ell in [0.024, 0.31] and [1.36, 16.7] (ERRATA.md)",
             ),
-        },
-        Claim {
-            id: "ch3.m0",
-            source: "Eq. (3.18)",
-            quantity: "m0 of (3.16)-(3.17) at k = 1 [nm^2]",
-            printed: "2.1",
-            precision: Precision::Printed,
-            code: "surface::Spectrum::moments",
-            compute: || Ok(base_moments()?.m0 * 1e18),
-            expect: Expect::Reproduced,
-        },
-        Claim {
-            id: "ch3.m2",
-            source: "Eq. (3.18)",
-            quantity: "m2 of (3.16)-(3.17) at k = 1 [1e-3]",
-            printed: "1.3",
-            precision: Precision::Printed,
-            code: "surface::Spectrum::moments",
-            compute: || Ok(base_moments()?.m2 * 1e3),
-            expect: Expect::Differs(WHY_MOMENTS),
-        },
-        Claim {
-            id: "ch3.m4",
-            source: "Eq. (3.18)",
-            quantity: "m4 of (3.16)-(3.17) at k = 1 [um^-2]",
-            printed: "4.3",
-            precision: Precision::Printed,
-            code: "surface::Spectrum::moments",
-            compute: || Ok(base_moments()?.m4 * 1e-12),
-            expect: Expect::Differs(WHY_MOMENTS),
-        },
-        Claim {
-            id: "ch3.asperity_density",
-            source: "Sec. 3.3, Eq. (3.9)",
-            quantity: "asperity density eta of (3.16)-(3.17) [um^-2] (independent of k)",
-            printed: "101.4",
-            precision: Precision::Printed,
-            code: "surface::Moments::asperity_density",
-            compute: || Ok(base_moments()?.asperity_density() * 1e-12),
-            expect: Expect::Differs(WHY_MOMENTS),
         },
         Claim {
             id: "ch3.loss_per_area_24nm_empirical",

@@ -13,7 +13,7 @@ use crate::models::maugis_dugdale::{
 };
 use crate::numerics::curve::logspace;
 use crate::params::Range;
-use crate::surface::{Moments, Spectrum};
+use crate::surface::{Moments, Spectrum, moments_of_map, read_height_map};
 
 /// The scenes of this chapter, in figure order.
 pub const SCENES: &[&dyn SceneDyn] = &[
@@ -404,9 +404,13 @@ crate::param_choice! {
     pub enum CostSource { Measured = "measured", Benchmark = "benchmark" }
 }
 
-/// Benchmark medians per evaluation [s] (benches/ch3.rs, release, this class of machine): the
-/// exact loss by quadrature, the table lookup, the empirical function (3.6).
-pub const BENCH_COST_S: [f64; 3] = [2.0e-5, 6.0e-8, 4.0e-8];
+/// Benchmark medians per evaluation [s] (benches/ch3.rs, release, 2 cores): the exact loss by
+/// quadrature (transition case), the table lookup, the empirical function (3.6).
+pub const BENCH_COST_S: [f64; 3] = [3.3e-5, 6.7e-8, 2.9e-8];
+
+/// Benchmark medians per grid point of fig3.8c [s] (benches/ch3.rs, release, 2 cores): the loss
+/// per area with quadrature at every node (one point), with the table and with (3.6) (60 x 60).
+pub const BENCH_GRID_COST_S: [f64; 3] = [5.7e-3, 9.1e-5, 6.8e-5];
 
 crate::scene_params! {
     /// Parameters of scene fig3.5-accuracy.
@@ -421,6 +425,8 @@ crate::scene_params! {
         table_densities: Vec<f64> = vec![5.0, 10.0, 20.0, 40.0], unit = "", range = Range::between(1.0, 1000.0);
         /// Cost per evaluation: measured now (wall clock), or the benchmark medians (reproducible).
         cost: CostSource = CostSource::Measured, unit = "", range = Range::any();
+        /// Grid points per axis of the fig3.8c comparison (c); the reference costs about 6 ms per point.
+        grid_points: usize = 8, unit = "", range = Range::between(2.0, 60.0);
     }
 }
 
@@ -449,8 +455,23 @@ impl Scene for Fig3_5Accuracy {
     const TITLE: &'static str = "Loss per asperity: accuracy against cost";
     const CAPTION: &'static str = "Relative error of the loss per asperity against the quadrature of (3.4): (a) over \
         s = chi^3/ell for the tables and the empirical function (3.6); (b) the largest error against the cost per \
-        evaluation.";
+        evaluation; (c) fig3.8c: the largest error of the loss per nominal area (3.19) over a (Z0, sigma_rms) grid \
+        with the table and with (3.6), against the quadrature at every node, vs the run time per grid point.";
     const RESULTS: &'static [(&'static str, &'static str)] = &[
+        (
+            "grid_table_max_error_norm",
+            "fig3.8c grid: largest |table/quadrature - 1| of the loss per area",
+        ),
+        (
+            "grid_empirical_max_error_norm",
+            "fig3.8c grid: largest |(3.6)/quadrature - 1| of the loss per area",
+        ),
+        (
+            "grid_quadrature_cost_s",
+            "fig3.8c: run time per grid point, quadrature",
+        ),
+        ("grid_table_cost_s", "fig3.8c: run time per grid point, table"),
+        ("grid_empirical_cost_s", "fig3.8c: run time per grid point, (3.6)"),
         (
             "empirical_max_error_norm",
             "largest |(3.6)/exact - 1| on the scan",
@@ -484,6 +505,7 @@ impl Scene for Fig3_5Accuracy {
         p.points = p.points.min(25);
         p.table_densities = vec![5.0, 20.0];
         p.cost = CostSource::Benchmark;
+        p.grid_points = p.grid_points.min(3);
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
@@ -547,7 +569,56 @@ impl Scene for Fig3_5Accuracy {
             )
             .with_color(7),
         );
-        let mut fig = Figure::new(Self::ID, Self::TITLE).with_panel(a).with_panel(b);
+        // (c): the same comparison for the contour of fig3.8c.
+        job.progress(0.8, "fig3.8c grid");
+        let grid = Fig3_8Params::default();
+        let n = p.grid_points;
+        // The shared table is built once per process; keep its construction out of the timing.
+        crate::models::maugis_dugdale::loss_table()?;
+        let timed = |method: LossMethod| -> Result<(Vec<f64>, f64)> {
+            let t0 = std::time::Instant::now();
+            let (_, _, v) = grid.loss_grid(method, n, job)?;
+            Ok((v, t0.elapsed().as_secs_f64() / (n * n) as f64))
+        };
+        let (reference, quad_time) = timed(LossMethod::Quadrature)?;
+        let (tabled, table_time) = timed(LossMethod::Table)?;
+        let (empirical, emp_time) = timed(LossMethod::Empirical)?;
+        let max_err = |v: &[f64]| {
+            v.iter()
+                .zip(&reference)
+                .map(|(x, r)| (x / r - 1.0).abs().max(1e-16))
+                .fold(0.0, f64::max)
+        };
+        let (grid_table_err, grid_emp_err) = (max_err(&tabled), max_err(&empirical));
+        let [quad_time, table_time, emp_time] = if measured {
+            [quad_time, table_time, emp_time]
+        } else {
+            BENCH_GRID_COST_S
+        };
+        let mut c = Panel::new(
+            Axis::log("Run time per grid point", "s"),
+            Axis::log("Largest relative error", ""),
+        )
+        .titled("(c)", "fig3.8c: loss per area over (Z0, σ_rms)");
+        c.add(Series::new("table", Style::Scatter, vec![(table_time, grid_table_err)]).with_color(1));
+        c.add(Series::new("empirical (3.6)", Style::Scatter, vec![(emp_time, grid_emp_err)]).with_color(0));
+        c.add(
+            Series::new(
+                "quadrature at every node, tolerance 1e-7",
+                Style::Scatter,
+                vec![(quad_time, 1e-7)],
+            )
+            .with_color(7),
+        );
+        let mut fig = Figure::new(Self::ID, Self::TITLE)
+            .with_panel(a)
+            .with_panel(b)
+            .with_panel(c);
+        fig.result("grid_table_max_error_norm", grid_table_err);
+        fig.result("grid_empirical_max_error_norm", grid_emp_err);
+        fig.result("grid_quadrature_cost_s", quad_time);
+        fig.result("grid_table_cost_s", table_time);
+        fig.result("grid_empirical_cost_s", emp_time);
         fig.result("empirical_max_error_norm", emp_max);
         fig.result("table_max_error_norm", table_max);
         fig.result("exact_cost_s", exact_cost);
@@ -603,6 +674,12 @@ crate::scene_params! {
         cutoff: f64 = 1.0e8, unit = "1/m", range = Range::positive();
         /// Measured RMS roughness of the mold; the model's σ_rms = k × this (Sec. 3.3).
         measured_rms: f64 = 1.52e-9, unit = "m", range = Range::positive();
+        /// A measured height map (.csv/.txt matrix or Gwyddion .gsf) replacing the PSD (3.16)-(3.17); empty: the PSD.
+        surface: String = String::new(), unit = "", range = Range::any();
+        /// Pixel size of a text height map (0: the file must carry it, as .gsf does).
+        pixel_size: f64 = 0.0, unit = "m", range = Range::non_negative();
+        /// Subtract the least-squares plane of the height map (else only its mean).
+        remove_tilt: bool = false, unit = "", range = Range::any();
         /// Z₀ of the first pair (Fig. 3.8a, thick line).
         range_1: f64 = 24.0e-9, unit = "m", range = Range::positive();
         /// σ_rms of the first pair.
@@ -635,34 +712,74 @@ crate::scene_params! {
 }
 
 impl Fig3_8Params {
-    /// The spectral moments of the model surface of roughness σ_rms: the PSD (3.16) with (3.17)
-    /// scaled by k² where k = σ_rms / measured_rms (Sec. 3.3).
+    /// The substrate's spectral moments at k = 1 and the roughness they stand for: the PSD (3.16)
+    /// with (3.17) and the measured mold roughness `measured_rms` (Sec. 3.3), or, when `surface`
+    /// names a height map, the moments of that map ([`crate::surface::moments_of_map`], mean or
+    /// plane removed) and its own RMS height.
     ///
     /// # Errors
-    /// Invalid PSD parameters.
-    pub fn moments(&self, sigma: f64) -> Result<Moments> {
-        let base = Spectrum::Abc {
-            rms: self.psd_rms,
-            correlation_length: self.correlation_length,
-            exponent: self.exponent,
-            cutoff: Some(self.cutoff),
+    /// Invalid PSD parameters; an unreadable or invalid height map.
+    pub fn base_moments(&self) -> Result<(Moments, f64)> {
+        if self.surface.is_empty() {
+            let m = Spectrum::Abc {
+                rms: self.psd_rms,
+                correlation_length: self.correlation_length,
+                exponent: self.exponent,
+                cutoff: Some(self.cutoff),
+            }
+            .moments()?;
+            return Ok((m, self.measured_rms));
         }
-        .moments()?;
-        Ok(base.scaled(sigma / self.measured_rms))
+        let pixel = (self.pixel_size > 0.0).then_some(self.pixel_size);
+        let mut map = read_height_map(std::path::Path::new(&self.surface), pixel)?;
+        if self.remove_tilt {
+            map.remove_tilt();
+        } else {
+            map.remove_mean();
+        }
+        let m = moments_of_map(&map);
+        let rms = m.m0.sqrt();
+        if rms.is_nan() || rms <= 0.0 {
+            return Err(Error::invalid(
+                "surface",
+                &self.surface,
+                "is flat (zero RMS height)",
+            ));
+        }
+        Ok((m, rms))
     }
 
-    /// The DDH model at (Z₀, σ_rms).
+    /// The spectral moments of the model surface of roughness σ_rms: the base moments
+    /// ([`Fig3_8Params::base_moments`]) scaled by k² where k = σ_rms / (their roughness), as
+    /// Sec. 3.3 scales (3.16)-(3.17) with k = σ_rms / 1.52 nm.
+    ///
+    /// # Errors
+    /// As [`Fig3_8Params::base_moments`].
+    pub fn moments(&self, sigma: f64) -> Result<Moments> {
+        let (base, rms) = self.base_moments()?;
+        Ok(base.scaled(sigma / rms))
+    }
+
+    /// The DDH model at (Z₀, σ_rms) on given base moments (see [`Fig3_8Params::base_moments`]).
     ///
     /// # Errors
     /// Invalid parameters.
-    pub fn model(&self, z0: f64, sigma: f64) -> Result<Ddh> {
+    pub fn model_on(&self, base: (Moments, f64), z0: f64, sigma: f64) -> Result<Ddh> {
         Ddh::new(
-            self.moments(sigma)?,
+            base.0.scaled(sigma / base.1),
             self.tip_radius,
             self.modulus,
             self.work_of_adhesion,
             z0,
         )
+    }
+
+    /// The DDH model at (Z₀, σ_rms).
+    ///
+    /// # Errors
+    /// Invalid parameters; an unreadable height map.
+    pub fn model(&self, z0: f64, sigma: f64) -> Result<Ddh> {
+        self.model_on(self.base_moments()?, z0, sigma)
     }
 
     /// The loss per nominal area over the contour grid (Z₀ along x, σ_rms along y), row-major
@@ -677,6 +794,7 @@ impl Fig3_8Params {
         job: &Job,
     ) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>)> {
         use rayon::prelude::*;
+        let base = self.base_moments()?;
         let zs = crate::numerics::curve::linspace(self.range_min, self.range_max, n);
         let ss = crate::numerics::curve::linspace(self.sigma_min, self.sigma_max, n);
         let values: Vec<f64> = (0..n * n)
@@ -684,7 +802,7 @@ impl Fig3_8Params {
             .map(|k| {
                 job.check()?;
                 let (i, j) = (k % n, k / n);
-                self.model(zs[i], ss[j])?.loss_per_area(method)
+                self.model_on(base, zs[i], ss[j])?.loss_per_area(method)
             })
             .collect::<Result<_>>()?;
         Ok((zs, ss, values))
@@ -739,6 +857,10 @@ impl Scene for Fig3_8 {
         ("m2_unscaled_norm", "m2 at k = 1 (printed 1.3e-3)"),
         ("m4_unscaled_per_m2", "m4 at k = 1 (printed 4.3 um^-2)"),
         ("nayak_alpha_norm", "Nayak's alpha = m0 m4/m2^2"),
+        (
+            "base_rms_m",
+            "RMS height the k = 1 moments stand for: measured_rms, or the height map's",
+        ),
         ("chi_1_norm", "chi (3.2) at the first pair"),
         ("chi_2_norm", "chi (3.2) at the second pair"),
         (
@@ -785,7 +907,11 @@ impl Scene for Fig3_8 {
         let method = p.loss.method();
         let jkr = JkrNominalArea::new(p.tip_radius, p.modulus, p.jkr_work_of_adhesion)?;
         let pairs = [(p.range_1, p.sigma_1), (p.range_2, p.sigma_2)];
-        let models = [p.model(pairs[0].0, pairs[0].1)?, p.model(pairs[1].0, pairs[1].1)?];
+        let base_moments = p.base_moments()?;
+        let models = [
+            p.model_on(base_moments, pairs[0].0, pairs[0].1)?,
+            p.model_on(base_moments, pairs[1].0, pairs[1].1)?,
+        ];
         let per_area = [models[0].loss_per_area(method)?, models[1].loss_per_area(method)?];
         let depths: Vec<f64> = (0..p.points)
             .map(|i| p.depth_max * i as f64 / (p.points - 1) as f64)
@@ -828,7 +954,7 @@ impl Scene for Fig3_8 {
         }
         b.add(
             Series::new(
-                "measured 0.0241 J/m²",
+                format!("measured {} J/m²", p.measured_level),
                 Style::Reference,
                 vec![(0.0, p.measured_level), (p.depth_max / nm, p.measured_level)],
             )
@@ -864,7 +990,7 @@ impl Scene for Fig3_8 {
         }
         fig.panels.push(c);
 
-        let base = p.moments(p.measured_rms)?;
+        let base = base_moments.0;
         fig.result("loss_per_area_1_J_per_m2", per_area[0]);
         fig.result("loss_per_area_2_J_per_m2", per_area[1]);
         for (k, m) in models.iter().enumerate() {
@@ -888,8 +1014,17 @@ impl Scene for Fig3_8 {
         fig.result("area_bracket_min_norm", jkr.area_bracket(p.depth_max)?);
         fig.result("area_bracket_max_norm", jkr.area_bracket(1e-6 * p.depth_max)?);
         fig.result("ell_jkr_norm", jkr.ell);
-        fig.note("moments computed from (3.16)-(3.17): they differ from the printed (3.18) (ERRATA.md); eta does not depend on k");
-        fig.note("k = sigma_rms / measured_rms with the measured 1.52 nm, as Sec. 3.3 maps k = 1.97, 8.03 to 3 nm, 12.2 nm");
+        fig.result("base_rms_m", base_moments.1);
+        if p.surface.is_empty() {
+            fig.note("moments computed from (3.16)-(3.17): they differ from the printed (3.18) (ERRATA.md); eta does not depend on k");
+            fig.note("k = sigma_rms / measured_rms with the measured 1.52 nm, as Sec. 3.3 maps k = 1.97, 8.03 to 3 nm, 12.2 nm");
+        } else {
+            fig.note(format!(
+                "moments from the height map {} (RMS {:.3} nm); k = sigma_rms / that RMS",
+                p.surface,
+                base_moments.1 / nm
+            ));
+        }
         job.progress(1.0, "done");
         Ok(fig)
     }

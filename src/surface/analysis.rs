@@ -82,7 +82,8 @@ pub fn radial_psd(map: &HeightMap) -> RadialPsd {
     radial_average(map, &psd_2d(map))
 }
 
-/// [`radial_psd`] and [`moments_of_map`] from one Fourier transform of the map.
+/// The isotropic PSD (B.1.10) ([`radial_psd`]) and the spectral moments (3.8)
+/// ([`moments_of_map`]) from one Fourier transform of the map.
 pub fn radial_psd_and_moments(map: &HeightMap) -> (RadialPsd, Moments) {
     let p = periodogram(map);
     let m = moments_of_periodogram(map, &p);

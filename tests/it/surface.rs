@@ -504,6 +504,10 @@ fn command_line_rejects_bad_surface_requests_in_one_line() {
             ],
             "fit-cutoff",
         ),
+        (
+            &["--headless", "--figure", "figC.1", "--surface", csv],
+            "takes no height map",
+        ),
     ];
     for (args, needle) in cases {
         let o = std::process::Command::new(env!("CARGO_BIN_EXE_adhesion"))
