@@ -39,8 +39,10 @@ pub fn moments_of_map(map: &HeightMap) -> Moments {
 
 /// [`moments_of_map`] from a periodogram already computed.
 pub fn moments_of_periodogram(map: &HeightMap, p: &[f64]) -> Moments {
-    let (nx, ny, lx, ly) = (map.nx, map.ny, map.lx, map.ly);
-    let (m0, s2, s4) = p
+    let (nx, ny) = (map.nx, map.ny);
+    let (qx2, qy2) = axis_wavenumbers_squared(map);
+    // Per-row sums in parallel, added in row order: independent of the number of threads.
+    let rows: Vec<(f64, f64, f64)> = p
         .par_chunks(nx)
         .enumerate()
         .map(|(l, row)| {
@@ -49,19 +51,33 @@ pub fn moments_of_periodogram(map: &HeightMap, p: &[f64]) -> Moments {
                 if k == 0 && l == 0 {
                     continue;
                 }
-                let q2 = wavenumber(k, l, nx, ny, lx, ly).powi(2);
+                let q2 = qx2[k] + qy2[l];
                 acc.0 += pk;
                 acc.1 += pk * q2;
                 acc.2 += pk * q2 * q2;
             }
             acc
         })
-        .reduce(|| (0.0, 0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1, a.2 + b.2));
+        .collect();
+    debug_assert_eq!(rows.len(), ny);
+    let (m0, s2, s4) = rows
+        .into_iter()
+        .fold((0.0, 0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1, a.2 + b.2));
     Moments {
         m0,
         m2: 0.5 * s2,
         m4: 0.375 * s4,
     }
+}
+
+/// q_k² and q_l² of the DFT bins along x and y (signed indices, as [`wavenumber`]).
+fn axis_wavenumbers_squared(map: &HeightMap) -> (Vec<f64>, Vec<f64>) {
+    let axis = |n: usize, l: f64| -> Vec<f64> {
+        (0..n)
+            .map(|k| (2.0 * std::f64::consts::PI * crate::numerics::fft::signed_index(k, n) / l).powi(2))
+            .collect()
+    };
+    (axis(map.nx, map.lx), axis(map.ny, map.ly))
 }
 
 /// The isotropic PSD C̃^iso(q) of (B.1.10) by radial averaging of [`psd_2d`].
@@ -94,10 +110,11 @@ pub fn radial_psd_and_moments(map: &HeightMap) -> (RadialPsd, Moments) {
 
 /// [`radial_psd`] of a 2D PSD already computed.
 pub fn radial_average(map: &HeightMap, c2d: &[f64]) -> RadialPsd {
-    let (nx, ny, lx, ly) = (map.nx, map.ny, map.lx, map.ly);
+    let (nx, lx, ly) = (map.nx, map.lx, map.ly);
     let dq = 2.0 * std::f64::consts::PI / lx.max(ly);
     let q_nyq = std::f64::consts::PI / map.dx().max(map.dy());
     let n_rings = (q_nyq / dq).floor() as usize;
+    let (qx2, qy2) = axis_wavenumbers_squared(map);
     // Partial sums over fixed blocks of rows in parallel, added in block order: the result does
     // not depend on the number of threads.
     const ROWS: usize = 32;
@@ -111,7 +128,7 @@ pub fn radial_average(map: &HeightMap, c2d: &[f64]) -> RadialPsd {
             for (dl, row) in block.chunks_exact(nx).enumerate() {
                 let l = b * ROWS + dl;
                 for (k, &c) in row.iter().enumerate() {
-                    let q = wavenumber(k, l, nx, ny, lx, ly);
+                    let q = (qx2[k] + qy2[l]).sqrt();
                     let ring = (q / dq).round() as usize;
                     if ring == 0 || ring > n_rings {
                         continue;

@@ -716,3 +716,22 @@ fn scene_fig_c2_accuracy_bias_and_averaging() {
     assert!(result(&fig, "m2_error_finest_norm") < 0.05);
     assert!(result(&fig, "m4_error_finest_norm") < 0.06);
 }
+
+#[test]
+fn analysis_does_not_depend_on_the_number_of_threads() {
+    let map = generate(&mold(), 96, 80, 2e-6, 1.6e-6, 11).unwrap();
+    let many = adhesion::surface::radial_psd_and_moments(&map);
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap()
+        .install(|| adhesion::surface::radial_psd_and_moments(&map));
+    assert_eq!(many.0, one.0);
+    assert_eq!(many.1, one.1);
+    let again = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap()
+        .install(|| generate(&mold(), 96, 80, 2e-6, 1.6e-6, 11).unwrap());
+    assert_eq!(map, again);
+}
