@@ -54,11 +54,20 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
         let scene = scenes::find(id)?;
         let mut sets = cli.set.clone();
         if let Some(path) = &cli.surface.surface {
-            if !scene.specs().iter().any(|s| s.name == "surface") {
+            let takes_map = |s: &dyn scenes::SceneDyn| s.specs().iter().any(|p| p.name == "surface");
+            if !takes_map(scene) {
+                let with: Vec<&str> = scenes::all()
+                    .iter()
+                    .filter(|s| takes_map(**s))
+                    .map(|s| s.info().id)
+                    .collect();
                 return Err(crate::error::Error::invalid(
                     "surface",
                     path.display(),
-                    format!("scene {id} takes no height map (use --surface with fig3.7d)"),
+                    format!(
+                        "scene {id} takes no height map (scenes that do: {})",
+                        with.join(", ")
+                    ),
                 )
                 .into());
             }
