@@ -26,6 +26,7 @@ use faer::Side;
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
 use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
+use std::sync::Arc;
 
 use crate::error::{Error, Result};
 
@@ -90,6 +91,9 @@ impl NewtonReport {
     }
 }
 
+/// A numeric Cholesky factorisation, shared between the cache and its users.
+type Factor = Arc<Llt<usize, f64>>;
+
 /// The sparse Hessian of an [`Energy`] with its symbolic Cholesky factorisation.
 pub struct StableNewton {
     n: usize,
@@ -102,6 +106,10 @@ pub struct StableNewton {
     values: Vec<f64>,
     /// The last shift that worked, as the first guess for the next.
     last_shift: f64,
+    /// The last unshifted factorisation (`None` inside: not positive definite) and the Hessian
+    /// values it was computed from: a continuation that restarts from the state just accepted
+    /// (and the stability test of that state) reuses it instead of factorising again.
+    cache: Option<(Vec<f64>, Option<Factor>)>,
 }
 
 impl StableNewton {
@@ -149,12 +157,21 @@ impl StableNewton {
             diagonal: (n_pattern..n_pattern + n).collect(),
             values: vec![0.0; n_pattern + n],
             last_shift: 0.0,
+            cache: None,
         })
     }
 
     /// Factorise H + λI (values already in `self.values[..n_pattern]`); `None` if not
-    /// positive definite.
-    fn factor(&mut self, shift: f64) -> Result<Option<Llt<usize, f64>>> {
+    /// positive definite. An unshifted factorisation of the same values as the last one is
+    /// reused.
+    fn factor(&mut self, shift: f64) -> Result<Option<Factor>> {
+        let n_pattern = self.values.len() - self.n;
+        if shift == 0.0
+            && let Some((v, l)) = &self.cache
+            && v[..] == self.values[..n_pattern]
+        {
+            return Ok(l.clone());
+        }
         for &k in &self.diagonal {
             self.values[k] = shift;
         }
@@ -163,7 +180,16 @@ impl StableNewton {
                 model: "stable Newton",
                 reason: format!("assembling the Hessian: {e:?}"),
             })?;
-        Ok(Llt::try_new_with_symbolic(self.llt.clone(), mat.as_ref(), Side::Lower).ok())
+        let l = Llt::try_new_with_symbolic(self.llt.clone(), mat.as_ref(), Side::Lower)
+            .ok()
+            .map(Arc::new);
+        if shift == 0.0 {
+            let mut v = self.cache.take().map(|c| c.0).unwrap_or_default();
+            v.clear();
+            v.extend_from_slice(&self.values[..n_pattern]);
+            self.cache = Some((v, l.clone()));
+        }
+        Ok(l)
     }
 
     fn solve(llt: &Llt<usize, f64>, rhs: &mut [f64]) {
