@@ -2,7 +2,9 @@
 //! (exact spring by spring against binned), criterion medians. With `CH5_LONG=1` also the
 //! complete Fig. 5.8 (6 stiffnesses x 10 roughnesses x 15 samples of 256 x 256 springs, median
 //! of three runs) and one coupled 256 x 256 cycle of 1000 displacement steps per phase (one run),
-//! too long for criterion's ten samples: `CH5_LONG=1 cargo bench --bench ch5 -- long`.
+//! too long for criterion's ten samples: `CH5_LONG=1 cargo bench --bench ch5 -- long`. The
+//! coupled 256 x 256 cycle takes many minutes (one factorisation of the 65 536-unknown Hessian
+//! per displacement step at least, several while springs jump).
 
 use std::hint::black_box;
 use std::time::Instant;
