@@ -20,12 +20,18 @@
 //! Every accepted state therefore has a small gradient and a positive-definite Hessian (the
 //! last factorisation succeeded without shift). The symbolic factorisation (fill-reducing
 //! ordering, elimination tree) is computed once for the fixed sparsity pattern and reused.
+//! Numeric factorisations are reused too: while the gradient falls fast, steps solve with the
+//! last positive-definite factor (chord steps, still with the line search on the energy), and
+//! the factorisation of an accepted state serves both its stability test and the first step of
+//! a continuation that restarts from it (identical Hessian values are detected, not assumed).
+//! A continuation step therefore costs about one factorisation when no spring jumps.
 //! The energy, gradient and Hessian come from an [`Energy`]; nothing here knows about physics.
 
 use faer::Side;
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
 use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
+use std::sync::Arc;
 
 use crate::error::{Error, Result};
 
@@ -70,7 +76,7 @@ impl Default for NewtonOptions {
 pub struct NewtonReport {
     /// Newton iterations taken.
     pub iterations: usize,
-    /// Cholesky factorisations computed (attempts included).
+    /// Cholesky factorisations computed (failed attempts included, reused ones not).
     pub factorizations: usize,
     /// Iterations at which the Hessian was not positive definite (the state was unstable).
     pub indefinite_iterations: usize,
@@ -90,6 +96,13 @@ impl NewtonReport {
     }
 }
 
+/// A numeric Cholesky factorisation, shared between the cache and its users.
+type Factor = Arc<Llt<usize, f64>>;
+
+/// Chord steps (an earlier factorisation reused) continue while each cuts the largest
+/// gradient component by at least this factor; otherwise the Hessian is factorised again.
+const CHORD_CONTRACTION: f64 = 0.25;
+
 /// The sparse Hessian of an [`Energy`] with its symbolic Cholesky factorisation.
 pub struct StableNewton {
     n: usize,
@@ -102,6 +115,12 @@ pub struct StableNewton {
     values: Vec<f64>,
     /// The last shift that worked, as the first guess for the next.
     last_shift: f64,
+    /// The last unshifted factorisation (`None` inside: not positive definite) and the Hessian
+    /// values it was computed from: a continuation that restarts from the state just accepted
+    /// (and the stability test of that state) reuses it instead of factorising again.
+    cache: Option<(Vec<f64>, Option<Factor>)>,
+    /// Numeric factorisations computed so far (cache hits excluded).
+    computed: usize,
 }
 
 impl StableNewton {
@@ -149,12 +168,23 @@ impl StableNewton {
             diagonal: (n_pattern..n_pattern + n).collect(),
             values: vec![0.0; n_pattern + n],
             last_shift: 0.0,
+            cache: None,
+            computed: 0,
         })
     }
 
     /// Factorise H + λI (values already in `self.values[..n_pattern]`); `None` if not
-    /// positive definite.
-    fn factor(&mut self, shift: f64) -> Result<Option<Llt<usize, f64>>> {
+    /// positive definite. An unshifted factorisation of the same values as the last one is
+    /// reused.
+    fn factor(&mut self, shift: f64) -> Result<Option<Factor>> {
+        let n_pattern = self.values.len() - self.n;
+        if shift == 0.0
+            && let Some((v, l)) = &self.cache
+            && v[..] == self.values[..n_pattern]
+        {
+            return Ok(l.clone());
+        }
+        self.computed += 1;
         for &k in &self.diagonal {
             self.values[k] = shift;
         }
@@ -163,7 +193,16 @@ impl StableNewton {
                 model: "stable Newton",
                 reason: format!("assembling the Hessian: {e:?}"),
             })?;
-        Ok(Llt::try_new_with_symbolic(self.llt.clone(), mat.as_ref(), Side::Lower).ok())
+        let l = Llt::try_new_with_symbolic(self.llt.clone(), mat.as_ref(), Side::Lower)
+            .ok()
+            .map(Arc::new);
+        if shift == 0.0 {
+            let mut v = self.cache.take().map(|c| c.0).unwrap_or_default();
+            v.clear();
+            v.extend_from_slice(&self.values[..n_pattern]);
+            self.cache = Some((v, l.clone()));
+        }
+        Ok(l)
     }
 
     fn solve(llt: &Llt<usize, f64>, rhs: &mut [f64]) {
@@ -197,6 +236,18 @@ impl StableNewton {
         x: &mut [f64],
         opts: &NewtonOptions,
     ) -> Result<NewtonReport> {
+        let start = self.computed;
+        let mut rep = self.minimize_inner(energy, x, opts)?;
+        rep.factorizations = self.computed - start;
+        Ok(rep)
+    }
+
+    fn minimize_inner(
+        &mut self,
+        energy: &impl Energy,
+        x: &mut [f64],
+        opts: &NewtonOptions,
+    ) -> Result<NewtonReport> {
         assert_eq!(x.len(), self.n, "state length must equal the energy's dimension");
         let n = self.n;
         let n_pattern = self.values.len() - n;
@@ -211,14 +262,50 @@ impl StableNewton {
                 reason: "the start state is outside the energy's domain".into(),
             });
         }
+        // A positive-definite factorisation from an earlier iterate and the gradient norm there:
+        // while the gradient keeps falling fast, steps reuse it (chord steps) instead of
+        // factorising again. Acceptance always factorises at the accepted state itself.
+        let mut chord: Option<(Factor, f64)> = None;
         while rep.iterations < opts.max_iterations {
             rep.iterations += 1;
             energy.gradient(x, &mut g);
             let gnorm = inf_norm(&g);
+            if let Some((f, g_prev)) = &chord
+                && gnorm > opts.gradient_tol
+                && gnorm <= CHORD_CONTRACTION * g_prev
+            {
+                for (pi, gi) in p.iter_mut().zip(&g) {
+                    *pi = -gi;
+                }
+                Self::solve(f, &mut p);
+                let slope = dot(&g, &p);
+                let slack = 1e-14 * e0.abs().max(1.0);
+                let mut t = 1.0;
+                let mut accepted = false;
+                while t >= 1e-20 {
+                    for ((ti, xi), pi) in trial.iter_mut().zip(x.iter()).zip(&p) {
+                        *ti = xi + t * pi;
+                    }
+                    let e1 = energy.energy(&trial);
+                    if e1.is_finite() && e1 <= e0 + 1e-4 * t * slope + slack {
+                        x.copy_from_slice(&trial);
+                        e0 = e1;
+                        accepted = true;
+                        break;
+                    }
+                    t *= 0.5;
+                }
+                if accepted {
+                    chord = chord.map(|(f, _)| (f, gnorm));
+                } else {
+                    chord = None;
+                }
+                continue;
+            }
+            chord = None;
             energy.hessian_values(x, &mut self.values[..n_pattern]);
             // Scale for the shift: the largest diagonal magnitude.
             let scale = inf_norm(&self.values[..n_pattern]).max(1e-300);
-            rep.factorizations += 1;
             let plain = self.factor(0.0)?;
             let (llt, definite) = match plain {
                 Some(l) => (l, true),
@@ -230,7 +317,6 @@ impl StableNewton {
                         1e-6 * scale
                     };
                     loop {
-                        rep.factorizations += 1;
                         if let Some(l) = self.factor(shift)? {
                             self.last_shift = shift;
                             break (l, false);
@@ -251,6 +337,9 @@ impl StableNewton {
                 rep.gradient_norm = gnorm;
                 rep.energy = e0;
                 return Ok(rep);
+            }
+            if definite {
+                chord = Some((llt.clone(), gnorm));
             }
             for (pi, gi) in p.iter_mut().zip(&g) {
                 *pi = -gi;
@@ -513,5 +602,24 @@ mod tests {
         }
         let err = StableNewton::new(&NoDiag).err().unwrap().to_string();
         assert!(err.contains("diagonal"), "{err}");
+    }
+
+    // Reuse: restarting from the state just accepted (same Hessian values) and testing its
+    // stability compute no new factorisation; a restart from elsewhere does.
+    #[test]
+    fn the_factorisation_of_the_accepted_state_is_reused() {
+        let e = Wells { n: 20, c: 0.3 };
+        let mut x: Vec<f64> = (0..20).map(|i| 0.5 + 0.02 * i as f64).collect();
+        let mut s = StableNewton::new(&e).unwrap();
+        let opts = NewtonOptions::default();
+        let first = s.minimize(&e, &mut x, &opts).unwrap();
+        assert!(first.factorizations >= 1);
+        let again = s.minimize(&e, &mut x, &opts).unwrap();
+        assert_eq!((again.iterations, again.factorizations), (1, 0));
+        assert!(s.is_stable(&e, &x).unwrap());
+        let mut y = vec![1.3; 20];
+        let other = s.minimize(&e, &mut y, &opts).unwrap();
+        assert!(other.factorizations >= 1);
+        assert!(y.iter().zip(&x).all(|(a, b)| (a - b).abs() < 1e-8));
     }
 }
