@@ -17,8 +17,9 @@
 //! - at a stationary point that is not a minimum (gradient zero, `H` indefinite) it leaves
 //!   along a direction of negative curvature found by inverse iteration with the shifted matrix.
 //!
-//! Every accepted state therefore has a small gradient and a positive-definite Hessian (the
-//! last factorisation succeeded without shift). The symbolic factorisation (fill-reducing
+//! Every accepted state therefore has a small gradient, a small Newton correction (which rules
+//! out the near-equilibria just past a fold, where the gradient is small but no equilibrium
+//! exists) and a positive-definite Hessian (the last factorisation succeeded without shift). The symbolic factorisation (fill-reducing
 //! ordering, elimination tree) is computed once for the fixed sparsity pattern and reused.
 //! Numeric factorisations are reused too: while the gradient falls fast, steps solve with the
 //! last positive-definite factor (chord steps, still with the line search on the energy), and
@@ -52,7 +53,8 @@ pub trait Energy {
 /// Tolerances of the minimisation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NewtonOptions {
-    /// Converged when the largest gradient component is below this (and `H` is positive definite).
+    /// Converged when the largest gradient component is below this, the largest Newton
+    /// correction below its square root, and `H` is positive definite.
     pub gradient_tol: f64,
     /// Or when the largest Newton correction is below this (and `H` is positive definite),
     /// the criterion of section 5.5.1.
@@ -333,7 +335,17 @@ impl StableNewton {
                     }
                 }
             };
-            if definite && gnorm <= opts.gradient_tol {
+            for (pi, gi) in p.iter_mut().zip(&g) {
+                *pi = -gi;
+            }
+            Self::solve(&llt, &mut p);
+            // A small gradient alone does not make an equilibrium: just past a fold none
+            // exists, yet the gradient there is as small as the distance past the fold times
+            // the stiffness, while the Hessian is still (barely) positive definite. The Newton
+            // correction tells them apart: it is of the order of the gradient at a regular
+            // minimum and large near the vanishing curvature of a fold. Accept only when it is
+            // below √(gradient_tol) as well; otherwise keep descending (the jump, if any).
+            if definite && gnorm <= opts.gradient_tol && inf_norm(&p) <= opts.gradient_tol.sqrt() {
                 rep.gradient_norm = gnorm;
                 rep.energy = e0;
                 return Ok(rep);
@@ -341,10 +353,6 @@ impl StableNewton {
             if definite {
                 chord = Some((llt.clone(), gnorm));
             }
-            for (pi, gi) in p.iter_mut().zip(&g) {
-                *pi = -gi;
-            }
-            Self::solve(&llt, &mut p);
             let mut slope = dot(&g, &p);
             if !definite && (gnorm <= opts.gradient_tol || slope > -1e-300) {
                 // A stationary point that is not a minimum: leave along negative curvature.

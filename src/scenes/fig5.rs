@@ -26,8 +26,8 @@ pub const SCENES: &[&dyn SceneDyn] = &[
 crate::scene_params! {
     /// Parameters of scene fig5.2b (section 5.4.1).
     pub struct Fig5_2bParams {
-        /// Radius-to-length ratio R_f/l_f of the fibril.
-        radius_over_length: f64 = 0.1, unit = "", range = Range::open(0.0, 10.0);
+        /// Radius-to-length ratio R_f/l_f of the fibril (below 0.8: the half-stiffness angle exists).
+        radius_over_length: f64 = 0.1, unit = "", range = Range::open(0.0, 0.8);
         /// Points on the curve.
         points: usize = 181, unit = "", range = Range::between(3.0, 1.0e5);
     }
@@ -306,8 +306,12 @@ impl Scene for Fig5_4 {
             let name = format!("k = {ratio} k_cr");
             // All equilibria with ū in the window: gaps from the contact state at u_min to the
             // free state at u_max.
-            let d_lo = s.gap(p.u_min, crate::models::fibril::SpringBranch::Contact)?;
-            let d_hi = s.gap(p.u_max, crate::models::fibril::SpringBranch::Free)?;
+            // (A window that ends inside the bistable range, or that misses it, has only one
+            // branch at an end: take the one that exists there.)
+            use crate::models::fibril::SpringBranch::{Contact, Free};
+            let d_lo = s.gap(p.u_min, Contact).or_else(|_| s.gap(p.u_min, Free))?;
+            let d_hi = s.gap(p.u_max, Free).or_else(|_| s.gap(p.u_max, Contact))?;
+            let (d_lo, d_hi) = (d_lo.min(d_hi), d_lo.max(d_hi));
             for (stable, run) in equilibrium_runs(&s, d_lo, d_hi, 4 * p.points) {
                 let style = if stable { Style::Stable } else { Style::Unstable };
                 gap.add(Series::new(&name, style, run.iter().map(|q| (q.u, q.d)).collect()).with_color(c));
@@ -471,11 +475,18 @@ fn unit_surface(nx: usize, ny: usize, lc_bar: f64, seed: u64) -> Result<Vec<f64>
 
 /// The displacement window of a cycle over a surface of roughness σ̄_rms: from `c_max` σ̄_rms
 /// beyond the pull-off displacement (every spring detached) down to `c_min` σ̄_rms below the
-/// pull-in displacement (every spring within that many σ_rms of the mean plane touched).
+/// pull-in displacement (every spring within that many σ_rms of the mean plane touched). Both
+/// ends keep a margin of at least half the bistable width u_off − u_in (and 1 in ū), so that a
+/// nearly flat surface (σ̄_rms far below the displacement step) is still fully loaded and
+/// unloaded, and the last step before each fold does not end a hair past it.
 fn cycle_window(k_e: f64, sigma_bar: f64, c_min: f64, c_max: f64) -> Result<(f64, f64)> {
     let s = SingleSpring::new(k_e)?;
     let (u_in, u_off) = s.bistable_range().unwrap_or((1.0, 1.0));
-    Ok((u_off + c_max * sigma_bar, u_in - c_min * sigma_bar))
+    let margin = (0.5 * (u_off - u_in)).max(1.0);
+    Ok((
+        u_off + (c_max * sigma_bar).max(margin),
+        u_in - (c_min * sigma_bar).max(margin),
+    ))
 }
 
 /// k̄_e of k̂_e = k_e/k_cr = 2⁻ⁿ (section 5.5.2).

@@ -337,8 +337,11 @@ fn binned_uncoupled_cycle_matches_the_exact_one() {
 // Fig. 5.8 at reduced size (64 x 64 springs, 4 samples, 300 steps): the efficiency falls with
 // the roughness for a given stiffness and rises as the springs soften (larger n), as the text
 // of section 5.5.2 states, and it follows the empirical fit (5.37) within 0.04 RMS for every
-// n = 6..11. (The text finds (5.37) deviating for n = 9..11; this model does not: see the
-// ERRATA note on Fig. 5.8.)
+// n = 6..11. (The text finds (5.37) deviating for n = 9..11; this model does not: at full size
+// the RMS deviation is 0.014-0.016 for every n, confirmed independently from Gaussian heights
+// and the exact single-spring branches. A likely cause is an unloading run in the original that
+// stops before the softest springs reach their large pull-off displacement; our window ends
+// 5 σ_rms beyond it. Reported for ERRATA.)
 #[test]
 fn efficiency_falls_with_roughness_rises_with_softness_and_follows_the_fit_5_37() {
     use adhesion::job::Job;
@@ -432,4 +435,40 @@ fn binned_tables_reject_heights_outside_their_range() {
     assert!(t.cycle(&[0.0, 50.0]).is_err());
     assert!(t.cycle(&[]).is_err());
     assert!(BinnedBranches::new(0.01, 100.0, -50.0, 200, 0, (-1.0, 1.0)).is_err());
+}
+
+/// A nearly flat surface (σ̄_rms far below the displacement step) is fully loaded and unloaded:
+/// the cycle window keeps a margin beyond the folds. Both the binned and the exact uncoupled
+/// paths, and the coupled path with the stable Newton solver, give an efficiency near 1 and the
+/// flat-surface hysteresis. Before the margin, the binned path gave 0.43 here and the Newton
+/// path accepted a near-equilibrium just past the pull-in fold (efficiency 0.004, no jump).
+#[test]
+fn nearly_flat_surfaces_are_fully_cycled() {
+    use adhesion::headless::resolve_values;
+    use adhesion::job::Job;
+    let run = |id: &str, sets: &[&str]| {
+        let s = adhesion::scenes::find(id).unwrap();
+        let sets: Vec<String> = sets.iter().map(|x| x.to_string()).collect();
+        let values = resolve_values(s, None, &sets, true).unwrap();
+        s.run(&values, &Job::quiet()).unwrap()
+    };
+    for path in ["path=binned", "path=exact"] {
+        let fig = run(
+            "fig5.7",
+            &[
+                "springs=32",
+                "samples=1",
+                "roughness=[0.01]",
+                "stiffness_exponent=10",
+                path,
+            ],
+        );
+        let e = fig.result_value("efficiency_first_norm").unwrap();
+        assert!(e > 0.99, "{path}: efficiency {e}");
+    }
+    let fig = run("fig5.10", &["roughness=1e-9", "couplings=[0.0]"]);
+    let e = fig.result_value("efficiency_uncoupled_norm").unwrap();
+    let jumps = fig.result_value("jumps_uncoupled_count").unwrap();
+    assert!(e > 0.99, "coupled path, k_mu = 0: efficiency {e}");
+    assert!(jumps >= 2.0, "pull-in and pull-off jumps, got {jumps}");
 }
