@@ -899,3 +899,38 @@ fn gsf_units_are_converted_and_unknown_units_rejected() {
     let e = read_height_map(&p, None).unwrap_err().to_string();
     assert!(e.contains("nx=2.7") && e.contains("whole number"), "{e}");
 }
+
+#[test]
+fn command_line_analyses_an_imported_map_as_a_patch_unless_told_periodic() {
+    // A generated (periodic) map exported without its header, as an instrument would write it.
+    let dir = tempfile::tempdir().unwrap();
+    let map = generate(&mold(), 128, 128, 1e-6, 1e-6, 3).unwrap();
+    let csv = dir.path().join("scan.csv");
+    let text = adhesion::surface::io::to_csv(&map);
+    std::fs::write(&csv, text.lines().skip(1).collect::<Vec<_>>().join("\n")).unwrap();
+    let run = |extra: &[&str]| -> serde_json::Value {
+        let mut args = vec![
+            "--headless",
+            "--analyze-surface",
+            csv.to_str().unwrap(),
+            "--pixel-size",
+            "7.8125e-9",
+        ];
+        args.extend_from_slice(extra);
+        let o = adhesion(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        serde_json::from_slice(&o.stdout).unwrap()
+    };
+    let mut patch = map.clone();
+    patch.periodic = false;
+    let windowed = run(&[]);
+    assert_eq!(windowed["periodic"], false);
+    assert!(rel(windowed["m4"].as_f64().unwrap(), moments_of_map(&patch).m4) < 1e-6);
+    let periodic = run(&["--periodic"]);
+    assert_eq!(periodic["periodic"], true);
+    assert!(rel(periodic["m4"].as_f64().unwrap(), moments_of_map(&map).m4) < 1e-6);
+    // The file with its header comment records the periodicity: read back periodic.
+    let with_header = dir.path().join("gen.csv");
+    std::fs::write(&with_header, &text).unwrap();
+    assert!(read_height_map(&with_header, None).unwrap().periodic);
+}
