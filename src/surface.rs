@@ -20,8 +20,8 @@ pub mod psd_fit;
 pub mod spectrum;
 
 pub use analysis::{
-    PeakStatistics, RadialPsd, autocorrelation, moments_of_map, peak_statistics, peaks, periodogram, psd_2d,
-    radial_model, radial_psd, radial_psd_and_moments,
+    PeakStatistics, RadialPsd, autocorrelation, hann, moments_of_map, peak_statistics, peaks, periodogram,
+    psd_2d, radial_model, radial_psd, radial_psd_and_moments,
 };
 pub use generate::{generate, wavenumber};
 pub use height_map::HeightMap;
@@ -80,6 +80,10 @@ pub struct SurfaceArgs {
     /// Pixel size of a text height map [m] (square pixels).
     #[arg(long, allow_negative_numbers = true, value_name = "M")]
     pub pixel_size: Option<f64>,
+    /// Analyse the map as one period of a periodic surface (plain FFT, peaks wrap around); by
+    /// default an imported map is a finite patch, windowed before its FFT.
+    #[arg(long)]
+    pub periodic: bool,
     /// Subtract the least-squares plane before analysing.
     #[arg(long)]
     pub remove_tilt: bool,

@@ -1,5 +1,14 @@
 //! Statistics of a height map, generated or measured (appendix B.1): the discrete PSD
 //! (B.1.8)-(B.1.9), the spectral moments taken from the map directly.
+//!
+//! A generated map is one period of a periodic surface ([`HeightMap::periodic`]) and is
+//! transformed as it is. A measured map is a finite patch: its periodic continuation jumps at
+//! the edges, and a plain FFT spreads that jump over all wavenumbers, where the weights q², q⁴
+//! of m2, m4 (and so Nayak's α, η (3.9) and a (3.16) fit) make it dominate. Such a map is
+//! multiplied by a separable Hann window w before the transform (after the window-weighted mean
+//! is removed) and the periodogram is divided by mean(w²), so that Σ p estimates σ_rms². The window
+//! itself adds the known amounts m0⟨j²⟩ and 4·(Σ p q²)⟨j²⟩ + m0⟨j⁴⟩ (moments of the window's
+//! spectrum |W(j)|²) to the expected Σ p q², Σ p q⁴; [`moments_of_map`] subtracts them.
 
 use rayon::prelude::*;
 use rustfft::num_complex::Complex64;
@@ -9,20 +18,56 @@ use super::height_map::HeightMap;
 use super::spectrum::Moments;
 use crate::numerics::fft::{Direction, fft2};
 
+/// The periodic Hann window w_i = sin²(πi/n), i = 0..n: its DFT has three bins, 1/2 at 0 and
+/// −1/4 at ±1, so it smears a Fourier bin over its two neighbours only; mean(w²) = 3/8.
+pub fn hann(n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|i| (std::f64::consts::PI * i as f64 / n as f64).sin().powi(2))
+        .collect()
+}
+
 /// The periodogram p(k, l) = |DFT(z − z̄)(k, l)|² / (nx ny)² (row-major like the map), the share
 /// of the variance in each Fourier bin: Σ p = σ_rms² (Parseval).
+///
+/// A non-periodic map ([`HeightMap::periodic`] false) is windowed first: p = |DFT(w·(z −
+/// z̄_w))|² / ((nx ny)² mean(w²)), w the separable [`hann`] window and z̄_w the window-weighted
+/// mean, so that Σ p estimates σ_rms² (in expectation; it is the variance of the map's centre,
+/// where the window is large) without the leakage of the edge jump.
 pub fn periodogram(map: &HeightMap) -> Vec<f64> {
-    let mean = map.mean();
-    let mut data: Vec<Complex64> = map.z.iter().map(|v| Complex64::new(v - mean, 0.0)).collect();
-    fft2(&mut data, map.nx, map.ny, Direction::Forward);
-    let n2 = ((map.nx * map.ny) as f64).powi(2);
-    data.into_par_iter().map(|c| c.norm_sqr() / n2).collect()
+    let (nx, ny) = (map.nx, map.ny);
+    let mut data: Vec<Complex64>;
+    let mut norm = ((nx * ny) as f64).powi(2);
+    if map.periodic {
+        let mean = map.mean();
+        data = map.z.iter().map(|v| Complex64::new(v - mean, 0.0)).collect();
+    } else {
+        let (wx, wy) = (hann(nx), hann(ny));
+        let sw: f64 = wx.iter().sum::<f64>() * wy.iter().sum::<f64>();
+        let mean_w: f64 = map
+            .z
+            .chunks(nx)
+            .zip(&wy)
+            .map(|(row, b)| b * row.iter().zip(&wx).map(|(z, a)| a * z).sum::<f64>())
+            .sum::<f64>()
+            / sw;
+        data = map
+            .z
+            .iter()
+            .enumerate()
+            .map(|(k, v)| Complex64::new((v - mean_w) * wx[k % nx] * wy[k / nx], 0.0))
+            .collect();
+        let w2 =
+            wx.iter().map(|a| a * a).sum::<f64>() * wy.iter().map(|b| b * b).sum::<f64>() / (nx * ny) as f64;
+        norm *= w2;
+    }
+    fft2(&mut data, nx, ny, Direction::Forward);
+    data.into_par_iter().map(|c| c.norm_sqr() / norm).collect()
 }
 
 /// The discrete 2D PSD C̃(q_k, q_l) [m⁴] of (B.1.8)-(B.1.9), in the convention of (3.8)
 /// (divided by 4π², so that Σ C̃ Δq_x Δq_y = σ_rms²): C̃ = |Z|²/(4π² L1 L2),
 /// Z = Δx Δy Σ z e^{-2πi(mk/N1 + nl/N2)}. Row-major like the map, bins at q = 2πk/L with k
-/// signed ([`wavenumber`]).
+/// signed ([`wavenumber`]). Windowed for a non-periodic map, as [`periodogram`].
 pub fn psd_2d(map: &HeightMap) -> Vec<f64> {
     // |Z|² = (Δx Δy)² |DFT|² = (lx ly)² p, so C̃ = lx ly p / (4π²).
     let s = map.lx * map.ly / (4.0 * std::f64::consts::PI.powi(2));
@@ -33,6 +78,13 @@ pub fn psd_2d(map: &HeightMap) -> Vec<f64> {
 /// derivatives of the periodic band-limited interpolant), averaged over directions so that they
 /// estimate the isotropic m_n of (3.8):
 /// m0 = Σ p, m2 = ½ Σ p q² = ½⟨|∇z|²⟩, m4 = ⅜ Σ p q⁴ = ⅜⟨(∇²z)²⟩, p the [`periodogram`].
+///
+/// For a non-periodic (windowed) map the window's contribution is subtracted (expectation for a
+/// stationary surface, exact for the Hann window's three-bin spectrum): with ⟨j²⟩, ⟨j⁴⟩ the
+/// moments of |W|², Σ p q² − m0⟨j²⟩ and Σ p q⁴ − 4 s2 ⟨j²⟩ − m0 ⟨j⁴⟩ (s2 the corrected Σ p q²).
+/// m0 of such a map is its plain variance about the mean, which needs no periodicity and uses
+/// the whole map (the windowed Σ p is the variance of the map's centre: with a red spectrum it
+/// scatters more, while m2 and m4, set by short wavelengths, are local).
 pub fn moments_of_map(map: &HeightMap) -> Moments {
     moments_of_periodogram(map, &periodogram(map))
 }
@@ -60,14 +112,35 @@ pub fn moments_of_periodogram(map: &HeightMap, p: &[f64]) -> Moments {
         })
         .collect();
     debug_assert_eq!(rows.len(), ny);
-    let (m0, s2, s4) = rows
+    let (m0, mut s2, mut s4) = rows
         .into_iter()
         .fold((0.0, 0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1, a.2 + b.2));
+    if !map.periodic {
+        let (j2, j4) = hann_spectrum_moments(map);
+        s2 -= m0 * j2;
+        s4 -= 4.0 * s2 * j2 + m0 * j4;
+        let mean = map.mean();
+        let var = map.z.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / map.z.len() as f64;
+        return Moments {
+            m0: var,
+            m2: 0.5 * s2,
+            m4: 0.375 * s4,
+        };
+    }
     Moments {
         m0,
         m2: 0.5 * s2,
         m4: 0.375 * s4,
     }
+}
+
+/// ⟨|j|²⟩ and ⟨|j|⁴⟩ [1/m², 1/m⁴] over the normalised power spectrum |W(j)|² of the separable
+/// [`hann`] window of `map`: per axis |W|² ∝ (1, 4, 1) at j = −Δq, 0, Δq (Δq = 2π/L), so
+/// ⟨j_x²⟩ = a_x = Δq_x²/3 and ⟨j_x⁴⟩ = 3a_x²; ⟨|j|⁴⟩ = 3a_x² + 2a_x a_y + 3a_y².
+fn hann_spectrum_moments(map: &HeightMap) -> (f64, f64) {
+    let tau = 2.0 * std::f64::consts::PI;
+    let (ax, ay) = ((tau / map.lx).powi(2) / 3.0, (tau / map.ly).powi(2) / 3.0);
+    (ax + ay, 3.0 * ax * ax + 2.0 * ax * ay + 3.0 * ay * ay)
 }
 
 /// q_k² and q_l² of the DFT bins along x and y (signed indices, as [`wavenumber`]).
@@ -168,6 +241,9 @@ pub fn radial_average(map: &HeightMap, c2d: &[f64]) -> RadialPsd {
 
 /// The autocorrelation R(k Δx, l Δy) = (1/N) Σ z(i, j) z(i + k, j + l) of the mean-free map
 /// (periodic, the discrete (B.1.2)/(C.1.9)), row-major with lags k, l ≥ 0 wrapping; R(0, 0) = σ².
+/// For a non-periodic map it is the circular autocorrelation of the windowed map of
+/// [`periodogram`] (scaled so that R(0, 0) estimates σ²), trustworthy for lags well below the
+/// window's half-width.
 pub fn autocorrelation(map: &HeightMap) -> Vec<f64> {
     let p = periodogram(map);
     let mut data: Vec<Complex64> = p.into_iter().map(|v| Complex64::new(v, 0.0)).collect();
@@ -177,14 +253,16 @@ pub fn autocorrelation(map: &HeightMap) -> Vec<f64> {
     data.into_iter().map(|c| c.re * n).collect()
 }
 
-/// Local maxima of a map: points higher than their 8 neighbours (periodic), section B.4.
-/// Returned as (column, row) indices.
+/// Local maxima of a map: points higher than their 8 neighbours, section B.4 (neighbours wrap
+/// around for a periodic map; a non-periodic map's border rows and columns, whose neighbours are
+/// partly unknown, are not candidates). Returned as (column, row) indices.
 pub fn peaks(map: &HeightMap) -> Vec<(usize, usize)> {
     let (nx, ny) = (map.nx, map.ny);
-    (0..ny)
+    let (i0, j0) = if map.periodic { (0, 0) } else { (1, 1) };
+    (j0..ny - j0)
         .into_par_iter()
-        .flat_map_iter(|j| {
-            (0..nx).filter_map(move |i| {
+        .flat_map_iter(move |j| {
+            (i0..nx - i0).filter_map(move |i| {
                 let z = map.at(i, j);
                 for dj in [ny - 1, 0, 1] {
                     for di in [nx - 1, 0, 1] {
@@ -207,9 +285,11 @@ pub fn peaks(map: &HeightMap) -> Vec<(usize, usize)> {
 pub struct PeakStatistics {
     /// Number of 8-neighbour local maxima.
     pub count: usize,
-    /// Peaks per unit area [1/m²] (compare with Nayak's η (3.9)).
+    /// Peaks per unit area [1/m²] (compare with Nayak's η (3.9)); for a non-periodic map, per
+    /// area of the interior (nx − 2)(ny − 2) pixels where peaks are counted.
     pub density: f64,
-    /// Mean distance from each peak to its nearest neighbour (periodic) [m]; NaN with < 2 peaks.
+    /// Mean distance from each peak to its nearest neighbour [m] (periodic distance for a
+    /// periodic map); NaN with < 2 peaks.
     pub mean_nearest_distance: f64,
 }
 
@@ -223,7 +303,12 @@ pub fn peak_statistics(map: &HeightMap) -> PeakStatistics {
         .map(|&(i, j)| (i as f64 * map.dx(), j as f64 * map.dy()))
         .collect();
     let n = pos.len();
-    let density = n as f64 / (lx * ly);
+    let area = if map.periodic {
+        lx * ly
+    } else {
+        (map.nx - 2) as f64 * map.dx() * (map.ny - 2) as f64 * map.dy()
+    };
+    let density = n as f64 / area;
     if n < 2 {
         return PeakStatistics {
             count: n,
@@ -242,9 +327,10 @@ pub fn peak_statistics(map: &HeightMap) -> PeakStatistics {
         let (a, b) = cell_of(x, y);
         cells[b * cx + a].push(k);
     }
+    let wrap = map.periodic;
     let periodic = |d: f64, l: f64| {
         let d = d.abs() % l;
-        d.min(l - d)
+        if wrap { d.min(l - d) } else { d }
     };
     let total: f64 = (0..n)
         .into_par_iter()
@@ -252,7 +338,7 @@ pub fn peak_statistics(map: &HeightMap) -> PeakStatistics {
             let (x, y) = pos[k];
             let (a, b) = cell_of(x, y);
             let mut best = f64::INFINITY;
-            let max_ring = cx.max(cy) / 2 + 1;
+            let max_ring = if wrap { cx.max(cy) / 2 + 1 } else { cx.max(cy) };
             for ring in 0..=max_ring {
                 // Every point outside rings 0..ring is farther than ring·min(wx, wy).
                 if best <= ring.saturating_sub(1) as f64 * wx.min(wy) {
@@ -264,8 +350,12 @@ pub fn peak_statistics(map: &HeightMap) -> PeakStatistics {
                         if da.abs() != r && db.abs() != r {
                             continue;
                         }
-                        let ca = (a as isize + da).rem_euclid(cx as isize) as usize;
-                        let cb = (b as isize + db).rem_euclid(cy as isize) as usize;
+                        let (ca, cb) = (a as isize + da, b as isize + db);
+                        if !wrap && (ca < 0 || cb < 0 || ca >= cx as isize || cb >= cy as isize) {
+                            continue;
+                        }
+                        let ca = ca.rem_euclid(cx as isize) as usize;
+                        let cb = cb.rem_euclid(cy as isize) as usize;
                         for &o in &cells[cb * cx + ca] {
                             if o == k {
                                 continue;

@@ -18,6 +18,9 @@ use crate::error::{Error, Result};
 pub struct SurfaceReport {
     /// Conventions of the numbers.
     pub convention: &'static str,
+    /// Whether the map was analysed as one period of a periodic surface (plain FFT) or as a
+    /// finite patch (Hann window, peaks away from the border).
+    pub periodic: bool,
     /// Grid points in x.
     pub nx: usize,
     /// Grid points in y.
@@ -50,13 +53,15 @@ pub struct SurfaceReport {
     pub psd_fit_error: Option<String>,
 }
 
-/// Statistics of a map (mean removed first; `remove_tilt` also removes the plane).
+/// Statistics of a map (mean removed first; `remove_tilt` also removes the plane). A
+/// non-periodic map is windowed ([`crate::surface::analysis`]).
 pub fn report(map: &HeightMap, cutoff: Cutoff) -> SurfaceReport {
     let (psd, m): (_, Moments) = radial_psd_and_moments(map);
     let peaks: PeakStatistics = peak_statistics(map);
     let fit = fit_abc(&psd, cutoff);
     SurfaceReport {
         convention: "SI units; m0 = sigma_rms^2, m2, m4 of a profile (3.8), isotropic average",
+        periodic: map.periodic,
         nx: map.nx,
         ny: map.ny,
         lx: map.lx,
@@ -94,6 +99,9 @@ pub fn parse_cutoff(text: &str) -> Result<Cutoff> {
     }
 }
 
+/// Largest grid of `--generate-surface`, 2^26 points (about 1 GiB of complex FFT data).
+pub const MAX_GRID_POINTS: usize = 1 << 26;
+
 /// The spectrum and grid of `--generate-surface`.
 ///
 /// # Errors
@@ -107,6 +115,13 @@ pub fn generation_request(args: &SurfaceArgs) -> Result<(Spectrum, usize, usize,
         [n, m] => (*n, *m),
         _ => return Err(Error::invalid("size", "(missing)", "give --size N [M]")),
     };
+    if nx.checked_mul(ny).is_none_or(|p| p > MAX_GRID_POINTS) {
+        return Err(Error::invalid(
+            "size",
+            format!("{nx} x {ny}"),
+            format!("the grid may have at most 2^26 = {MAX_GRID_POINTS} points"),
+        ));
+    }
     let (lx, ly) = match args.length.as_slice() {
         [l] => (*l, *l),
         [l, l2] => (*l, *l2),
@@ -182,6 +197,9 @@ pub fn run(args: &SurfaceArgs, out: &Path) -> Result<String> {
     if let Some(path) = &args.analyze_surface {
         let cutoff = parse_cutoff(&args.fit_cutoff)?;
         let mut map = read_height_map(path, args.pixel_size)?;
+        if args.periodic {
+            map.periodic = true;
+        }
         if args.remove_tilt {
             map.remove_tilt();
         } else {

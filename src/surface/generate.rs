@@ -76,6 +76,7 @@ pub fn generate(spectrum: &Spectrum, nx: usize, ny: usize, lx: f64, ly: f64, see
         lx,
         ly,
         z: std::mem::take(&mut z),
+        periodic: true,
     };
     map.remove_mean();
     let rms = map.rms();

@@ -1,12 +1,18 @@
-//! A sampled height map z(x, y) on a periodic rectangular grid (appendix B.1).
+//! A sampled height map z(x, y) on a rectangular grid (appendix B.1), periodic (a generated
+//! surface) or not (a measured scan).
 
 use serde::Serialize;
 
 use crate::error::{Error, Result};
 
 /// Heights [m] on an `nx × ny` grid of physical size `lx × ly` [m], row-major:
-/// `z[j*nx + i]` is the height at x = i·lx/nx, y = j·ly/ny. Periodic in both directions
-/// (the convention of (B.1.8)).
+/// `z[j*nx + i]` is the height at x = i·lx/nx, y = j·ly/ny.
+///
+/// `periodic` says whether the map is one period of a periodic surface (the convention of
+/// (B.1.8); true for [`crate::surface::generate`]) or a finite patch such as a measured scan
+/// (false for [`HeightMap::new`] and the importers). The analysis treats the two differently:
+/// a patch is windowed before its Fourier transform and its peaks are counted away from the
+/// border (see [`crate::surface::analysis`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct HeightMap {
     /// Points in x (columns).
@@ -19,16 +25,26 @@ pub struct HeightMap {
     pub ly: f64,
     /// Heights [m], row-major, `nx * ny` values.
     pub z: Vec<f64>,
+    /// One period of a periodic surface (true) or a finite, non-periodic patch (false).
+    pub periodic: bool,
 }
 
 impl HeightMap {
-    /// A validated height map.
+    /// A validated, non-periodic height map (a finite patch such as a measured scan; set
+    /// `periodic` for one period of a periodic surface).
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] when the grid is smaller than 2 × 2, the sizes are not
     /// positive and finite, the data length is not `nx * ny`, or a height is not finite.
     pub fn new(nx: usize, ny: usize, lx: f64, ly: f64, z: Vec<f64>) -> Result<Self> {
-        let map = Self { nx, ny, lx, ly, z };
+        let map = Self {
+            nx,
+            ny,
+            lx,
+            ly,
+            z,
+            periodic: false,
+        };
         map.validate()?;
         Ok(map)
     }

@@ -3,7 +3,9 @@
 //!
 //! A text matrix carries no grid size, so the pixel size comes from the command line, unless the
 //! file starts with the comment this module writes,
-//! `# adhesion height map: nx=… ny=… lx=… ly=… (SI units, rows are y)`. Written values use
+//! `# adhesion height map: nx=… ny=… lx=… ly=… [periodic=1] (SI units, rows are y)`; a `.gsf`
+//! written here carries `Periodic = 1` for a periodic map. Imported maps are non-periodic
+//! (finite patches, analysed with a window) unless the file says so. Written values use
 //! Rust's shortest round-trip form, so CSV export and import are lossless. GSF stores 32-bit
 //! floats: a GSF round trip is exact to f32 precision.
 
@@ -40,8 +42,12 @@ impl MapFormat {
 /// The map as a text matrix with the header comment.
 pub fn to_csv(map: &HeightMap) -> String {
     let mut s = format!(
-        "{CSV_HEADER} nx={} ny={} lx={:e} ly={:e} (SI units, rows are y)\n",
-        map.nx, map.ny, map.lx, map.ly
+        "{CSV_HEADER} nx={} ny={} lx={:e} ly={:e}{} (SI units, rows are y)\n",
+        map.nx,
+        map.ny,
+        map.lx,
+        map.ly,
+        if map.periodic { " periodic=1" } else { "" }
     );
     for row in map.z.chunks(map.nx) {
         let line: Vec<String> = row.iter().map(|v| format!("{v:e}")).collect();
@@ -58,7 +64,7 @@ pub fn to_csv(map: &HeightMap) -> String {
 /// [`Error::DataFile`] naming the line for a ragged row, a non-number, a non-finite height, an
 /// empty file, a missing or non-positive pixel size.
 pub fn parse_csv(text: &str, path: &Path, pixel_size: Option<f64>) -> Result<HeightMap> {
-    let mut header: Option<(usize, usize, f64, f64)> = None;
+    let mut header: Option<Header> = None;
     let mut z = Vec::new();
     let mut nx = 0usize;
     let mut ny = 0usize;
@@ -111,6 +117,8 @@ pub fn parse_csv(text: &str, path: &Path, pixel_size: Option<f64>) -> Result<Hei
             format!("a height map needs at least 2 x 2 values, found {nx} x {ny}"),
         ));
     }
+    // The header's periodicity holds only for the grid it describes.
+    let periodic = header.is_some_and(|h| h.periodic && (h.nx, h.ny) == (nx, ny));
     let (lx, ly) = match (pixel_size, header) {
         (Some(p), _) => {
             if !(p > 0.0 && p.is_finite()) {
@@ -122,7 +130,16 @@ pub fn parse_csv(text: &str, path: &Path, pixel_size: Option<f64>) -> Result<Hei
             }
             (p * nx as f64, p * ny as f64)
         }
-        (None, Some((hx, hy, lx, ly))) => {
+        (
+            None,
+            Some(Header {
+                nx: hx,
+                ny: hy,
+                lx,
+                ly,
+                ..
+            }),
+        ) => {
             if (hx, hy) != (nx, ny) {
                 return Err(Error::data_file(
                     path,
@@ -140,31 +157,57 @@ pub fn parse_csv(text: &str, path: &Path, pixel_size: Option<f64>) -> Result<Hei
             ));
         }
     };
-    HeightMap::new(nx, ny, lx, ly, z).map_err(|e| Error::data_file(path, 0, e.to_string()))
+    let mut map = HeightMap::new(nx, ny, lx, ly, z).map_err(|e| Error::data_file(path, 0, e.to_string()))?;
+    map.periodic = periodic;
+    Ok(map)
 }
 
-fn parse_header(rest: &str, path: &Path, ln: usize) -> Result<(usize, usize, f64, f64)> {
-    let mut vals = [None; 4];
+/// The header comment of a text map.
+#[derive(Debug, Clone, Copy)]
+struct Header {
+    nx: usize,
+    ny: usize,
+    lx: f64,
+    ly: f64,
+    periodic: bool,
+}
+
+fn parse_header(rest: &str, path: &Path, ln: usize) -> Result<Header> {
+    let mut n = [None; 2];
+    let mut l = [None; 2];
+    let mut periodic = false;
     for tok in rest.split_whitespace() {
         if let Some((k, v)) = tok.split_once('=') {
-            let idx = match k {
-                "nx" => 0,
-                "ny" => 1,
-                "lx" => 2,
-                "ly" => 3,
-                _ => continue,
+            let int = || {
+                v.parse::<usize>().map_err(|_| {
+                    Error::data_file(path, ln, format!("header value `{tok}` is not a whole number"))
+                })
             };
-            let parsed: f64 = v
-                .parse()
-                .map_err(|_| Error::data_file(path, ln, format!("header value `{tok}` is not a number")))?;
-            vals[idx] = Some(parsed);
+            let real = || {
+                v.parse::<f64>()
+                    .map_err(|_| Error::data_file(path, ln, format!("header value `{tok}` is not a number")))
+            };
+            match k {
+                "nx" => n[0] = Some(int()?),
+                "ny" => n[1] = Some(int()?),
+                "lx" => l[0] = Some(real()?),
+                "ly" => l[1] = Some(real()?),
+                "periodic" => periodic = int()? != 0,
+                _ => {}
+            }
         }
     }
-    match vals {
-        [Some(nx), Some(ny), Some(lx), Some(ly)]
+    match (n, l) {
+        ([Some(nx), Some(ny)], [Some(lx), Some(ly)])
             if lx > 0.0 && ly > 0.0 && lx.is_finite() && ly.is_finite() =>
         {
-            Ok((nx as usize, ny as usize, lx, ly))
+            Ok(Header {
+                nx,
+                ny,
+                lx,
+                ly,
+                periodic,
+            })
         }
         _ => Err(Error::data_file(
             path,
@@ -178,8 +221,12 @@ fn parse_header(rest: &str, path: &Path, ln: usize) -> Result<(usize, usize, f64
 /// padded with NUL bytes to a multiple of 4).
 pub fn to_gsf(map: &HeightMap) -> Vec<u8> {
     let mut h = format!(
-        "{GSF_MAGIC}XRes = {}\nYRes = {}\nXReal = {:e}\nYReal = {:e}\nXYUnits = m\nZUnits = m\nTitle = adhesion height map\n",
-        map.nx, map.ny, map.lx, map.ly
+        "{GSF_MAGIC}XRes = {}\nYRes = {}\nXReal = {:e}\nYReal = {:e}\nXYUnits = m\nZUnits = m\nTitle = adhesion height map\n{}",
+        map.nx,
+        map.ny,
+        map.lx,
+        map.ly,
+        if map.periodic { "Periodic = 1\n" } else { "" }
     )
     .into_bytes();
     let pad = 4 - h.len() % 4;
@@ -191,11 +238,27 @@ pub fn to_gsf(map: &HeightMap) -> Vec<u8> {
     h
 }
 
-/// Parse a Gwyddion simple field file.
+/// Metres per unit of a length unit as written in a `.gsf` header (`m` with an SI prefix, or
+/// ångström); `None` for anything else.
+pub fn metres_per_unit(unit: &str) -> Option<f64> {
+    Some(match unit {
+        "m" => 1.0,
+        "mm" => 1e-3,
+        "um" | "µm" | "μm" => 1e-6,
+        "nm" => 1e-9,
+        "pm" => 1e-12,
+        "A" | "Å" | "Å" => 1e-10,
+        _ => return None,
+    })
+}
+
+/// Parse a Gwyddion simple field file. Lengths in XYUnits and heights in ZUnits (metres when
+/// absent) are converted to metres; `Periodic = 1` marks a periodic map.
 ///
 /// # Errors
-/// [`Error::DataFile`] for a missing magic line, a missing or bad XRes/YRes/XReal/YReal, a
-/// header without its NUL padding, truncated data, or non-finite heights.
+/// [`Error::DataFile`] for a missing magic line, a missing or bad XRes/YRes/XReal/YReal, an
+/// XYUnits or ZUnits that is not a length ([`metres_per_unit`]), a header without its NUL
+/// padding, truncated data, or non-finite heights.
 pub fn parse_gsf(bytes: &[u8], path: &Path) -> Result<HeightMap> {
     if !bytes.starts_with(GSF_MAGIC.as_bytes()) {
         return Err(Error::data_file(
@@ -217,6 +280,9 @@ pub fn parse_gsf(bytes: &[u8], path: &Path) -> Result<HeightMap> {
     let mut yres = None;
     let mut xreal = None;
     let mut yreal = None;
+    let mut xy_unit = 1.0;
+    let mut z_unit = 1.0;
+    let mut periodic = false;
     for (ln, line) in header.lines().enumerate().skip(1) {
         let Some((k, v)) = line.split_once('=') else {
             continue;
@@ -228,6 +294,21 @@ pub fn parse_gsf(bytes: &[u8], path: &Path) -> Result<HeightMap> {
             "YRes" => yres = Some(v.parse::<usize>().map_err(|_| bad())?),
             "XReal" => xreal = Some(v.parse::<f64>().map_err(|_| bad())?),
             "YReal" => yreal = Some(v.parse::<f64>().map_err(|_| bad())?),
+            "XYUnits" | "ZUnits" => {
+                let f = metres_per_unit(v).ok_or_else(|| {
+                    Error::data_file(
+                        path,
+                        ln + 1,
+                        format!("{k} = `{v}` is not a length unit (m, mm, um, nm, pm or A)"),
+                    )
+                })?;
+                if k == "ZUnits" {
+                    z_unit = f;
+                } else {
+                    xy_unit = f;
+                }
+            }
+            "Periodic" => periodic = v.parse::<u8>().map_err(|_| bad())? != 0,
             _ => {}
         }
     }
@@ -255,9 +336,12 @@ pub fn parse_gsf(bytes: &[u8], path: &Path) -> Result<HeightMap> {
     }
     let z: Vec<f64> = bytes[start..start + need]
         .chunks_exact(4)
-        .map(|c| f64::from(f32::from_le_bytes([c[0], c[1], c[2], c[3]])))
+        .map(|c| f64::from(f32::from_le_bytes([c[0], c[1], c[2], c[3]])) * z_unit)
         .collect();
-    HeightMap::new(nx, ny, lx, ly, z).map_err(|e| Error::data_file(path, 0, e.to_string()))
+    let mut map = HeightMap::new(nx, ny, lx * xy_unit, ly * xy_unit, z)
+        .map_err(|e| Error::data_file(path, 0, e.to_string()))?;
+    map.periodic = periodic;
+    Ok(map)
 }
 
 /// Read a height map, the format by extension (`.gsf`, else text). `pixel_size` [m] is needed

@@ -308,7 +308,8 @@ fn nearest_peak_distance_of_a_lattice() {
             (w * i).cos() * (w * j).cos()
         })
         .collect();
-    let map = HeightMap::new(n, n, 1.0, 1.0, z).unwrap();
+    let mut map = HeightMap::new(n, n, 1.0, 1.0, z).unwrap();
+    map.periodic = true;
     let ps = peak_statistics(&map);
     assert_eq!(ps.count, 2 * (n / a) * (n / a));
     let spacing = a as f64 / n as f64;
@@ -487,6 +488,24 @@ fn command_line_rejects_bad_surface_requests_in_one_line() {
             ],
             "length",
         ),
+        (
+            &[
+                "--headless",
+                "--generate-surface",
+                "--rms",
+                "1",
+                "--size",
+                "16384",
+                "8193",
+                "--length",
+                "1",
+                "--correlation-length",
+                "0.1",
+                "--out",
+                "x.csv",
+            ],
+            "at most 2^26",
+        ),
         (&["--headless", "--analyze-surface", csv], "--pixel-size"),
         (
             &["--headless", "--analyze-surface", csv, "--pixel-size", "-2"],
@@ -643,12 +662,17 @@ fn scene_fig3_7d_analyses_a_user_height_map_given_with_surface() {
     let v = read();
     let r = &v["results"];
     assert!(rel(r["sigma_rms_m"].as_f64().unwrap(), 3.0e-9) < 1e-9, "{r}");
+    // The scan is imported as a non-periodic patch: its moments are the windowed ones (within
+    // 10 % of the periodic ones here: m2 -5 %, m4 -0.02 %); σ_rms is the map's plain RMS.
+    let mut patch = map.clone();
+    patch.periodic = false;
+    let (windowed, periodic) = (moments_of_map(&patch), moments_of_map(&map));
+    assert!(rel(r["m2_norm"].as_f64().unwrap(), windowed.m2) < 1e-9, "{r}");
+    assert!(rel(windowed.m2, periodic.m2) < 0.1 && rel(windowed.m4, periodic.m4) < 0.1);
+    // The fit of the windowed PSD: Lc = 33.6 nm, n = 2.86 (periodic: 39.4 nm, 2.80); a 128²
+    // patch holds only 25 correlation lengths, and its centre, where the window is large, fewer.
     assert!(
-        rel(r["m2_norm"].as_f64().unwrap(), moments_of_map(&map).m2) < 1e-9,
-        "{r}"
-    );
-    assert!(
-        rel(r["fit_correlation_length_m"].as_f64().unwrap(), 40e-9) < 0.1,
+        rel(r["fit_correlation_length_m"].as_f64().unwrap(), 40e-9) < 0.2,
         "{r}"
     );
     assert!(rel(r["fit_exponent_norm"].as_f64().unwrap(), 2.8) < 0.05, "{r}");
@@ -734,4 +758,179 @@ fn analysis_does_not_depend_on_the_number_of_threads() {
         .unwrap()
         .install(|| generate(&mold(), 96, 80, 2e-6, 1.6e-6, 11).unwrap());
     assert_eq!(map, again);
+}
+
+/// The `(i0, j0)` corner `n × n` window of `map`, as an imported (non-periodic) map.
+fn crop(map: &HeightMap, i0: usize, j0: usize, n: usize) -> HeightMap {
+    let z = (0..n * n).map(|k| map.at(i0 + k % n, j0 + k / n)).collect();
+    HeightMap::new(n, n, n as f64 * map.dx(), n as f64 * map.dy(), z).unwrap()
+}
+
+#[test]
+fn a_cropped_patch_is_windowed_and_recovers_the_statistics_of_the_whole_surface() {
+    // A periodic 512² surface with the PSD (3.16)/(3.17) (4 µm, 7.8 nm pixels) and its four
+    // 256² quarters, each an imported patch: non-periodic, so its edges do not match. Measured
+    // (seed 1): full m2 = 1.381e-3, m4 = 5.088e12, α = 5.61, n = 3.283, Lc = 20.1 nm.
+    // Windowed quarters: m2 1.20..1.47e-3 (-13..+6 %), m4 4.83..5.12e12 (-5..+1 %), n 3.27..3.34
+    // (±2 %), Lc 18.7..20.3 nm (-7..+1 %), α 5.04..6.81 (-10..+21 %; m0 is the quarter's plain
+    // variance, set by long wavelengths, m2 its centre's slopes, which scatter independently).
+    // That spread is each quarter's own sampling variation: the 4-quarter means are within 2 %
+    // in m2, 1 % in m4 and 4 % in α. The tolerances below are about 1.2-2x the measured ones.
+    // The same quarters as periodic maps (plain FFT): the edge jump leaks into high q, m4
+    // 2.0..2.5e13 (4-5x), α 14.8..17.2, and the fit finds n ≈ 1.42-1.49, Lc ≈ 70-79 nm.
+    let full = generate(&mold(), 512, 512, 4e-6, 4e-6, 1).unwrap();
+    assert!(full.periodic);
+    let mf = moments_of_map(&full);
+    let ff = fit_abc(&radial_psd(&full), Cutoff::Fixed(1e8)).unwrap();
+    let (mut m2_sum, mut m4_sum, mut alpha_sum) = (0.0, 0.0, 0.0);
+    for (i0, j0) in [(0, 0), (256, 0), (0, 256), (256, 256)] {
+        let mut c = crop(&full, i0, j0, 256);
+        assert!(!c.periodic);
+        c.remove_mean();
+        let m = moments_of_map(&c);
+        let f = fit_abc(&radial_psd(&c), Cutoff::Fixed(1e8)).unwrap();
+        let at = format!("quarter ({i0}, {j0}): {m:?} {f:?}");
+        assert!(rel(m.m2, mf.m2) < 0.2, "{at}");
+        assert!(rel(m.m4, mf.m4) < 0.1, "{at}");
+        assert!(rel(m.nayak_alpha(), mf.nayak_alpha()) < 0.3, "{at}");
+        assert!(rel(f.exponent, ff.exponent) < 0.04, "{at}");
+        assert!(rel(f.correlation_length, ff.correlation_length) < 0.12, "{at}");
+        m2_sum += m.m2;
+        m4_sum += m.m4;
+        alpha_sum += m.nayak_alpha();
+        // The same patch taken as periodic: the failure mode the window removes.
+        c.periodic = true;
+        let p = moments_of_map(&c);
+        let pf = fit_abc(&radial_psd(&c), Cutoff::Fixed(1e8)).unwrap();
+        assert!(p.m4 > 3.5 * mf.m4, "{at} periodic {p:?}");
+        assert!(p.nayak_alpha() > 2.5 * mf.nayak_alpha(), "{at} periodic {p:?}");
+        assert!(
+            pf.exponent < 1.6 && pf.correlation_length > 3.0 * ff.correlation_length,
+            "{pf:?}"
+        );
+    }
+    assert!(rel(m2_sum / 4.0, mf.m2) < 0.04, "{m2_sum}");
+    assert!(rel(m4_sum / 4.0, mf.m4) < 0.03, "{m4_sum}");
+    assert!(rel(alpha_sum / 4.0, mf.nayak_alpha()) < 0.08, "{alpha_sum}");
+}
+
+#[test]
+fn peaks_of_a_patch_are_counted_away_from_its_border() {
+    // A lattice of maxima cos(2πx/a)cos(2πy/a) with maxima on the border rows and columns: a
+    // periodic map counts them (wrapping), a patch does not (their neighbours are unknown).
+    let (n, a) = (64usize, 16usize);
+    let z: Vec<f64> = (0..n * n)
+        .map(|k| {
+            let w = 2.0 * std::f64::consts::PI / a as f64;
+            (w * (k % n) as f64).cos() * (w * (k / n) as f64).cos()
+        })
+        .collect();
+    let mut map = HeightMap::new(n, n, 1.0, 1.0, z).unwrap();
+    let patch = peak_statistics(&map);
+    map.periodic = true;
+    let periodic = peak_statistics(&map);
+    assert_eq!(periodic.count, 2 * (n / a) * (n / a));
+    // Row 0 and column 0 hold 2·(n/a) − 1 of the maxima.
+    assert_eq!(patch.count, periodic.count - (2 * (n / a) - 1));
+    let interior = ((n - 2) as f64 / n as f64).powi(2);
+    assert!(
+        rel(patch.density, patch.count as f64 / interior) < 1e-12,
+        "{patch:?}"
+    );
+    // Without wrapping, the nearest neighbour is still a/√2 away in the lattice's interior.
+    assert!(rel(patch.mean_nearest_distance, a as f64 / n as f64 / 2f64.sqrt()) < 1e-12);
+}
+
+#[test]
+fn gsf_units_are_converted_and_unknown_units_rejected() {
+    let dir = tempfile::tempdir().unwrap();
+    let body = |xy: &str, z: &str| -> Vec<u8> {
+        let mut h = format!(
+            "Gwyddion Simple Field 1.0\nXRes = 2\nYRes = 2\nXReal = 3\nYReal = 2\nXYUnits = {xy}\nZUnits = {z}\n"
+        )
+        .into_bytes();
+        let pad = 4 - h.len() % 4;
+        h.extend(std::iter::repeat_n(0u8, pad));
+        for v in [1.0f32, 2.0, 3.0, 4.0] {
+            h.extend_from_slice(&v.to_le_bytes());
+        }
+        h
+    };
+    let read = |name: &str, bytes: Vec<u8>| {
+        let p = dir.path().join(name);
+        std::fs::write(&p, bytes).unwrap();
+        read_height_map(&p, None)
+    };
+    for (xy, z, fxy, fz) in [
+        ("um", "nm", 1e-6, 1e-9),
+        ("µm", "A", 1e-6, 1e-10),
+        ("mm", "pm", 1e-3, 1e-12),
+        ("m", "m", 1.0, 1.0),
+        ("nm", "Å", 1e-9, 1e-10),
+    ] {
+        let m = read("u.gsf", body(xy, z)).unwrap();
+        assert!(!m.periodic);
+        assert!(
+            rel(m.lx, 3.0 * fxy) < 1e-15 && rel(m.ly, 2.0 * fxy) < 1e-15,
+            "{xy}"
+        );
+        assert!(rel(m.at(1, 1), 4.0 * fz) < 1e-15, "{z}");
+    }
+    for (xy, z, key, value) in [("m", "V", "ZUnits", "V"), ("deg", "m", "XYUnits", "deg")] {
+        let e = read("bad.gsf", body(xy, z)).unwrap_err().to_string();
+        assert!(!e.contains('\n'), "{e}");
+        assert!(
+            e.contains(&format!("{key} = `{value}`")) && e.contains("length unit"),
+            "{e}"
+        );
+    }
+    // Non-integer point counts are refused, in .gsf and in the text header.
+    let mut b = body("m", "m");
+    let at = b.windows(8).position(|w| w == b"XRes = 2").unwrap();
+    b.splice(at..at + 8, b"XRes=2.7".iter().copied());
+    assert!(
+        read("frac.gsf", b)
+            .unwrap_err()
+            .to_string()
+            .contains("XRes = `2.7`")
+    );
+    let p = dir.path().join("frac.csv");
+    std::fs::write(&p, "# adhesion height map: nx=2.7 ny=2 lx=1 ly=1\n1,2\n3,4\n").unwrap();
+    let e = read_height_map(&p, None).unwrap_err().to_string();
+    assert!(e.contains("nx=2.7") && e.contains("whole number"), "{e}");
+}
+
+#[test]
+fn command_line_analyses_an_imported_map_as_a_patch_unless_told_periodic() {
+    // A generated (periodic) map exported without its header, as an instrument would write it.
+    let dir = tempfile::tempdir().unwrap();
+    let map = generate(&mold(), 128, 128, 1e-6, 1e-6, 3).unwrap();
+    let csv = dir.path().join("scan.csv");
+    let text = adhesion::surface::io::to_csv(&map);
+    std::fs::write(&csv, text.lines().skip(1).collect::<Vec<_>>().join("\n")).unwrap();
+    let run = |extra: &[&str]| -> serde_json::Value {
+        let mut args = vec![
+            "--headless",
+            "--analyze-surface",
+            csv.to_str().unwrap(),
+            "--pixel-size",
+            "7.8125e-9",
+        ];
+        args.extend_from_slice(extra);
+        let o = adhesion(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        serde_json::from_slice(&o.stdout).unwrap()
+    };
+    let mut patch = map.clone();
+    patch.periodic = false;
+    let windowed = run(&[]);
+    assert_eq!(windowed["periodic"], false);
+    assert!(rel(windowed["m4"].as_f64().unwrap(), moments_of_map(&patch).m4) < 1e-6);
+    let periodic = run(&["--periodic"]);
+    assert_eq!(periodic["periodic"], true);
+    assert!(rel(periodic["m4"].as_f64().unwrap(), moments_of_map(&map).m4) < 1e-6);
+    // The file with its header comment records the periodicity: read back periodic.
+    let with_header = dir.path().join("gen.csv");
+    std::fs::write(&with_header, &text).unwrap();
+    assert!(read_height_map(&with_header, None).unwrap().periodic);
 }
