@@ -8,12 +8,7 @@ use adhesion::surface::{Cutoff, Spectrum, fit_abc, generate, peak_statistics, ra
 use criterion::{Criterion, criterion_group, criterion_main};
 
 fn mold() -> Spectrum {
-    Spectrum::Abc {
-        rms: 1.45e-9,
-        correlation_length: 20.1e-9,
-        exponent: 3.28,
-        cutoff: Some(1.0e8),
-    }
+    adhesion::surface::spectrum::PSD_3_17
 }
 
 fn surface(c: &mut Criterion) {

@@ -8,12 +8,7 @@ use crate::surface::{Moments, Spectrum, generate, peak_statistics};
 
 /// The Si mold's PSD: (3.16) with the parameters (3.17).
 fn mold() -> Spectrum {
-    Spectrum::Abc {
-        rms: 1.45e-9,
-        correlation_length: 20.1e-9,
-        exponent: 3.28,
-        cutoff: Some(1.0e8),
-    }
+    crate::surface::spectrum::PSD_3_17
 }
 
 /// Appendix B/C claims.

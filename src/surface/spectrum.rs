@@ -21,6 +21,15 @@ use crate::numerics::quadrature::{integrate, integrate_to_infinity};
 /// Relative tolerance of the moment quadratures.
 const MOMENT_REL_TOL: f64 = 1e-10;
 
+/// The PSD (3.16) with the parameters (3.17) of section 3.3: the Si mold's surface
+/// (σ_rms = 1.45 nm, L_c = 20.1 nm, n = 3.28, q_0 = 1e8 m⁻¹).
+pub const PSD_3_17: Spectrum = Spectrum::Abc {
+    rms: 1.45e-9,
+    correlation_length: 20.1e-9,
+    exponent: 3.28,
+    cutoff: Some(1.0e8),
+};
+
 /// An isotropic PSD model, each scaled to its RMS height σ_rms [m].
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "kebab-case")]

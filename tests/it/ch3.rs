@@ -472,13 +472,8 @@ fn fig3_8c_grid_table_and_empirical_against_quadrature() {
 fn loss_per_area_from_a_height_map() {
     use adhesion::models::ddh::LossMethod;
     use adhesion::scenes::fig3::Fig3_8Params;
-    use adhesion::surface::{Spectrum, generate, write_height_map};
-    let spectrum = Spectrum::Abc {
-        rms: 1.45e-9,
-        correlation_length: 20.1e-9,
-        exponent: 3.28,
-        cutoff: Some(1.0e8),
-    };
+    use adhesion::surface::{generate, write_height_map};
+    let spectrum = adhesion::surface::spectrum::PSD_3_17;
     let map = generate(&spectrum, 512, 512, 4e-6, 4e-6, 7).unwrap();
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("mold.gsf");
@@ -528,13 +523,8 @@ fn loss_per_area_from_a_height_map() {
 /// scan of Fig. 3.7c); a missing file fails in one line and writes nothing.
 #[test]
 fn command_line_fig3_8_on_a_height_map() {
-    use adhesion::surface::{Spectrum, generate, moments_of_map, write_height_map};
-    let spectrum = Spectrum::Abc {
-        rms: 1.45e-9,
-        correlation_length: 20.1e-9,
-        exponent: 3.28,
-        cutoff: Some(1.0e8),
-    };
+    use adhesion::surface::{generate, moments_of_map, write_height_map};
+    let spectrum = adhesion::surface::spectrum::PSD_3_17;
     let map = generate(&spectrum, 256, 256, 2e-6, 2e-6, 3).unwrap();
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("mold.gsf");

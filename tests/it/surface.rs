@@ -14,12 +14,7 @@ fn rel(a: f64, b: f64) -> f64 {
 
 /// The parameters (3.17) of the Si mold's PSD fit.
 fn mold() -> Spectrum {
-    Spectrum::Abc {
-        rms: 1.45e-9,
-        correlation_length: 20.1e-9,
-        exponent: 3.28,
-        cutoff: Some(1.0e8),
-    }
+    adhesion::surface::spectrum::PSD_3_17
 }
 
 #[test]
