@@ -2,9 +2,11 @@
 //! (exact spring by spring against binned), criterion medians. With `CH5_LONG=1` also the
 //! complete Fig. 5.8 (6 stiffnesses x 10 roughnesses x 15 samples of 256 x 256 springs, median
 //! of three runs) and one coupled 256 x 256 cycle of 1000 displacement steps per phase (one run),
-//! too long for criterion's ten samples: `CH5_LONG=1 cargo bench --bench ch5 -- long`. The
-//! coupled 256 x 256 cycle takes many minutes (one factorisation of the 65 536-unknown Hessian
-//! per displacement step at least, several while springs jump).
+//! too long for criterion's ten samples: `CH5_LONG=1 cargo bench --bench ch5 -- long`. The long
+//! runs also time coupled cycles of 32 x 32 and 64 x 64 springs with the direct (Cholesky) and
+//! the iterative (CG and certificate) linear algebra. The coupled 256 x 256 cycle takes many
+//! minutes: at every step some 50 springs lose stability, and springs near their fold leave it
+//! slowly under the damped steps.
 
 use std::hint::black_box;
 use std::time::Instant;
@@ -12,7 +14,7 @@ use std::time::Instant;
 use adhesion::job::Job;
 use adhesion::models::fibril::{K_CR_BAR, SingleSpring};
 use adhesion::models::spring_array::{BinnedBranches, SpringArray, coupled_cycle, uncoupled_cycle};
-use adhesion::numerics::newton::{NewtonOptions, StableNewton};
+use adhesion::numerics::newton::{LinearSolver, NewtonOptions, StableNewton};
 use adhesion::scenes::Scene;
 use adhesion::scenes::fig5::{Fig5_8, Fig5_8Params};
 use adhesion::surface::{Spectrum, generate};
@@ -149,8 +151,23 @@ fn long_runs() {
     });
     println!("ch5 long/fig5.8 complete (6 x 10 x 15 samples, 256 x 256): median of 3 runs {t:.2} s");
     let k_e = K_CR_BAR * 2f64.powi(-10);
-    let a = SpringArray::new(256, 256, k_e, 2.0 * k_e, heights(256, 256, 100.0, 1)).expect("array");
     let (u_max, u_min) = window(k_e, 100.0);
+    for n in [32, 64] {
+        let a = SpringArray::new(n, n, k_e, 2.0 * k_e, heights(n, n, 100.0, 1)).expect("array");
+        for linear in [LinearSolver::Direct, LinearSolver::Iterative] {
+            let opts = NewtonOptions {
+                linear,
+                ..NewtonOptions::default()
+            };
+            let t = median_of(1, || {
+                black_box(coupled_cycle(&a, u_max, u_min, 1000, &opts, |_| Ok(())).expect("cycle"));
+            });
+            println!(
+                "ch5 long/coupled cycle {n} x {n}, k_mu = 2 k_e, 1000 steps, {linear:?}: one run {t:.2} s"
+            );
+        }
+    }
+    let a = SpringArray::new(256, 256, k_e, 2.0 * k_e, heights(256, 256, 100.0, 1)).expect("array");
     let t = median_of(1, || {
         black_box(
             coupled_cycle(&a, u_max, u_min, 1000, &NewtonOptions::default(), |_| Ok(())).expect("cycle"),

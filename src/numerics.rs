@@ -8,6 +8,7 @@ pub mod curve;
 pub mod fft;
 pub mod least_squares;
 pub mod newton;
+pub mod pcg;
 pub mod quadrature;
 pub mod roots;
 pub mod spline;

@@ -186,6 +186,38 @@ impl Energy for ArrayEnergy<'_> {
         p
     }
 
+    /// Eq. (5.29) as a function of d̄_i alone, the neighbours held: the spring's own terms and
+    /// its (up to four) coupling springs; slope and curvature are row i of (5.31) and (5.33).
+    fn along_coordinate(&self, d: &[f64], i: usize, s: f64) -> Option<(f64, f64, f64)> {
+        let a = self.array;
+        if s <= 0.0 || s.is_nan() {
+            return Some((f64::INFINITY, 0.0, 0.0));
+        }
+        let z = a.heights[i];
+        let r = self.u - z - s;
+        let (mut e, mut de, mut d2) = (
+            0.5 * a.k_e * r * r + lj_energy(s),
+            -a.k_e * r + lj_traction(s),
+            a.k_e + lj_curvature(s),
+        );
+        if a.k_mu > 0.0 {
+            let (ix, iy) = (i % a.nx, i / a.nx);
+            let neighbours = [
+                (ix > 0).then(|| i - 1),
+                (ix + 1 < a.nx).then(|| i + 1),
+                (iy > 0).then(|| i - a.nx),
+                (iy + 1 < a.ny).then(|| i + a.nx),
+            ];
+            for j in neighbours.into_iter().flatten() {
+                let t = a.heights[j] + d[j] - z - s;
+                e += 0.5 * a.k_mu * t * t;
+                de -= a.k_mu * t;
+                d2 += a.k_mu;
+            }
+        }
+        Some((e, de, d2))
+    }
+
     /// Eqs. (5.33)-(5.34): K + f″(d̄_i) δ_ij, K with k̄_e + (number of neighbours) k̄_μ on the
     /// diagonal and −k̄_μ for each neighbour pair.
     fn hessian_values(&self, d: &[f64], v: &mut [f64]) {

@@ -27,6 +27,13 @@
 //! a continuation that restarts from it (identical Hessian values are detected, not assumed).
 //! A continuation step therefore costs about one factorisation when no spring jumps.
 //! The energy, gradient and Hessian come from an [`Energy`]; nothing here knows about physics.
+//!
+//! Large systems ([`LinearSolver::Auto`] from [`ITERATIVE_MIN_UNKNOWNS`] unknowns) take the
+//! iterative path instead: CG steps, a localised diagonal modification where the Hessian is
+//! indefinite, unknowns that are unstable on their own moved to their next minimum along their
+//! axis, and a factorisation-free certificate of positive definiteness for Hessians that are
+//! Z-matrices ([`crate::numerics::pcg::certify_z_matrix`]), with the direct path as the fallback
+//! wherever the certificate is not found. The acceptance rule is the same.
 
 use faer::Side;
 use faer::linalg::solvers::Solve;
@@ -35,6 +42,7 @@ use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
 use std::sync::Arc;
 
 use crate::error::{Error, Result};
+use crate::numerics::pcg::{Operator, PcgEnd, SymmetricPattern, certify_z_matrix, dot, inf_norm, pcg};
 
 /// A smooth energy of `dim()` unknowns with a sparse Hessian of fixed pattern.
 pub trait Energy {
@@ -48,6 +56,14 @@ pub trait Energy {
     fn hessian_pattern(&self) -> Vec<(usize, usize)>;
     /// Hessian values at `x` in the order of [`Energy::hessian_pattern`].
     fn hessian_values(&self, x: &[f64], values: &mut [f64]);
+    /// Optional: the energy as a function of unknown `i` alone, all others held at `x`,
+    /// evaluated at x_i = `s`: (E, dE/ds, d²E/ds²), E up to a constant independent of s and
+    /// `f64::INFINITY` outside the domain. Offering it (at a cost independent of `dim()`) lets
+    /// the iterative path move an unknown that is unstable on its own straight to its next
+    /// minimum. The default offers nothing.
+    fn along_coordinate(&self, _x: &[f64], _i: usize, _s: f64) -> Option<(f64, f64, f64)> {
+        None
+    }
 }
 
 /// Tolerances of the minimisation.
@@ -61,7 +77,28 @@ pub struct NewtonOptions {
     pub step_tol: f64,
     /// Largest number of iterations.
     pub max_iterations: usize,
+    /// How the linear systems are solved and definiteness is decided.
+    pub linear: LinearSolver,
 }
+
+/// How [`StableNewton`] solves its linear systems.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum LinearSolver {
+    /// [`LinearSolver::Iterative`] from [`ITERATIVE_MIN_UNKNOWNS`] unknowns, otherwise
+    /// [`LinearSolver::Direct`].
+    #[default]
+    Auto,
+    /// Sparse Cholesky factorisations: the step solves and the stability test in one.
+    Direct,
+    /// Jacobi-preconditioned conjugate gradients for the steps, a localised diagonal
+    /// modification where the Hessian is indefinite, and the factorisation-free certificate of
+    /// [`crate::numerics::pcg::certify_z_matrix`] for the stability of accepted states
+    /// (Cholesky only where that certificate does not apply or is not found).
+    Iterative,
+}
+
+/// Systems from this many unknowns use the iterative path under [`LinearSolver::Auto`].
+pub const ITERATIVE_MIN_UNKNOWNS: usize = 4096;
 
 impl Default for NewtonOptions {
     fn default() -> Self {
@@ -69,6 +106,7 @@ impl Default for NewtonOptions {
             gradient_tol: 1e-10,
             step_tol: 1e-12,
             max_iterations: 500,
+            linear: LinearSolver::Auto,
         }
     }
 }
@@ -88,6 +126,11 @@ pub struct NewtonReport {
     pub gradient_norm: f64,
     /// Energy at the accepted state.
     pub energy: f64,
+    /// Times the iterative path handed over to the direct one (a stability certificate not
+    /// found, a failed line search); zero on the direct path.
+    pub direct_fallbacks: usize,
+    /// Unknowns moved to their next minimum along their own axis (iterative path).
+    pub coordinate_jumps: usize,
 }
 
 impl NewtonReport {
@@ -123,6 +166,15 @@ pub struct StableNewton {
     cache: Option<(Vec<f64>, Option<Factor>)>,
     /// Numeric factorisations computed so far (cache hits excluded).
     computed: usize,
+    /// Row structure of the Hessian for the iterative path.
+    rows: SymmetricPattern,
+    /// The Hessian values of the last state certified positive definite without factorisation,
+    /// and the certificate (see [`certify_z_matrix`]); the certificate is kept as the start for
+    /// the next one.
+    certified: Option<(Vec<f64>, f64)>,
+    certificate: Vec<f64>,
+    /// The Hessian values in row order (see [`SymmetricPattern::gather`]).
+    row_values: Vec<f64>,
 }
 
 impl StableNewton {
@@ -157,6 +209,7 @@ impl StableNewton {
                 "Hessian pattern lacks the diagonal entry ({i}, {i})"
             )));
         }
+        let rows = SymmetricPattern::from_lower(n, &pattern[..n_pattern]);
         let pairs: Vec<Pair<usize, usize>> = pattern.iter().map(|&(r, c)| Pair::new(r, c)).collect();
         let (symbolic, argsort) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs)
             .map_err(|e| fail(format!("sparsity pattern: {e:?}")))?;
@@ -172,6 +225,10 @@ impl StableNewton {
             last_shift: 0.0,
             cache: None,
             computed: 0,
+            rows,
+            certified: None,
+            certificate: Vec::new(),
+            row_values: Vec::new(),
         })
     }
 
@@ -220,7 +277,48 @@ impl StableNewton {
     pub fn is_stable(&mut self, energy: &impl Energy, x: &[f64]) -> Result<bool> {
         let n_pattern = self.values.len() - self.n;
         energy.hessian_values(x, &mut self.values[..n_pattern]);
+        if let Some((v, _)) = &self.certified
+            && v[..] == self.values[..n_pattern]
+        {
+            return Ok(true);
+        }
+        if self.n >= ITERATIVE_MIN_UNKNOWNS
+            && let (Some(definite), _) = self.certify()
+        {
+            return Ok(definite);
+        }
         Ok(self.factor(0.0)?.is_some())
+    }
+
+    /// Decide the definiteness of the Hessian in `self.values` without factorising when it is
+    /// a Z-matrix ([`certify_z_matrix`]); `None` when undecided or not a Z-matrix. With
+    /// `Some(true)` comes a bound on ‖H⁻¹‖∞.
+    fn certify(&mut self) -> (Option<bool>, f64) {
+        let n_pattern = self.values.len() - self.n;
+        let values = &self.values[..n_pattern];
+        if let Some((v, bound)) = &self.certified
+            && v[..] == values[..]
+        {
+            return (Some(true), *bound);
+        }
+        self.rows.gather(values, &mut self.row_values);
+        let mut diag = vec![0.0; self.n];
+        let mut off = vec![0.0; self.n];
+        if !self
+            .rows
+            .diagonal_and_off_sums(&self.row_values, &mut diag, &mut off)
+        {
+            return (None, f64::INFINITY);
+        }
+        let (found, bound) =
+            certify_z_matrix(&self.rows, &self.row_values, &diag, &mut self.certificate, 2000);
+        if found == Some(true) {
+            let mut v = self.certified.take().map(|c| c.0).unwrap_or_default();
+            v.clear();
+            v.extend_from_slice(values);
+            self.certified = Some((v, bound));
+        }
+        (found, bound)
     }
 
     /// Minimise `energy` from `x` (updated in place) to a stable equilibrium: small gradient
@@ -239,9 +337,171 @@ impl StableNewton {
         opts: &NewtonOptions,
     ) -> Result<NewtonReport> {
         let start = self.computed;
-        let mut rep = self.minimize_inner(energy, x, opts)?;
+        let iterative = match opts.linear {
+            LinearSolver::Auto => self.n >= ITERATIVE_MIN_UNKNOWNS,
+            LinearSolver::Direct => false,
+            LinearSolver::Iterative => true,
+        };
+        let mut rep = if iterative {
+            self.minimize_iterative(energy, x, opts)?
+        } else {
+            self.minimize_inner(energy, x, opts)?
+        };
         rep.factorizations = self.computed - start;
         Ok(rep)
+    }
+
+    /// The iterative path ([`LinearSolver::Iterative`]):
+    /// - unknowns whose own curvature h_ii is not positive are unstable even with all others
+    ///   held: when the energy offers [`Energy::along_coordinate`], each is moved downhill along
+    ///   its axis to its next minimum (coordinate descent, one unknown after the other), the
+    ///   jump of a single part of the system done in one move;
+    /// - Newton steps by Jacobi-preconditioned CG on H while CG meets no negative curvature;
+    /// - where H is indefinite, the rows that are not diagonally dominant (at least one is, by
+    ///   Gershgorin, whenever H is indefinite) get their net diagonal h_ii − Σ_{j≠i}|h_ij|
+    ///   replaced by its magnitude, so that the modified matrix is strictly diagonally dominant
+    ///   and positive definite: the unstable unknowns move downhill, damped by their own
+    ///   curvature, while the rest of the system takes its Newton step and stays in its basin;
+    /// - each step is followed by a backtracking line search on the energy.
+    ///
+    /// A state is accepted with a small gradient, a certificate of positive definiteness
+    /// ([`certify_z_matrix`]) and a Newton correction bounded by ‖H⁻¹‖∞·‖g‖∞ (from the same
+    /// certificate) below √gradient_tol. Where no certificate is found (or H is not a
+    /// Z-matrix) the direct path takes over from the current state and decides by
+    /// factorisation.
+    fn minimize_iterative(
+        &mut self,
+        energy: &impl Energy,
+        x: &mut [f64],
+        opts: &NewtonOptions,
+    ) -> Result<NewtonReport> {
+        assert_eq!(x.len(), self.n, "state length must equal the energy's dimension");
+        let n = self.n;
+        let n_pattern = self.values.len() - n;
+        let mut rep = NewtonReport::default();
+        let mut g = vec![0.0; n];
+        let mut rhs = vec![0.0; n];
+        let mut p = vec![0.0; n];
+        let mut trial = vec![0.0; n];
+        let mut diag = vec![0.0; n];
+        let mut off = vec![0.0; n];
+        let mut inv = vec![0.0; n];
+        let mut extra = vec![0.0; n];
+        let mut e0 = energy.energy(x);
+        if !e0.is_finite() {
+            return Err(Error::Unresolvable {
+                model: "stable Newton",
+                reason: "the start state is outside the energy's domain".into(),
+            });
+        }
+        let max_cg = 2000.min(10 * n.max(10));
+        let hand_over = |this: &mut Self, x: &mut [f64], mut rep: NewtonReport| -> Result<NewtonReport> {
+            let direct = this.minimize_inner(energy, x, opts)?;
+            rep.iterations += direct.iterations;
+            rep.indefinite_iterations += direct.indefinite_iterations;
+            rep.negative_curvature_steps += direct.negative_curvature_steps;
+            rep.gradient_norm = direct.gradient_norm;
+            rep.energy = direct.energy;
+            rep.direct_fallbacks += 1;
+            Ok(rep)
+        };
+        while rep.iterations < opts.max_iterations {
+            rep.iterations += 1;
+            energy.gradient(x, &mut g);
+            let gnorm = inf_norm(&g);
+            energy.hessian_values(x, &mut self.values[..n_pattern]);
+            if gnorm <= opts.gradient_tol {
+                // Converged if certified definite with a small Newton correction.
+                let (definite, bound) = self.certify();
+                if definite == Some(true) && gnorm * bound <= opts.gradient_tol.sqrt() {
+                    rep.gradient_norm = gnorm;
+                    rep.energy = e0;
+                    return Ok(rep);
+                }
+                if definite.is_none() {
+                    return hand_over(self, x, rep);
+                }
+            }
+            self.rows.gather(&self.values[..n_pattern], &mut self.row_values);
+            self.rows
+                .diagonal_and_off_sums(&self.row_values, &mut diag, &mut off);
+            let mut definite = diag.iter().all(|&d| d > 0.0);
+            if !definite {
+                rep.indefinite_iterations += 1;
+                if jump_along_coordinates(energy, x, &diag, &mut rep) {
+                    e0 = energy.energy(x);
+                    continue;
+                }
+            }
+            let target = (1e-4 * gnorm).max(0.2 * opts.gradient_tol);
+            rhs.iter_mut().zip(&g).for_each(|(r, gi)| *r = -gi);
+            p.fill(0.0);
+            if definite {
+                inv.iter_mut().zip(&diag).for_each(|(m, d)| *m = 1.0 / d);
+                let op = Operator {
+                    pattern: &self.rows,
+                    values: &self.row_values,
+                    extra_diagonal: &[],
+                };
+                // A direction of non-positive curvature shows H indefinite: modified step below.
+                definite = pcg(&op, &inv, &rhs, &mut p, target, max_cg).0 != PcgEnd::NegativeCurvature;
+                if !definite {
+                    rep.indefinite_iterations += 1;
+                }
+            }
+            if definite {
+                if inf_norm(&p) <= opts.step_tol {
+                    if self.certify().0 != Some(true) {
+                        return hand_over(self, x, rep);
+                    }
+                    x.iter_mut().zip(&p).for_each(|(xi, pi)| *xi += pi);
+                    rep.gradient_norm = gnorm;
+                    rep.energy = energy.energy(x);
+                    return Ok(rep);
+                }
+                match backtrack(energy, x, &p, e0, dot(&g, &p), &mut trial) {
+                    Some(e1) => e0 = e1,
+                    None => {
+                        // No decrease along the step: at roundoff level already.
+                        if self.certify().0 == Some(true) {
+                            rep.gradient_norm = gnorm;
+                            rep.energy = e0;
+                            return Ok(rep);
+                        }
+                        return hand_over(self, x, rep);
+                    }
+                }
+                continue;
+            }
+            let floor = 1e-8 * inf_norm(&diag).max(1e-300);
+            for i in 0..n {
+                let net = diag[i] - off[i];
+                extra[i] = if net > 0.0 {
+                    0.0
+                } else {
+                    off[i] + (-net).max(floor) - diag[i]
+                };
+                inv[i] = 1.0 / (diag[i] + extra[i]);
+            }
+            let op = Operator {
+                pattern: &self.rows,
+                values: &self.row_values,
+                extra_diagonal: &extra,
+            };
+            p.fill(0.0);
+            if pcg(&op, &inv, &rhs, &mut p, target, max_cg).0 == PcgEnd::NegativeCurvature {
+                return hand_over(self, x, rep);
+            }
+            let slope = dot(&g, &p);
+            if slope >= 0.0 || slope.is_nan() {
+                return hand_over(self, x, rep);
+            }
+            match backtrack(energy, x, &p, e0, slope, &mut trial) {
+                Some(e1) => e0 = e1,
+                None => return hand_over(self, x, rep),
+            }
+        }
+        hand_over(self, x, rep)
     }
 
     fn minimize_inner(
@@ -280,23 +540,13 @@ impl StableNewton {
                     *pi = -gi;
                 }
                 Self::solve(f, &mut p);
-                let slope = dot(&g, &p);
-                let slack = 1e-14 * e0.abs().max(1.0);
-                let mut t = 1.0;
-                let mut accepted = false;
-                while t >= 1e-20 {
-                    for ((ti, xi), pi) in trial.iter_mut().zip(x.iter()).zip(&p) {
-                        *ti = xi + t * pi;
-                    }
-                    let e1 = energy.energy(&trial);
-                    if e1.is_finite() && e1 <= e0 + 1e-4 * t * slope + slack {
-                        x.copy_from_slice(&trial);
+                let accepted = match backtrack(energy, x, &p, e0, dot(&g, &p), &mut trial) {
+                    Some(e1) => {
                         e0 = e1;
-                        accepted = true;
-                        break;
+                        true
                     }
-                    t *= 0.5;
-                }
+                    None => false,
+                };
                 if accepted {
                     chord = chord.map(|(f, _)| (f, gnorm));
                 } else {
@@ -370,41 +620,22 @@ impl StableNewton {
                 rep.energy = energy.energy(x);
                 return Ok(rep);
             }
-            // Backtracking (Armijo) line search on the energy from the full step. No
-            // extrapolation: a longer step could carry a metastable part of the system over
-            // its energy barrier, and the state must follow the branch an experiment follows.
-            let slack = 1e-14 * e0.abs().max(1.0);
-            let armijo = |t: f64, e: f64| e <= e0 + 1e-4 * t * slope + slack;
-            let eval = |t: f64, trial: &mut Vec<f64>| {
-                for ((ti, xi), pi) in trial.iter_mut().zip(x.iter()).zip(&p) {
-                    *ti = xi + t * pi;
-                }
-                energy.energy(trial)
-            };
-            let mut t = 1.0;
-            let mut e1 = eval(t, &mut trial);
-            while !(e1.is_finite() && armijo(t, e1)) {
-                t *= 0.5;
-                if t < 1e-20 {
-                    break;
-                }
-                e1 = eval(t, &mut trial);
-            }
-            if t < 1e-20 {
-                // No decrease along the step: at roundoff level already.
-                if definite {
+            match backtrack(energy, x, &p, e0, slope, &mut trial) {
+                Some(e1) => e0 = e1,
+                None if definite => {
+                    // No decrease along the step: at roundoff level already.
                     rep.gradient_norm = gnorm;
                     rep.energy = e0;
                     return Ok(rep);
                 }
-                return Err(Error::NoConvergence {
-                    method: "stable Newton (line search)",
-                    iterations: rep.iterations,
-                    residual: gnorm,
-                });
+                None => {
+                    return Err(Error::NoConvergence {
+                        method: "stable Newton (line search)",
+                        iterations: rep.iterations,
+                        residual: gnorm,
+                    });
+                }
             }
-            x.iter_mut().zip(&p).for_each(|(xi, pi)| *xi += t * pi);
-            e0 = energy.energy(x);
         }
         energy.gradient(x, &mut g);
         Err(Error::NoConvergence {
@@ -436,13 +667,104 @@ impl StableNewton {
     }
 }
 
-/// Largest absolute value.
-fn inf_norm(v: &[f64]) -> f64 {
-    v.iter().fold(0.0, |m, x| m.max(x.abs()))
+/// Move every unknown whose own curvature `diag[i]` is not positive downhill along its axis to
+/// its next minimum, one after the other (coordinate descent; each move lowers the energy and
+/// stops at the first minimum met, so no barrier is crossed). Returns whether anything moved;
+/// `false` also when the energy does not offer [`Energy::along_coordinate`].
+fn jump_along_coordinates(energy: &impl Energy, x: &mut [f64], diag: &[f64], rep: &mut NewtonReport) -> bool {
+    let mut moved = false;
+    for (i, &h) in diag.iter().enumerate() {
+        if h > 0.0 {
+            continue;
+        }
+        let Some(to) = descend_1d(|s| energy.along_coordinate(x, i, s), x[i]) else {
+            if energy.along_coordinate(x, i, x[i]).is_none() {
+                return moved;
+            }
+            continue;
+        };
+        x[i] = to;
+        rep.coordinate_jumps += 1;
+        moved = true;
+    }
+    moved
 }
 
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
+/// From `s0`, go downhill on the one-variable energy `f` (value, slope, curvature) to the first
+/// local minimum: steps doubling from the local length scale until the energy stops falling
+/// (slope turned, energy risen, or the domain left), then bisection inside that bracket.
+/// `None` if `f` is not offered, the start is outside the domain or no lower point is found.
+fn descend_1d(f: impl Fn(f64) -> Option<(f64, f64, f64)>, s0: f64) -> Option<f64> {
+    let (e0, d0, c0) = f(s0)?;
+    if !e0.is_finite() {
+        return None;
+    }
+    let dir = if d0 > 0.0 { -1.0 } else { 1.0 };
+    // Still going down (in `dir`) at s, and not above the energy at the bracket's low end.
+    let descending = |e: f64, d: f64, e_ref: f64| e.is_finite() && e <= e_ref && dir * d < 0.0;
+    let mut h = if c0 != 0.0 && d0 != 0.0 {
+        (d0 / c0).abs()
+    } else {
+        0.0
+    }
+    .max(1e-6 * (1.0 + s0.abs()));
+    let (mut a, mut ea) = (s0, e0);
+    let mut b = None;
+    for _ in 0..200 {
+        let t = a + dir * h;
+        let (et, dt, _) = f(t)?;
+        if descending(et, dt, ea) {
+            (a, ea) = (t, et);
+            h *= 2.0;
+        } else {
+            b = Some(t);
+            break;
+        }
+    }
+    let mut b = b?;
+    for _ in 0..200 {
+        let m = 0.5 * (a + b);
+        if m == a || m == b {
+            break;
+        }
+        let (em, dm, _) = f(m)?;
+        if descending(em, dm, ea) {
+            (a, ea) = (m, em);
+        } else {
+            b = m;
+        }
+    }
+    (ea < e0).then_some(a)
+}
+
+/// Backtracking (Armijo) line search on the energy from the full step `p` at `x` (energy
+/// `e0`, directional derivative `slope` < 0): halves the step until the energy falls enough,
+/// then moves `x` and returns the new energy; `None` (x unchanged) when no step down to 1e-20
+/// of `p` lowers it (roundoff level). No extrapolation: a longer step could carry a metastable
+/// part of the system over its energy barrier, and the state must follow the branch an
+/// experiment follows.
+fn backtrack(
+    energy: &impl Energy,
+    x: &mut [f64],
+    p: &[f64],
+    e0: f64,
+    slope: f64,
+    trial: &mut [f64],
+) -> Option<f64> {
+    let slack = 1e-14 * e0.abs().max(1.0);
+    let mut t = 1.0;
+    while t >= 1e-20 {
+        for ((ti, xi), pi) in trial.iter_mut().zip(x.iter()).zip(p) {
+            *ti = xi + t * pi;
+        }
+        let e1 = energy.energy(trial);
+        if e1.is_finite() && e1 <= e0 + 1e-4 * t * slope + slack {
+            x.copy_from_slice(trial);
+            return Some(e1);
+        }
+        t *= 0.5;
+    }
+    None
 }
 
 /// Plain Newton iteration on the gradient, `H p = −g` with a sparse LU factorisation and full
@@ -629,5 +951,97 @@ mod tests {
         let other = s.minimize(&e, &mut y, &opts).unwrap();
         assert!(other.factorizations >= 1);
         assert!(y.iter().zip(&x).all(|(a, b)| (a - b).abs() < 1e-8));
+    }
+
+    /// The chain of wells with its one-coordinate energy offered.
+    struct WellsAlong(Wells);
+
+    impl Energy for WellsAlong {
+        fn dim(&self) -> usize {
+            self.0.dim()
+        }
+        fn energy(&self, x: &[f64]) -> f64 {
+            self.0.energy(x)
+        }
+        fn gradient(&self, x: &[f64], g: &mut [f64]) {
+            self.0.gradient(x, g);
+        }
+        fn hessian_pattern(&self) -> Vec<(usize, usize)> {
+            self.0.hessian_pattern()
+        }
+        fn hessian_values(&self, x: &[f64], v: &mut [f64]) {
+            self.0.hessian_values(x, v);
+        }
+        fn along_coordinate(&self, x: &[f64], i: usize, s: f64) -> Option<(f64, f64, f64)> {
+            let c = self.0.c;
+            let (mut e, mut d, mut h) = (s.powi(4) / 4.0 - s * s / 2.0, s.powi(3) - s, 3.0 * s * s - 1.0);
+            for j in [i.checked_sub(1), (i + 1 < self.0.n).then_some(i + 1)]
+                .into_iter()
+                .flatten()
+            {
+                e += 0.5 * c * (s - x[j]).powi(2);
+                d += c * (s - x[j]);
+                h += c;
+            }
+            Some((e, d, h))
+        }
+    }
+
+    fn iterative() -> NewtonOptions {
+        NewtonOptions {
+            linear: LinearSolver::Iterative,
+            ..NewtonOptions::default()
+        }
+    }
+
+    // The iterative path leaves the maximum like the direct one; its accepted state passes the
+    // factorisation test of a separate (direct) solver.
+    #[test]
+    fn the_iterative_path_leaves_the_maximum_too() {
+        let e = Wells { n: 1, c: 0.0 };
+        let mut s = StableNewton::new(&e).unwrap();
+        let mut y = vec![0.1];
+        let rep = s.minimize(&e, &mut y, &iterative()).unwrap();
+        assert!((y[0] - 1.0).abs() < 1e-10, "x = {}", y[0]);
+        assert!(rep.left_unstable_state());
+        assert_eq!(rep.direct_fallbacks, 0);
+        let mut check = StableNewton::new(&e).unwrap();
+        assert!(check.is_stable(&e, &y).unwrap());
+    }
+
+    // At the stationary saddle x = 0 of the coupled chain: without the one-coordinate energy
+    // the iterative path has no descent direction (gradient zero) and hands over to the direct
+    // path, which leaves along negative curvature; with it, the unstable unknowns jump along
+    // their axes. Both end at a minimum the factorisation confirms.
+    #[test]
+    fn the_iterative_path_leaves_a_stationary_saddle() {
+        let plain = Wells { n: 50, c: 0.1 };
+        let mut x = vec![0.0; 50];
+        let mut s = StableNewton::new(&plain).unwrap();
+        let rep = s.minimize(&plain, &mut x, &iterative()).unwrap();
+        assert_eq!(rep.direct_fallbacks, 1);
+        assert!(rep.energy < -0.2 * 50.0);
+        let along = WellsAlong(Wells { n: 50, c: 0.1 });
+        let mut y = vec![0.0; 50];
+        let rep = s.minimize(&along, &mut y, &iterative()).unwrap();
+        assert_eq!(rep.direct_fallbacks, 0);
+        assert!(rep.coordinate_jumps >= 1);
+        assert!(rep.gradient_norm <= 1e-10);
+        assert!(rep.energy < -0.2 * 50.0, "E = {}", rep.energy);
+        let mut check = StableNewton::new(&along).unwrap();
+        assert!(check.is_stable(&along, &x).unwrap() && check.is_stable(&along, &y).unwrap());
+    }
+
+    // From a stable start the two paths reach the same minimum.
+    #[test]
+    fn the_paths_agree_from_a_stable_start() {
+        let e = Wells { n: 40, c: 0.3 };
+        let start: Vec<f64> = (0..40).map(|i| 0.7 + 0.01 * i as f64).collect();
+        let (mut a, mut b) = (start.clone(), start);
+        let mut s = StableNewton::new(&e).unwrap();
+        s.minimize(&e, &mut a, &NewtonOptions::default()).unwrap();
+        let rep = s.minimize(&e, &mut b, &iterative()).unwrap();
+        assert_eq!((rep.indefinite_iterations, rep.direct_fallbacks), (0, 0));
+        assert!(a.iter().zip(&b).all(|(p, q)| (p - q).abs() < 1e-9));
     }
 }
