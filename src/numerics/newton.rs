@@ -336,6 +336,14 @@ impl StableNewton {
         x: &mut [f64],
         opts: &NewtonOptions,
     ) -> Result<NewtonReport> {
+        assert_eq!(x.len(), self.n, "state length must equal the energy's dimension");
+        let e0 = energy.energy(x);
+        if !e0.is_finite() {
+            return Err(Error::Unresolvable {
+                model: "stable Newton",
+                reason: "the start state is outside the energy's domain".into(),
+            });
+        }
         let start = self.computed;
         let iterative = match opts.linear {
             LinearSolver::Auto => self.n >= ITERATIVE_MIN_UNKNOWNS,
@@ -343,9 +351,9 @@ impl StableNewton {
             LinearSolver::Iterative => true,
         };
         let mut rep = if iterative {
-            self.minimize_iterative(energy, x, opts)?
+            self.minimize_iterative(energy, x, opts, e0)?
         } else {
-            self.minimize_inner(energy, x, opts)?
+            self.minimize_inner(energy, x, opts, e0)?
         };
         rep.factorizations = self.computed - start;
         Ok(rep)
@@ -374,8 +382,8 @@ impl StableNewton {
         energy: &impl Energy,
         x: &mut [f64],
         opts: &NewtonOptions,
+        mut e0: f64,
     ) -> Result<NewtonReport> {
-        assert_eq!(x.len(), self.n, "state length must equal the energy's dimension");
         let n = self.n;
         let n_pattern = self.values.len() - n;
         let mut rep = NewtonReport::default();
@@ -387,16 +395,9 @@ impl StableNewton {
         let mut off = vec![0.0; n];
         let mut inv = vec![0.0; n];
         let mut extra = vec![0.0; n];
-        let mut e0 = energy.energy(x);
-        if !e0.is_finite() {
-            return Err(Error::Unresolvable {
-                model: "stable Newton",
-                reason: "the start state is outside the energy's domain".into(),
-            });
-        }
         let max_cg = 2000.min(10 * n.max(10));
         let hand_over = |this: &mut Self, x: &mut [f64], mut rep: NewtonReport| -> Result<NewtonReport> {
-            let direct = this.minimize_inner(energy, x, opts)?;
+            let direct = this.minimize_inner(energy, x, opts, energy.energy(x))?;
             rep.iterations += direct.iterations;
             rep.indefinite_iterations += direct.indefinite_iterations;
             rep.negative_curvature_steps += direct.negative_curvature_steps;
@@ -509,21 +510,14 @@ impl StableNewton {
         energy: &impl Energy,
         x: &mut [f64],
         opts: &NewtonOptions,
+        mut e0: f64,
     ) -> Result<NewtonReport> {
-        assert_eq!(x.len(), self.n, "state length must equal the energy's dimension");
         let n = self.n;
         let n_pattern = self.values.len() - n;
         let mut rep = NewtonReport::default();
         let mut g = vec![0.0; n];
         let mut p = vec![0.0; n];
         let mut trial = vec![0.0; n];
-        let mut e0 = energy.energy(x);
-        if !e0.is_finite() {
-            return Err(Error::Unresolvable {
-                model: "stable Newton",
-                reason: "the start state is outside the energy's domain".into(),
-            });
-        }
         // A positive-definite factorisation from an earlier iterate and the gradient norm there:
         // while the gradient keeps falling fast, steps reuse it (chord steps) instead of
         // factorising again. Acceptance always factorises at the accepted state itself.
@@ -672,15 +666,15 @@ impl StableNewton {
 /// stops at the first minimum met, so no barrier is crossed). Returns whether anything moved;
 /// `false` also when the energy does not offer [`Energy::along_coordinate`].
 fn jump_along_coordinates(energy: &impl Energy, x: &mut [f64], diag: &[f64], rep: &mut NewtonReport) -> bool {
+    if x.is_empty() || energy.along_coordinate(x, 0, x[0]).is_none() {
+        return false;
+    }
     let mut moved = false;
     for (i, &h) in diag.iter().enumerate() {
         if h > 0.0 {
             continue;
         }
         let Some(to) = descend_1d(|s| energy.along_coordinate(x, i, s), x[i]) else {
-            if energy.along_coordinate(x, i, x[i]).is_none() {
-                return moved;
-            }
             continue;
         };
         x[i] = to;
