@@ -97,17 +97,33 @@ impl SpringArray {
         SingleSpring::new(self.k_e)
     }
 
-    /// Neighbour pairs (i, j), i < j, along ê₁ and ê₂: the coupling springs of (5.24).
-    fn edges(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
+    /// Calls `f(i, j)` for every neighbour pair i < j, the coupling springs of (5.24): first
+    /// the pairs along ê₁ row by row, then those along ê₂; the order of the Hessian pattern.
+    fn for_each_edge(&self, mut f: impl FnMut(usize, usize)) {
         let (nx, ny) = (self.nx, self.ny);
-        (0..ny).flat_map(move |iy| {
-            (0..nx).flat_map(move |ix| {
-                let i = ix + nx * iy;
-                let right = (ix + 1 < nx).then_some((i, i + 1));
-                let up = (iy + 1 < ny).then_some((i, i + nx));
-                right.into_iter().chain(up)
-            })
-        })
+        for iy in 0..ny {
+            let row = nx * iy;
+            for i in row..row + nx - 1 {
+                f(i, i + 1);
+            }
+        }
+        for i in 0..nx * (ny - 1) {
+            f(i, i + nx);
+        }
+    }
+
+    /// The (up to four) neighbours of spring i.
+    fn neighbours(&self, i: usize) -> impl Iterator<Item = usize> {
+        let (nx, ny) = (self.nx, self.ny);
+        let (ix, iy) = (i % nx, i / nx);
+        [
+            (ix > 0).then(|| i - 1),
+            (ix + 1 < nx).then(|| i + 1),
+            (iy > 0).then(|| i - nx),
+            (iy + 1 < ny).then(|| i + nx),
+        ]
+        .into_iter()
+        .flatten()
     }
 
     /// Total contact force P̄ at displacement ū with gaps d̄ (positive in compression), the
@@ -151,13 +167,16 @@ impl Energy for ArrayEnergy<'_> {
             if di <= 0.0 || di.is_nan() {
                 return f64::INFINITY;
             }
-            e += 0.5 * a.k_e * (self.u - z - di).powi(2) + lj_energy(di);
+            let r = self.u - z - di;
+            e += 0.5 * a.k_e * r * r + lj_energy(di);
         }
         if a.k_mu > 0.0 {
-            for (i, j) in a.edges() {
+            let mut c = 0.0;
+            a.for_each_edge(|i, j| {
                 let s = a.heights[j] + d[j] - a.heights[i] - d[i];
-                e += 0.5 * a.k_mu * s * s;
-            }
+                c += s * s;
+            });
+            e += 0.5 * a.k_mu * c;
         }
         e
     }
@@ -169,11 +188,11 @@ impl Energy for ArrayEnergy<'_> {
             *gi = -a.k_e * (self.u - z - di) + lj_traction(di);
         }
         if a.k_mu > 0.0 {
-            for (i, j) in a.edges() {
+            a.for_each_edge(|i, j| {
                 let s = a.k_mu * (a.heights[j] + d[j] - a.heights[i] - d[i]);
                 g[i] -= s;
                 g[j] += s;
-            }
+            });
         }
     }
 
@@ -181,7 +200,7 @@ impl Energy for ArrayEnergy<'_> {
         let a = self.array;
         let mut p: Vec<(usize, usize)> = (0..a.len()).map(|i| (i, i)).collect();
         if a.k_mu > 0.0 {
-            p.extend(a.edges().map(|(i, j)| (j, i)));
+            a.for_each_edge(|i, j| p.push((j, i)));
         }
         p
     }
@@ -201,14 +220,7 @@ impl Energy for ArrayEnergy<'_> {
             a.k_e + lj_curvature(s),
         );
         if a.k_mu > 0.0 {
-            let (ix, iy) = (i % a.nx, i / a.nx);
-            let neighbours = [
-                (ix > 0).then(|| i - 1),
-                (ix + 1 < a.nx).then(|| i + 1),
-                (iy > 0).then(|| i - a.nx),
-                (iy + 1 < a.ny).then(|| i + a.nx),
-            ];
-            for j in neighbours.into_iter().flatten() {
+            for j in a.neighbours(i) {
                 let t = a.heights[j] + d[j] - z - s;
                 e += 0.5 * a.k_mu * t * t;
                 de -= a.k_mu * t;
@@ -216,6 +228,34 @@ impl Energy for ArrayEnergy<'_> {
             }
         }
         Some((e, de, d2))
+    }
+
+    /// The terms of Eq. (5.29) that involve any spring of `set`: their own terms and every
+    /// coupling spring with at least one end in `set` (once), with the gradient (5.31) of those
+    /// springs.
+    fn local_energy(&self, d: &[f64], set: &[usize], grad: &mut [f64]) -> Option<f64> {
+        let a = self.array;
+        let mut e = 0.0;
+        for (gi, &i) in grad.iter_mut().zip(set) {
+            let di = d[i];
+            if di <= 0.0 || di.is_nan() {
+                return Some(f64::INFINITY);
+            }
+            let r = self.u - a.heights[i] - di;
+            e += 0.5 * a.k_e * r * r + lj_energy(di);
+            *gi = -a.k_e * r + lj_traction(di);
+            if a.k_mu > 0.0 {
+                for j in a.neighbours(i) {
+                    let t = a.heights[j] + d[j] - a.heights[i] - di;
+                    *gi -= a.k_mu * t;
+                    // A pair inside the set is counted from its lower end only.
+                    if j > i || set.binary_search(&j).is_err() {
+                        e += 0.5 * a.k_mu * t * t;
+                    }
+                }
+            }
+        }
+        Some(e)
     }
 
     /// Eqs. (5.33)-(5.34): K + f″(d̄_i) δ_ij, K with k̄_e + (number of neighbours) k̄_μ on the
@@ -227,11 +267,13 @@ impl Energy for ArrayEnergy<'_> {
             *vi = a.k_e + lj_curvature(di);
         }
         if a.k_mu > 0.0 {
-            for (k, (i, j)) in a.edges().enumerate() {
+            let mut k = n;
+            a.for_each_edge(|i, j| {
                 v[i] += a.k_mu;
                 v[j] += a.k_mu;
-                v[n + k] = -a.k_mu;
-            }
+                v[k] = -a.k_mu;
+                k += 1;
+            });
         }
     }
 }

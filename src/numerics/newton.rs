@@ -29,20 +29,27 @@
 //! The energy, gradient and Hessian come from an [`Energy`]; nothing here knows about physics.
 //!
 //! Large systems ([`LinearSolver::Auto`] from [`ITERATIVE_MIN_UNKNOWNS`] unknowns) take the
-//! iterative path instead: CG steps, a localised diagonal modification where the Hessian is
-//! indefinite, unknowns that are unstable on their own moved to their next minimum along their
-//! axis, and a factorisation-free certificate of positive definiteness for Hessians that are
-//! Z-matrices ([`crate::numerics::pcg::certify_z_matrix`]), with the direct path as the fallback
-//! wherever the certificate is not found. The acceptance rule is the same.
+//! iterative path instead: CG steps; instabilities resolved where they are (unknowns past
+//! their own fold jump along their axis and the avalanche they start is relaxed locally;
+//! unstable groups move along their own lowest mode, found on a small patch), so that a step
+//! with hundreds of jumps costs a few global iterations; a localised diagonal modification
+//! where nothing local applies; and a factorisation-free certificate of positive definiteness
+//! for Hessians that are Z-matrices ([`crate::numerics::pcg::certify_z_matrix`]), with the
+//! direct path as the fallback wherever the certificate is not found. The acceptance rule is
+//! the same.
 
 use faer::Side;
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
 use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
+use nalgebra::{DMatrix, DVector};
+use std::collections::VecDeque;
 use std::sync::Arc;
 
 use crate::error::{Error, Result};
-use crate::numerics::pcg::{Operator, PcgEnd, SymmetricPattern, certify_z_matrix, dot, inf_norm, pcg};
+use crate::numerics::pcg::{
+    Operator, PcgEnd, SymmetricPattern, certify_z_matrix, dot, inf_norm, pcg, pcg_with_curvature,
+};
 
 /// A smooth energy of `dim()` unknowns with a sparse Hessian of fixed pattern.
 pub trait Energy {
@@ -62,6 +69,15 @@ pub trait Energy {
     /// the iterative path move an unknown that is unstable on its own straight to its next
     /// minimum. The default offers nothing.
     fn along_coordinate(&self, _x: &[f64], _i: usize, _s: f64) -> Option<(f64, f64, f64)> {
+        None
+    }
+    /// Optional: the sum of the energy's terms that involve any unknown of `set` (sorted, no
+    /// duplicates) at `x`, `f64::INFINITY` outside the domain, with the gradient components of
+    /// those unknowns written into `grad` (length `set.len()`). Offering it (at a cost of the
+    /// order of `set.len()`) lets the iterative path move a small unstable group of unknowns
+    /// along its direction of negative curvature to the next minimum on that line. The
+    /// default offers nothing.
+    fn local_energy(&self, _x: &[f64], _set: &[usize], _grad: &mut [f64]) -> Option<f64> {
         None
     }
 }
@@ -131,6 +147,9 @@ pub struct NewtonReport {
     pub direct_fallbacks: usize,
     /// Unknowns moved to their next minimum along their own axis (iterative path).
     pub coordinate_jumps: usize,
+    /// Unstable groups of unknowns moved along their own negative-curvature mode (iterative
+    /// path).
+    pub patch_escapes: usize,
 }
 
 impl NewtonReport {
@@ -359,18 +378,26 @@ impl StableNewton {
         Ok(rep)
     }
 
-    /// The iterative path ([`LinearSolver::Iterative`]):
-    /// - unknowns whose own curvature h_ii is not positive are unstable even with all others
-    ///   held: when the energy offers [`Energy::along_coordinate`], each is moved downhill along
-    ///   its axis to its next minimum (coordinate descent, one unknown after the other), the
-    ///   jump of a single part of the system done in one move;
-    /// - Newton steps by Jacobi-preconditioned CG on H while CG meets no negative curvature;
-    /// - where H is indefinite, the rows that are not diagonally dominant (at least one is, by
-    ///   Gershgorin, whenever H is indefinite) get their net diagonal h_ii − Σ_{j≠i}|h_ij|
-    ///   replaced by its magnitude, so that the modified matrix is strictly diagonally dominant
-    ///   and positive definite: the unstable unknowns move downhill, damped by their own
-    ///   curvature, while the rest of the system takes its Newton step and stays in its basin;
-    /// - each step is followed by a backtracking line search on the energy.
+    /// The iterative path ([`LinearSolver::Iterative`]). Each iteration, in this order:
+    /// - jumps: the unknowns whose rows are not diagonally dominant (only these can be near a
+    ///   fold) are descended along their own axes, others held ([`Energy::along_coordinate`]);
+    ///   those whose descent crosses non-positive curvature have no minimum left nearby and
+    ///   move to their next one, and the jump spreads to their neighbours as it does in the
+    ///   system (an avalanche, resolved locally: [`settle`] relaxes the region around it with
+    ///   a small dense stable Newton, [`relax_region`]);
+    /// - collective instabilities (every unknown stable on its own axis, the group not): the
+    ///   group's lowest mode is found on a small patch of the Hessian and the patch moves
+    ///   along it to the next minimum ([`escape_patches`], [`escape_around`]); where no patch
+    ///   shows it, the state moves down the line of negative curvature CG met;
+    /// - otherwise a Newton step by Jacobi-preconditioned CG, with a backtracking line search
+    ///   on the energy;
+    /// - where H is indefinite and none of the above applies, the rows that are not diagonally
+    ///   dominant get their net diagonal h_ii − Σ_{j≠i}|h_ij| replaced by its magnitude (a
+    ///   strictly diagonally dominant, positive-definite modification): the unstable unknowns
+    ///   move downhill, damped, while the rest takes its Newton step.
+    ///
+    /// The local moves need [`Energy::along_coordinate`] and [`Energy::local_energy`]; without
+    /// them the path still works, by the modified steps alone (slowly near many folds).
     ///
     /// A state is accepted with a small gradient, a certificate of positive definiteness
     /// ([`certify_z_matrix`]) and a Newton correction bounded by ‖H⁻¹‖∞·‖g‖∞ (from the same
@@ -395,6 +422,8 @@ impl StableNewton {
         let mut off = vec![0.0; n];
         let mut inv = vec![0.0; n];
         let mut extra = vec![0.0; n];
+        let mut direction = vec![0.0; n];
+        let mut line_gradient = vec![0.0; n];
         let max_cg = 2000.min(10 * n.max(10));
         let hand_over = |this: &mut Self, x: &mut [f64], mut rep: NewtonReport| -> Result<NewtonReport> {
             let direct = this.minimize_inner(energy, x, opts, energy.energy(x))?;
@@ -427,9 +456,15 @@ impl StableNewton {
             self.rows
                 .diagonal_and_off_sums(&self.row_values, &mut diag, &mut off);
             let mut definite = diag.iter().all(|&d| d > 0.0);
+            // Unknowns past their own fold jump first (with the avalanche they start).
+            if jump_along_coordinates(energy, x, &self.rows, &self.row_values, &g, &diag, &off, &mut rep) {
+                rep.indefinite_iterations += 1;
+                e0 = energy.energy(x);
+                continue;
+            }
             if !definite {
                 rep.indefinite_iterations += 1;
-                if jump_along_coordinates(energy, x, &diag, &mut rep) {
+                if escape_patches(energy, x, &self.rows, &self.row_values, &diag, &off, &mut rep) {
                     e0 = energy.energy(x);
                     continue;
                 }
@@ -445,14 +480,40 @@ impl StableNewton {
                     extra_diagonal: &[],
                 };
                 // A direction of non-positive curvature shows H indefinite: modified step below.
-                definite = pcg(&op, &inv, &rhs, &mut p, target, max_cg).0 != PcgEnd::NegativeCurvature;
+                definite = pcg_with_curvature(&op, &inv, &rhs, &mut p, target, max_cg, &mut direction).0
+                    != PcgEnd::NegativeCurvature;
                 if !definite {
                     rep.indefinite_iterations += 1;
+                    // A local unstable mode, or else down the line of negative curvature CG
+                    // met (a direction d with dᵀHd ≤ 0, spread over the system).
+                    if escape_patches(energy, x, &self.rows, &self.row_values, &diag, &off, &mut rep)
+                        || escape_around(
+                            energy,
+                            x,
+                            &self.rows,
+                            &self.row_values,
+                            &diag,
+                            &direction,
+                            &mut rep,
+                        )
+                        || descend_line(energy, x, &mut direction, &mut trial, &mut line_gradient)
+                    {
+                        rep.negative_curvature_steps += 1;
+                        e0 = energy.energy(x);
+                        continue;
+                    }
                 }
             }
             if definite {
                 if inf_norm(&p) <= opts.step_tol {
                     if self.certify().0 != Some(true) {
+                        // A stationary point that is not a minimum: leave it along a local
+                        // unstable mode if one is found, else decide by factorisation.
+                        if escape_patches(energy, x, &self.rows, &self.row_values, &diag, &off, &mut rep) {
+                            rep.indefinite_iterations += 1;
+                            e0 = energy.energy(x);
+                            continue;
+                        }
                         return hand_over(self, x, rep);
                     }
                     x.iter_mut().zip(&p).for_each(|(xi, pi)| *xi += pi);
@@ -663,32 +724,506 @@ impl StableNewton {
 
 /// Move every unknown whose own curvature `diag[i]` is not positive downhill along its axis to
 /// its next minimum, one after the other (coordinate descent; each move lowers the energy and
-/// stops at the first minimum met, so no barrier is crossed). Returns whether anything moved;
+/// stops at the first minimum met, so no barrier is crossed), and let the jump spread as it
+/// does in the system: the neighbours (in the Hessian's pattern) of an unknown that jumped are
+/// relaxed along their axes in turn, and pass the jump on when they jumped as well (their
+/// descent crossed non-positive curvature). An avalanche thus costs work in proportion to the
+/// unknowns it moves, not one global iteration per generation. Returns whether anything moved;
 /// `false` also when the energy does not offer [`Energy::along_coordinate`].
-fn jump_along_coordinates(energy: &impl Energy, x: &mut [f64], diag: &[f64], rep: &mut NewtonReport) -> bool {
-    if x.is_empty() || energy.along_coordinate(x, 0, x[0]).is_none() {
+#[allow(clippy::too_many_arguments)]
+fn jump_along_coordinates(
+    energy: &impl Energy,
+    x: &mut [f64],
+    pattern: &SymmetricPattern,
+    row_values: &[f64],
+    g: &[f64],
+    diag: &[f64],
+    off: &[f64],
+    rep: &mut NewtonReport,
+) -> bool {
+    let n = x.len();
+    if n == 0 || energy.along_coordinate(x, 0, x[0]).is_none() {
         return false;
     }
-    let mut moved = false;
-    for (i, &h) in diag.iter().enumerate() {
-        if h > 0.0 {
-            continue;
+    // Candidates: the rows that are not diagonally dominant (h_ii ≤ Σ|h_ij|), among them every
+    // row with h_ii ≤ 0: the unknowns near a fold. One whose minimum is taken away by its
+    // neighbours while its row is still dominant enters this set within a step or two.
+    let mut queue: VecDeque<usize> = (0..n).filter(|&i| diag[i] <= off[i]).collect();
+    let seeds = queue.len();
+    let mut queued = vec![false; n];
+    queue.iter().for_each(|&i| queued[i] = true);
+    // Each unknown may move a few times as its neighbours settle; beyond that the global
+    // iteration takes over.
+    let mut budget = 4 * n + 64;
+    let mut jumped_set = Vec::new();
+    let mut popped = 0;
+    while let Some(i) = queue.pop_front() {
+        queued[i] = false;
+        popped += 1;
+        if budget == 0 {
+            break;
         }
-        let Some(to) = descend_1d(|s| energy.along_coordinate(x, i, s), x[i]) else {
+        budget -= 1;
+        let Some((to, jumped)) = descend_1d(|s| energy.along_coordinate(x, i, s), x[i]) else {
             continue;
         };
-        x[i] = to;
-        rep.coordinate_jumps += 1;
-        moved = true;
+        let seed = popped <= seeds;
+        // A candidate still stable on its axis jumps only when no neighbour has overshot its
+        // own balance against the move (g_j pushing it back): such a neighbour would, at
+        // equilibrium, pull less, and the spring might keep a minimum. Newton settles those
+        // first. (From a state every unknown wants to leave in the same sense, as after a
+        // uniform load step, a jump found with the neighbours held is a jump at equilibrium
+        // too: the neighbours only follow.)
+        if jumped && seed && diag[i] > 0.0 {
+            let sense = -g[i].signum();
+            if pattern
+                .columns(i)
+                .any(|j| j != i && g[j] * sense > 1e-3 * g[i].abs())
+            {
+                continue;
+            }
+        }
+        // A candidate that only settles stays for the Newton step; a neighbour of a jump moves.
+        if jumped || !seed {
+            x[i] = to;
+        }
+        if jumped {
+            rep.coordinate_jumps += 1;
+            jumped_set.push(i);
+            for j in pattern.columns(i) {
+                if j != i && !queued[j] {
+                    queued[j] = true;
+                    queue.push_back(j);
+                }
+            }
+        }
     }
+    let moved = !jumped_set.is_empty();
+    settle(energy, x, pattern, row_values, jumped_set, rep);
     moved
+}
+
+/// Rings of neighbours around moved unknowns that [`settle`] relaxes.
+const SETTLE_RINGS: usize = 4;
+
+/// Largest connected region that [`settle`] relaxes (a dense problem of this order).
+const MAX_REGION: usize = 400;
+
+/// Newton iterations per region in [`settle`] at most.
+const SETTLE_ITERATIONS: usize = 40;
+
+/// Let the surroundings of unknowns that just moved (jumped, or escaped an instability) settle
+/// before the next global step: each connected region of the unknowns within [`SETTLE_RINGS`]
+/// of them is relaxed on its own with the rest of the system held ([`relax_region`]). The
+/// nonlinear part of the response to a jump is local (the neighbours follow, and some of them
+/// lose stability and jump in turn: an avalanche); resolving it here costs work in proportion
+/// to the region, where every global step costs work in proportion to the whole system. The
+/// global Newton step that follows corrects the smooth remainder.
+fn settle(
+    energy: &impl Energy,
+    x: &mut [f64],
+    pattern: &SymmetricPattern,
+    row_values: &[f64],
+    moved: Vec<usize>,
+    rep: &mut NewtonReport,
+) {
+    if moved.is_empty() || energy.local_energy(x, &moved[..1], &mut [0.0]).is_none() {
+        return;
+    }
+    let n = x.len();
+    let mut mark = vec![false; n];
+    let mut region = Vec::new();
+    let mut frontier = Vec::new();
+    for i in moved {
+        if !mark[i] {
+            mark[i] = true;
+            region.push(i);
+            frontier.push(i);
+        }
+    }
+    for _ in 0..SETTLE_RINGS {
+        let mut next = Vec::new();
+        for &i in &frontier {
+            for j in pattern.columns(i) {
+                if !mark[j] {
+                    mark[j] = true;
+                    region.push(j);
+                    next.push(j);
+                }
+            }
+        }
+        frontier = next;
+    }
+    let mut seen = vec![false; n];
+    for &s0 in &region {
+        if seen[s0] {
+            continue;
+        }
+        seen[s0] = true;
+        let mut comp = vec![s0];
+        let mut k = 0;
+        while k < comp.len() {
+            let i = comp[k];
+            k += 1;
+            for j in pattern.columns(i) {
+                if mark[j] && !seen[j] {
+                    seen[j] = true;
+                    comp.push(j);
+                }
+            }
+        }
+        if comp.len() <= MAX_REGION {
+            comp.sort_unstable();
+            relax_region(energy, x, pattern, row_values, &comp, rep);
+        }
+    }
+}
+
+/// Stable Newton on the unknowns `set` (sorted) alone, all others held at `x`: the energy and
+/// gradient from [`Energy::local_energy`], the Hessian block with its diagonal from
+/// [`Energy::along_coordinate`] and its off-diagonal entries from `row_values` (the last
+/// global Hessian; exact for couplings that are quadratic, as in the spring arrays, otherwise
+/// a chord approximation). Where the dense Cholesky factorisation of the block fails, the
+/// region is unstable on its own and moves along its lowest mode to the next minimum on that
+/// line ([`descend_along`]); otherwise it takes Newton steps with backtracking. Stops when the
+/// region's largest gradient component has fallen by 10³ (the global iteration finishes).
+fn relax_region(
+    energy: &impl Energy,
+    x: &mut [f64],
+    pattern: &SymmetricPattern,
+    row_values: &[f64],
+    set: &[usize],
+    rep: &mut NewtonReport,
+) {
+    let m = set.len();
+    let mut grad = vec![0.0; m];
+    let Some(mut e) = energy.local_energy(x, set, &mut grad) else {
+        return;
+    };
+    if !e.is_finite() {
+        return;
+    }
+    let tol = 1e-3 * inf_norm(&grad);
+    let mut off = DMatrix::<f64>::zeros(m, m);
+    for (r, &i) in set.iter().enumerate() {
+        for (c, v) in pattern.row(row_values, i) {
+            if c != i
+                && let Ok(q) = set.binary_search(&c)
+            {
+                off[(r, q)] += v;
+            }
+        }
+    }
+    let mut trial_grad = vec![0.0; m];
+    for _ in 0..SETTLE_ITERATIONS {
+        if inf_norm(&grad) <= tol {
+            break;
+        }
+        let mut h = off.clone();
+        for (r, &i) in set.iter().enumerate() {
+            h[(r, r)] = energy.along_coordinate(x, i, x[i]).map_or(f64::NAN, |t| t.2);
+        }
+        if !h.iter().all(|v| v.is_finite()) {
+            return;
+        }
+        let Some(chol) = h.clone().cholesky() else {
+            let (lambda, v) = lowest_dense(h);
+            if lambda.is_nan() || lambda >= 0.0 || descend_along(energy, x, set, v, lambda) == 0.0 {
+                return;
+            }
+            rep.patch_escapes += 1;
+            match energy.local_energy(x, set, &mut grad) {
+                Some(e1) if e1.is_finite() => e = e1,
+                _ => return,
+            }
+            continue;
+        };
+        let p = chol.solve(&DVector::from_iterator(m, grad.iter().map(|g| -g)));
+        let slope: f64 = p.iter().zip(&grad).map(|(a, b)| a * b).sum();
+        if slope.is_nan() || slope >= 0.0 {
+            return;
+        }
+        let start: Vec<f64> = set.iter().map(|&i| x[i]).collect();
+        let slack = 1e-14 * e.abs().max(1.0);
+        let mut t = 1.0;
+        loop {
+            for ((&i, s0), pi) in set.iter().zip(&start).zip(p.iter()) {
+                x[i] = s0 + t * pi;
+            }
+            let e1 = energy
+                .local_energy(x, set, &mut trial_grad)
+                .unwrap_or(f64::INFINITY);
+            if e1.is_finite() && e1 <= e + 1e-4 * t * slope + slack {
+                e = e1;
+                grad.copy_from_slice(&trial_grad);
+                break;
+            }
+            t *= 0.5;
+            if t < 1e-12 {
+                for (&i, s0) in set.iter().zip(&start) {
+                    x[i] = *s0;
+                }
+                return;
+            }
+        }
+    }
+}
+
+/// Leave an instability whose mode CG met as the direction `dir` (dᵀHd ≤ 0): the unknowns
+/// where |d_i| is at least a tenth of its largest component, with up to [`PATCH_RINGS`] rings
+/// of neighbours, form a patch; when its principal submatrix of H has a negative eigenvalue,
+/// the patch moves along that eigenvector to the next minimum ([`descend_along`], then
+/// [`settle`]). Returns whether it moved.
+fn escape_around(
+    energy: &impl Energy,
+    x: &mut [f64],
+    pattern: &SymmetricPattern,
+    row_values: &[f64],
+    diag: &[f64],
+    dir: &[f64],
+    rep: &mut NewtonReport,
+) -> bool {
+    let largest = inf_norm(dir);
+    if !(largest > 0.0 && largest.is_finite()) {
+        return false;
+    }
+    let mut patch: Vec<usize> = (0..dir.len())
+        .filter(|&i| dir[i].abs() >= 0.1 * largest)
+        .collect();
+    if patch.is_empty()
+        || patch.len() > MAX_PATCH
+        || energy.local_energy(x, &patch[..1], &mut [0.0]).is_none()
+    {
+        return false;
+    }
+    let mut mark = vec![false; x.len()];
+    patch.iter().for_each(|&i| mark[i] = true);
+    for ring in 0..=PATCH_RINGS {
+        patch.sort_unstable();
+        let (lambda, v) = lowest_mode(pattern, row_values, &patch);
+        let scale = patch.iter().fold(0.0f64, |s, &i| s.max(diag[i].abs()));
+        if lambda < -1e-12 * scale {
+            if descend_along(energy, x, &patch, v, lambda) == 0.0 {
+                return false;
+            }
+            rep.patch_escapes += 1;
+            settle(energy, x, pattern, row_values, patch, rep);
+            return true;
+        }
+        let next: Vec<usize> = patch
+            .iter()
+            .flat_map(|&i| pattern.columns(i))
+            .filter(|&j| !mark[j])
+            .collect();
+        for j in next {
+            if !mark[j] {
+                mark[j] = true;
+                patch.push(j);
+            }
+        }
+        if ring == PATCH_RINGS || patch.len() > MAX_PATCH {
+            break;
+        }
+    }
+    false
+}
+
+/// Move `x` along the direction `dir` (either sense, downhill) to the first minimum of the
+/// energy on that line ([`descend_1d`], whole-system evaluations into the scratch vectors
+/// `point` and `grad`). Returns whether it moved.
+fn descend_line(
+    energy: &impl Energy,
+    x: &mut [f64],
+    dir: &mut [f64],
+    point: &mut [f64],
+    grad: &mut [f64],
+) -> bool {
+    let norm = inf_norm(dir);
+    if !(norm > 0.0 && norm.is_finite()) {
+        return false;
+    }
+    dir.iter_mut().for_each(|v| *v /= norm);
+    let line = |t: f64| -> Option<(f64, f64, f64)> {
+        for ((pi, xi), di) in point.iter_mut().zip(x.iter()).zip(dir.iter()) {
+            *pi = xi + t * di;
+        }
+        let e = energy.energy(point);
+        if !e.is_finite() {
+            return Some((e, 0.0, 0.0));
+        }
+        energy.gradient(point, grad);
+        Some((e, dot(grad, dir), if t == 0.0 { -1.0 } else { f64::NAN }))
+    };
+    let Some((t, _)) = descend_1d(line, 0.0) else {
+        return false;
+    };
+    x.iter_mut().zip(dir.iter()).for_each(|(xi, di)| *xi += t * di);
+    t != 0.0
+}
+
+/// The lowest eigenvalue of a dense symmetric matrix with its unit eigenvector.
+fn lowest_dense(a: DMatrix<f64>) -> (f64, Vec<f64>) {
+    let eig = a.symmetric_eigen();
+    match eig
+        .eigenvalues
+        .iter()
+        .copied()
+        .enumerate()
+        .min_by(|p, q| p.1.total_cmp(&q.1))
+    {
+        Some((k, lambda)) => (lambda, eig.eigenvectors.column(k).iter().copied().collect()),
+        None => (f64::INFINITY, Vec::new()),
+    }
+}
+
+/// Move the unknowns `set` (sorted) along the direction `v` of curvature `lambda` < 0, downhill,
+/// to the first minimum of the energy on that line ([`descend_1d`] on
+/// [`Energy::local_energy`]). Returns the step taken along v (0 if none).
+fn descend_along(energy: &impl Energy, x: &mut [f64], set: &[usize], mut v: Vec<f64>, lambda: f64) -> f64 {
+    let m = set.len();
+    let mut grad = vec![0.0; m];
+    match energy.local_energy(x, set, &mut grad) {
+        Some(e) if e.is_finite() => {}
+        _ => return 0.0,
+    }
+    if dot(&grad, &v) > 0.0 {
+        v.iter_mut().for_each(|vi| *vi = -*vi);
+    }
+    let base: Vec<f64> = set.iter().map(|&i| x[i]).collect();
+    let line = |t: f64| -> Option<(f64, f64, f64)> {
+        for ((&i, b), vi) in set.iter().zip(&base).zip(&v) {
+            x[i] = b + t * vi;
+        }
+        let e = energy.local_energy(x, set, &mut grad)?;
+        Some((e, dot(&grad, &v), if t == 0.0 { lambda } else { f64::NAN }))
+    };
+    let t = descend_1d(line, 0.0).map_or(0.0, |(t, _)| t);
+    for ((&i, b), vi) in set.iter().zip(&base).zip(&v) {
+        x[i] = b + t * vi;
+    }
+    t
+}
+
+/// Largest group of unknowns that [`escape_patches`] treats as one patch (a dense symmetric
+/// eigenproblem of this order).
+const MAX_PATCH: usize = 256;
+
+/// Rings of neighbours by which [`escape_patches`] grows a patch at most.
+const PATCH_RINGS: usize = 4;
+
+/// Leave a collective instability locally. Rows of H that are not diagonally dominant
+/// (h_ii ≤ Σ_{j≠i} |h_ij|) are the only places negative curvature can live: the principal
+/// submatrix of the other rows is strictly diagonally dominant, hence positive definite. Each
+/// connected group of such rows with their neighbours (a patch, at most [`MAX_PATCH`]
+/// unknowns) whose principal submatrix of H has a negative eigenvalue λ is moved along the
+/// eigenvector v (padded with zeros, vᵀHv = λ|v|² < 0 for the whole H), downhill, to the
+/// first minimum of the energy on that line, evaluated locally ([`Energy::local_energy`]).
+/// This is the unstable group's own mode, taken in one move instead of being crept along by
+/// damped steps. Returns whether any patch moved; `false` also when the energy does not offer
+/// [`Energy::local_energy`].
+#[allow(clippy::too_many_arguments)]
+fn escape_patches(
+    energy: &impl Energy,
+    x: &mut [f64],
+    pattern: &SymmetricPattern,
+    row_values: &[f64],
+    diag: &[f64],
+    off: &[f64],
+    rep: &mut NewtonReport,
+) -> bool {
+    let n = x.len();
+    let seeds: Vec<usize> = (0..n).filter(|&i| diag[i] - off[i] <= 0.0).collect();
+    if seeds.is_empty() || energy.local_energy(x, &seeds[..1], &mut [0.0]).is_none() {
+        return false;
+    }
+    let mut in_patch = vec![false; n];
+    for &i in &seeds {
+        pattern.columns(i).for_each(|j| in_patch[j] = true);
+    }
+    let mut seen = vec![false; n];
+    let mut escaped = Vec::new();
+    for &s0 in &seeds {
+        if seen[s0] {
+            continue;
+        }
+        let mut comp = vec![s0];
+        seen[s0] = true;
+        let mut k = 0;
+        while k < comp.len() {
+            let i = comp[k];
+            k += 1;
+            for j in pattern.columns(i) {
+                if in_patch[j] && !seen[j] {
+                    seen[j] = true;
+                    comp.push(j);
+                }
+            }
+        }
+        // The group's mode reaches into the stable unknowns around it (the Schur complement
+        // of the rest subtracts from the group's block): grow the patch ring by ring until its
+        // block shows the negative curvature or the patch is too large.
+        let mut found = None;
+        for _ in 0..PATCH_RINGS {
+            if comp.len() > MAX_PATCH {
+                break;
+            }
+            comp.sort_unstable();
+            let (lambda, v) = lowest_mode(pattern, row_values, &comp);
+            let scale = comp.iter().fold(0.0f64, |s, &i| s.max(diag[i].abs()));
+            if lambda < -1e-12 * scale {
+                found = Some((lambda, v));
+                break;
+            }
+            let ring: Vec<usize> = comp
+                .iter()
+                .flat_map(|&i| pattern.columns(i))
+                .filter(|&j| !seen[j])
+                .collect();
+            if ring.is_empty() {
+                break;
+            }
+            for j in ring {
+                if !seen[j] {
+                    seen[j] = true;
+                    comp.push(j);
+                }
+            }
+        }
+        let Some((lambda, v)) = found else {
+            continue;
+        };
+        if descend_along(energy, x, &comp, v, lambda) != 0.0 {
+            rep.patch_escapes += 1;
+            escaped.extend_from_slice(&comp);
+        }
+    }
+    let moved = !escaped.is_empty();
+    settle(energy, x, pattern, row_values, escaped, rep);
+    moved
+}
+
+/// The lowest eigenvalue of the principal submatrix of H (values in row order) on the sorted
+/// unknowns `set`, with its unit eigenvector.
+fn lowest_mode(pattern: &SymmetricPattern, row_values: &[f64], set: &[usize]) -> (f64, Vec<f64>) {
+    let m = set.len();
+    let mut a = DMatrix::<f64>::zeros(m, m);
+    for (r, &i) in set.iter().enumerate() {
+        for (c, v) in pattern.row(row_values, i) {
+            if let Ok(q) = set.binary_search(&c) {
+                a[(r, q)] += v;
+            }
+        }
+    }
+    lowest_dense(a)
 }
 
 /// From `s0`, go downhill on the one-variable energy `f` (value, slope, curvature) to the first
 /// local minimum: steps doubling from the local length scale until the energy stops falling
 /// (slope turned, energy risen, or the domain left), then bisection inside that bracket.
-/// `None` if `f` is not offered, the start is outside the domain or no lower point is found.
-fn descend_1d(f: impl Fn(f64) -> Option<(f64, f64, f64)>, s0: f64) -> Option<f64> {
+/// Returns the minimum and whether the way down met non-positive curvature (the start past a
+/// fold: a jump rather than a settling). `None` if `f` is not offered, the start is outside the
+/// domain or no lower point is found.
+fn descend_1d(mut f: impl FnMut(f64) -> Option<(f64, f64, f64)>, s0: f64) -> Option<(f64, bool)> {
     let (e0, d0, c0) = f(s0)?;
     if !e0.is_finite() {
         return None;
@@ -696,19 +1231,30 @@ fn descend_1d(f: impl Fn(f64) -> Option<(f64, f64, f64)>, s0: f64) -> Option<f64
     let dir = if d0 > 0.0 { -1.0 } else { 1.0 };
     // Still going down (in `dir`) at s, and not above the energy at the bracket's low end.
     let descending = |e: f64, d: f64, e_ref: f64| e.is_finite() && e <= e_ref && dir * d < 0.0;
-    let mut h = if c0 != 0.0 && d0 != 0.0 {
+    let floor = 1e-12 * (1.0 + s0.abs());
+    let mut h = if c0 != 0.0 && d0 != 0.0 && c0.is_finite() {
         (d0 / c0).abs()
     } else {
         0.0
     }
     .max(1e-6 * (1.0 + s0.abs()));
-    let (mut a, mut ea) = (s0, e0);
+    let mut unstable = c0 <= 0.0;
+    let (mut a, mut ea, mut da, mut ca) = (s0, e0, d0, c0);
     let mut b = None;
-    for _ in 0..200 {
+    for _ in 0..400 {
+        // Where the curvature is positive a minimum may be near: never step further than half
+        // again the Newton step to it, or a doubled step could cross it and the barrier
+        // beyond into another basin (a jump the system does not make).
+        if ca > 0.0 {
+            h = h.min(1.5 * (da / ca).abs()).max(floor);
+        }
         let t = a + dir * h;
-        let (et, dt, _) = f(t)?;
+        let (et, dt, ct) = f(t)?;
         if descending(et, dt, ea) {
-            (a, ea) = (t, et);
+            // Curvature where `f` does not give it (NaN): the secant of the slopes.
+            let ct = if ct.is_nan() { (dt - da) / (t - a) } else { ct };
+            (a, ea, da, ca) = (t, et, dt, ct);
+            unstable |= ct <= 0.0;
             h *= 2.0;
         } else {
             b = Some(t);
@@ -721,14 +1267,15 @@ fn descend_1d(f: impl Fn(f64) -> Option<(f64, f64, f64)>, s0: f64) -> Option<f64
         if m == a || m == b {
             break;
         }
-        let (em, dm, _) = f(m)?;
+        let (em, dm, cm) = f(m)?;
         if descending(em, dm, ea) {
             (a, ea) = (m, em);
+            unstable |= cm <= 0.0;
         } else {
             b = m;
         }
     }
-    (ea < e0).then_some(a)
+    (ea < e0).then_some((a, unstable))
 }
 
 /// Backtracking (Armijo) line search on the energy from the full step `p` at `x` (energy
@@ -979,6 +1526,159 @@ mod tests {
             }
             Some((e, d, h))
         }
+    }
+
+    /// Double wells w(x) = x⁴/4 − x²/2 in a uniform field b (energy −b·x each), coupled in a
+    /// chain by springs c(x_{i+1} − x_i)²/2, offering both local evaluations.
+    struct FieldWells {
+        n: usize,
+        c: f64,
+        b: f64,
+    }
+
+    impl FieldWells {
+        fn neighbours(&self, i: usize) -> impl Iterator<Item = usize> {
+            [i.checked_sub(1), (i + 1 < self.n).then_some(i + 1)]
+                .into_iter()
+                .flatten()
+        }
+    }
+
+    impl Energy for FieldWells {
+        fn dim(&self) -> usize {
+            self.n
+        }
+        fn energy(&self, x: &[f64]) -> f64 {
+            let wells: f64 = x.iter().map(|v| v.powi(4) / 4.0 - v * v / 2.0 - self.b * v).sum();
+            let springs: f64 = x.windows(2).map(|w| 0.5 * self.c * (w[1] - w[0]).powi(2)).sum();
+            wells + springs
+        }
+        fn gradient(&self, x: &[f64], g: &mut [f64]) {
+            for i in 0..self.n {
+                g[i] = x[i].powi(3) - x[i] - self.b;
+                for j in self.neighbours(i) {
+                    g[i] += self.c * (x[i] - x[j]);
+                }
+            }
+        }
+        fn hessian_pattern(&self) -> Vec<(usize, usize)> {
+            let mut p: Vec<(usize, usize)> = (0..self.n).map(|i| (i, i)).collect();
+            p.extend((1..self.n).map(|i| (i, i - 1)));
+            p
+        }
+        fn hessian_values(&self, x: &[f64], v: &mut [f64]) {
+            for i in 0..self.n {
+                v[i] = 3.0 * x[i] * x[i] - 1.0 + self.c * self.neighbours(i).count() as f64;
+            }
+            for k in 0..self.n.saturating_sub(1) {
+                v[self.n + k] = -self.c;
+            }
+        }
+        fn along_coordinate(&self, x: &[f64], i: usize, s: f64) -> Option<(f64, f64, f64)> {
+            let (mut e, mut d, mut h) = (
+                s.powi(4) / 4.0 - s * s / 2.0 - self.b * s,
+                s.powi(3) - s - self.b,
+                3.0 * s * s - 1.0,
+            );
+            for j in self.neighbours(i) {
+                e += 0.5 * self.c * (s - x[j]).powi(2);
+                d += self.c * (s - x[j]);
+                h += self.c;
+            }
+            Some((e, d, h))
+        }
+        fn local_energy(&self, x: &[f64], set: &[usize], grad: &mut [f64]) -> Option<f64> {
+            let mut e = 0.0;
+            for (gi, &i) in grad.iter_mut().zip(set) {
+                let s = x[i];
+                e += s.powi(4) / 4.0 - s * s / 2.0 - self.b * s;
+                *gi = s.powi(3) - s - self.b;
+                for j in self.neighbours(i) {
+                    *gi += self.c * (s - x[j]);
+                    if j > i || set.binary_search(&j).is_err() {
+                        e += 0.5 * self.c * (s - x[j]).powi(2);
+                    }
+                }
+            }
+            Some(e)
+        }
+    }
+
+    // Two wells coupled strongly (c = 2) at the stationary point x = (0, 0): each is stable
+    // along its own axis (curvature −1 + 2 = 1), the pair is not (eigenvalue −1 along (1, 1)).
+    // No coordinate move lowers the energy; the local unstable mode does, in one move, and
+    // the pair ends in a common well without factorisation.
+    #[test]
+    fn a_collective_saddle_is_left_along_its_local_mode() {
+        let e = FieldWells { n: 2, c: 2.0, b: 0.0 };
+        let mut s = StableNewton::new(&e).unwrap();
+        let mut x = vec![0.0, 0.0];
+        let rep = s.minimize(&e, &mut x, &iterative()).unwrap();
+        assert_eq!(rep.direct_fallbacks, 0);
+        assert_eq!(rep.coordinate_jumps, 0);
+        assert!(rep.patch_escapes >= 1);
+        assert!(
+            (x[0] - x[1]).abs() < 1e-9 && (x[0].abs() - 1.0).abs() < 1e-9,
+            "x = {x:?}"
+        );
+        let mut check = StableNewton::new(&e).unwrap();
+        assert!(check.is_stable(&e, &x).unwrap());
+    }
+
+    // A front in a chain of 400 bistable wells in a field: the first ten sit in the right
+    // well, the rest in the left one, where each is metastable on its own (b = 0.2 is below
+    // the fold field 2/√27 = 0.385) but not next to a neighbour in the right well: the pull
+    // 2c = 0.5 exceeds the fold field of its own-axis energy x⁴/4 − (1 − 2c)x²/2 − bx, 0.136.
+    // Every well jumps, one after the other: an avalanche of 390 generations. The iterative
+    // path resolves it locally, in a few global iterations (not one per generation), and
+    // ends where the direct path ends.
+    #[test]
+    fn an_avalanche_is_resolved_locally() {
+        let n = 400;
+        let e = FieldWells { n, c: 0.25, b: 0.2 };
+        let start: Vec<f64> = (0..n).map(|i| if i < 10 { 1.0 } else { -1.0 }).collect();
+        let mut s = StableNewton::new(&e).unwrap();
+        let (mut a, mut b) = (start.clone(), start);
+        // The direct path meets the generations one at a time, a few iterations each.
+        let direct = NewtonOptions {
+            max_iterations: 20_000,
+            ..NewtonOptions::default()
+        };
+        let slow = s.minimize(&e, &mut a, &direct).unwrap();
+        assert!(slow.iterations > n, "{} direct iterations", slow.iterations);
+        let rep = s.minimize(&e, &mut b, &iterative()).unwrap();
+        assert_eq!(rep.direct_fallbacks, 0);
+        assert!(rep.coordinate_jumps >= n - 10, "{} jumps", rep.coordinate_jumps);
+        assert!(rep.iterations <= 20, "{} global iterations", rep.iterations);
+        assert!(b.iter().all(|&v| v > 0.9), "every well jumped");
+        assert!(a.iter().zip(&b).all(|(p, q)| (p - q).abs() < 1e-8));
+        let mut check = StableNewton::new(&e).unwrap();
+        assert!(check.is_stable(&e, &b).unwrap());
+    }
+
+    // A tilted double well E = s⁴/4 − s²/2 + 0.3 s, entered from s = 3: the first minimum
+    // downhill is the shallow one near 0.79 (s³ − s + 0.3 = 0), behind which lie the barrier
+    // at 0.34 and the deep well at −1.13. Doubling steps alone land past the barrier (at 0.21,
+    // lower and still going down); the descent must stop in the shallow well and report no
+    // instability on the way.
+    #[test]
+    fn a_one_dimensional_descent_does_not_cross_a_barrier() {
+        let f = |s: f64| {
+            Some((
+                s.powi(4) / 4.0 - s * s / 2.0 + 0.3 * s,
+                s.powi(3) - s + 0.3,
+                3.0 * s * s - 1.0,
+            ))
+        };
+        let (to, unstable) = descend_1d(f, 3.0).unwrap();
+        assert!(
+            (to.powi(3) - to + 0.3).abs() < 1e-9 && to > 0.75 && to < 0.9,
+            "to = {to}"
+        );
+        assert!(!unstable);
+        // From just past the barrier top the way down runs through negative curvature.
+        let (to, unstable) = descend_1d(f, 0.3).unwrap();
+        assert!(to < -1.0 && unstable, "to = {to}");
     }
 
     fn iterative() -> NewtonOptions {

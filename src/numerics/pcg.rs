@@ -11,6 +11,9 @@ use rayon::prelude::*;
 /// Rows at or above this count use rayon in the matrix-vector product.
 const PARALLEL_ROWS: usize = 16_384;
 
+/// Rows per rayon task in the parallel loops.
+const CHUNK: usize = 4096;
+
 /// The full (both triangles) row structure of a symmetric matrix whose lower triangle is given
 /// as a list of (row, col) positions. Values in the order of that list are spread into row
 /// order once per matrix by [`SymmetricPattern::gather`]; products and row sums then read them
@@ -76,8 +79,15 @@ impl SymmetricPattern {
         rows.extend(self.slots.iter().map(|&s| values[s]));
     }
 
+    /// Columns of the entries of row i (the diagonal included).
+    pub fn columns(&self, i: usize) -> impl Iterator<Item = usize> + '_ {
+        self.cols[self.row_start[i]..self.row_start[i + 1]]
+            .iter()
+            .map(|&c| c as usize)
+    }
+
     /// Entries of row i: (column, value) from values in row order.
-    fn row<'a>(&'a self, rows: &'a [f64], i: usize) -> impl Iterator<Item = (usize, f64)> + 'a {
+    pub fn row<'a>(&'a self, rows: &'a [f64], i: usize) -> impl Iterator<Item = (usize, f64)> + 'a {
         let r = self.row_start[i]..self.row_start[i + 1];
         self.cols[r.clone()]
             .iter()
@@ -87,17 +97,32 @@ impl SymmetricPattern {
 
     /// y = A x, values in row order ([`SymmetricPattern::gather`]).
     pub fn mul(&self, rows: &[f64], x: &[f64], y: &mut [f64]) {
-        let row = |i: usize| -> f64 { self.row(rows, i).map(|(c, v)| v * x[c]).sum() };
-        if self.n >= PARALLEL_ROWS {
-            y.par_chunks_mut(4096).enumerate().for_each(|(b, chunk)| {
-                for (k, yi) in chunk.iter_mut().enumerate() {
-                    *yi = row(b * 4096 + k);
+        self.mul_dot(rows, x, y);
+    }
+
+    /// y = A x as [`SymmetricPattern::mul`], returning xᵀ A x (computed in the same pass).
+    pub fn mul_dot(&self, rows: &[f64], x: &[f64], y: &mut [f64]) -> f64 {
+        let block = |start: usize, chunk: &mut [f64]| -> f64 {
+            let mut q = 0.0;
+            for (k, yi) in chunk.iter_mut().enumerate() {
+                let i = start + k;
+                let (a, b) = (self.row_start[i], self.row_start[i + 1]);
+                let mut s = 0.0;
+                for (&c, &v) in self.cols[a..b].iter().zip(&rows[a..b]) {
+                    s += v * x[c as usize];
                 }
-            });
-        } else {
-            for (i, yi) in y.iter_mut().enumerate() {
-                *yi = row(i);
+                *yi = s;
+                q += s * x[i];
             }
+            q
+        };
+        if self.n >= PARALLEL_ROWS {
+            y.par_chunks_mut(CHUNK)
+                .enumerate()
+                .map(|(b, chunk)| block(b * CHUNK, chunk))
+                .sum()
+        } else {
+            block(0, y)
         }
     }
 
@@ -122,6 +147,16 @@ impl SymmetricPattern {
         z
     }
 }
+
+/// Matching pieces of x, r, z, d, A d and the inverse diagonal in one pass of [`pcg`].
+type CgChunks<'a> = (
+    &'a mut [f64],
+    &'a mut [f64],
+    &'a mut [f64],
+    &'a [f64],
+    &'a [f64],
+    &'a [f64],
+);
 
 /// How a conjugate-gradient solve ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -148,13 +183,19 @@ pub struct Operator<'a> {
 impl Operator<'_> {
     /// y = (A + diag(extra)) x.
     pub fn apply(&self, x: &[f64], y: &mut [f64]) {
-        self.pattern.mul(self.values, x, y);
+        self.apply_dot(x, y);
+    }
+
+    /// y = (A + diag(extra)) x, returning xᵀ y.
+    pub fn apply_dot(&self, x: &[f64], y: &mut [f64]) -> f64 {
+        let mut q = self.pattern.mul_dot(self.values, x, y);
         if !self.extra_diagonal.is_empty() {
-            y.iter_mut()
-                .zip(self.extra_diagonal)
-                .zip(x)
-                .for_each(|((yi, e), xi)| *yi += e * xi);
+            for ((yi, e), xi) in y.iter_mut().zip(self.extra_diagonal).zip(x) {
+                *yi += e * xi;
+                q += e * xi * xi;
+            }
         }
+        q
     }
 }
 
@@ -169,6 +210,20 @@ pub fn pcg(
     target: f64,
     max_iterations: usize,
 ) -> (PcgEnd, usize) {
+    pcg_with_curvature(a, inv_diag, b, x, target, max_iterations, &mut [])
+}
+
+/// [`pcg`], and on [`PcgEnd::NegativeCurvature`] the direction d with dᵀ A d ≤ 0 written into
+/// `negative` (when it has the length of `b`; an empty slice asks for nothing).
+pub fn pcg_with_curvature(
+    a: &Operator<'_>,
+    inv_diag: &[f64],
+    b: &[f64],
+    x: &mut [f64],
+    target: f64,
+    max_iterations: usize,
+    negative: &mut [f64],
+) -> (PcgEnd, usize) {
     let n = b.len();
     let mut r = vec![0.0; n];
     a.apply(x, &mut r);
@@ -177,28 +232,55 @@ pub fn pcg(
     let mut d = z.clone();
     let mut ad = vec![0.0; n];
     let mut rz = dot(&r, &z);
+    let mut r_norm = inf_norm(&r);
     for it in 0..max_iterations {
-        if inf_norm(&r) <= target {
+        if r_norm <= target {
             return (PcgEnd::Converged, it);
         }
-        a.apply(&d, &mut ad);
-        let curvature = dot(&d, &ad);
+        let curvature = a.apply_dot(&d, &mut ad);
         if curvature <= 0.0 || curvature.is_nan() {
+            if negative.len() == n {
+                negative.copy_from_slice(&d);
+            }
             return (PcgEnd::NegativeCurvature, it);
         }
         let alpha = rz / curvature;
-        x.iter_mut().zip(&d).for_each(|(xi, di)| *xi += alpha * di);
-        r.iter_mut().zip(&ad).for_each(|(ri, ai)| *ri -= alpha * ai);
-        z.iter_mut()
-            .zip(&r)
-            .zip(inv_diag)
-            .for_each(|((zi, ri), m)| *zi = ri * m);
-        let rz_new = dot(&r, &z);
+        // One pass for the updates of x, r, z and the reductions over r.
+        let update = |(xs, rs, zs, ds, ads, ms): CgChunks<'_>| {
+            let (mut rz, mut norm) = (0.0, 0.0f64);
+            for k in 0..xs.len() {
+                xs[k] += alpha * ds[k];
+                rs[k] -= alpha * ads[k];
+                zs[k] = rs[k] * ms[k];
+                rz += rs[k] * zs[k];
+                norm = norm.max(rs[k].abs());
+            }
+            (rz, norm)
+        };
+        let (rz_new, norm) = if n >= PARALLEL_ROWS {
+            x.par_chunks_mut(CHUNK)
+                .zip(r.par_chunks_mut(CHUNK))
+                .zip(z.par_chunks_mut(CHUNK))
+                .zip(d.par_chunks(CHUNK))
+                .zip(ad.par_chunks(CHUNK))
+                .zip(inv_diag.par_chunks(CHUNK))
+                .map(|(((((xs, rs), zs), ds), ads), ms)| update((xs, rs, zs, ds, ads, ms)))
+                .reduce(|| (0.0, 0.0), |p, q| (p.0 + q.0, p.1.max(q.1)))
+        } else {
+            update((x, &mut r, &mut z, &d, &ad, inv_diag))
+        };
+        r_norm = norm;
         let beta = rz_new / rz;
         rz = rz_new;
-        d.iter_mut().zip(&z).for_each(|(di, zi)| *di = zi + beta * *di);
+        if n >= PARALLEL_ROWS {
+            d.par_chunks_mut(CHUNK)
+                .zip(z.par_chunks(CHUNK))
+                .for_each(|(ds, zs)| ds.iter_mut().zip(zs).for_each(|(di, zi)| *di = zi + beta * *di));
+        } else {
+            d.iter_mut().zip(&z).for_each(|(di, zi)| *di = zi + beta * *di);
+        }
     }
-    if inf_norm(&r) <= target {
+    if r_norm <= target {
         (PcgEnd::Converged, max_iterations)
     } else {
         (PcgEnd::MaxIterations, max_iterations)
