@@ -424,6 +424,7 @@ impl StableNewton {
         let mut extra = vec![0.0; n];
         let mut direction = vec![0.0; n];
         let mut line_gradient = vec![0.0; n];
+        let mut local_moves = false;
         let max_cg = 2000.min(10 * n.max(10));
         let hand_over = |this: &mut Self, x: &mut [f64], mut rep: NewtonReport| -> Result<NewtonReport> {
             let direct = this.minimize_inner(energy, x, opts, energy.energy(x))?;
@@ -459,17 +460,22 @@ impl StableNewton {
             // Unknowns past their own fold jump first (with the avalanche they start).
             if jump_along_coordinates(energy, x, &self.rows, &self.row_values, &g, &diag, &off, &mut rep) {
                 rep.indefinite_iterations += 1;
+                local_moves = true;
                 e0 = energy.energy(x);
                 continue;
             }
             if !definite {
                 rep.indefinite_iterations += 1;
                 if escape_patches(energy, x, &self.rows, &self.row_values, &diag, &off, &mut rep) {
+                    local_moves = true;
                     e0 = energy.energy(x);
                     continue;
                 }
             }
-            let target = (1e-4 * gnorm).max(0.2 * opts.gradient_tol);
+            // Inexact Newton: while local moves keep reshaping the state, a rough solve serves.
+            let forcing = if local_moves { 1e-2 } else { 1e-4 };
+            local_moves = false;
+            let target = (forcing * gnorm).max(0.2 * opts.gradient_tol);
             rhs.iter_mut().zip(&g).for_each(|(r, gi)| *r = -gi);
             p.fill(0.0);
             if definite {
@@ -499,6 +505,7 @@ impl StableNewton {
                         || descend_line(energy, x, &mut direction, &mut trial, &mut line_gradient)
                     {
                         rep.negative_curvature_steps += 1;
+                        local_moves = true;
                         e0 = energy.energy(x);
                         continue;
                     }
@@ -970,10 +977,10 @@ fn relax_region(
 }
 
 /// Leave an instability whose mode CG met as the direction `dir` (dᵀHd ≤ 0): the unknowns
-/// where |d_i| is at least a tenth of its largest component, with up to [`PATCH_RINGS`] rings
-/// of neighbours, form a patch; when its principal submatrix of H has a negative eigenvalue,
-/// the patch moves along that eigenvector to the next minimum ([`descend_along`], then
-/// [`settle`]). Returns whether it moved.
+/// where |d_i| is at least a tenth of its largest component fall into connected groups; each
+/// group, with up to [`PATCH_RINGS`] rings of neighbours, forms a patch, and when the patch's
+/// principal submatrix of H has a negative eigenvalue, the patch moves along that eigenvector
+/// to the next minimum ([`descend_along`], then [`settle`]). Returns whether any moved.
 fn escape_around(
     energy: &impl Energy,
     x: &mut [f64],
@@ -987,45 +994,64 @@ fn escape_around(
     if !(largest > 0.0 && largest.is_finite()) {
         return false;
     }
-    let mut patch: Vec<usize> = (0..dir.len())
-        .filter(|&i| dir[i].abs() >= 0.1 * largest)
-        .collect();
-    if patch.is_empty()
-        || patch.len() > MAX_PATCH
-        || energy.local_energy(x, &patch[..1], &mut [0.0]).is_none()
-    {
+    let n = x.len();
+    let strong: Vec<usize> = (0..n).filter(|&i| dir[i].abs() >= 0.1 * largest).collect();
+    if strong.is_empty() || energy.local_energy(x, &strong[..1], &mut [0.0]).is_none() {
         return false;
     }
-    let mut mark = vec![false; x.len()];
-    patch.iter().for_each(|&i| mark[i] = true);
-    for ring in 0..=PATCH_RINGS {
-        patch.sort_unstable();
-        let (lambda, v) = lowest_mode(pattern, row_values, &patch);
-        let scale = patch.iter().fold(0.0f64, |s, &i| s.max(diag[i].abs()));
-        if lambda < -1e-12 * scale {
-            if descend_along(energy, x, &patch, v, lambda) == 0.0 {
-                return false;
-            }
-            rep.patch_escapes += 1;
-            settle(energy, x, pattern, row_values, patch, rep);
-            return true;
+    let mut in_strong = vec![false; n];
+    strong.iter().for_each(|&i| in_strong[i] = true);
+    let mut mark = vec![false; n];
+    let mut escaped = Vec::new();
+    for &s0 in &strong {
+        if mark[s0] {
+            continue;
         }
-        let next: Vec<usize> = patch
-            .iter()
-            .flat_map(|&i| pattern.columns(i))
-            .filter(|&j| !mark[j])
-            .collect();
-        for j in next {
-            if !mark[j] {
-                mark[j] = true;
-                patch.push(j);
+        mark[s0] = true;
+        let mut patch = vec![s0];
+        let mut k = 0;
+        while k < patch.len() && patch.len() <= MAX_PATCH {
+            let i = patch[k];
+            k += 1;
+            for j in pattern.columns(i) {
+                if in_strong[j] && !mark[j] {
+                    mark[j] = true;
+                    patch.push(j);
+                }
             }
         }
-        if ring == PATCH_RINGS || patch.len() > MAX_PATCH {
-            break;
+        for ring in 0..=PATCH_RINGS {
+            if patch.len() > MAX_PATCH {
+                break;
+            }
+            patch.sort_unstable();
+            let scale = patch.iter().fold(0.0f64, |s, &i| s.max(diag[i].abs()));
+            if let Some((lambda, v)) = negative_mode(pattern, row_values, &patch, scale) {
+                if descend_along(energy, x, &patch, v, lambda) != 0.0 {
+                    rep.patch_escapes += 1;
+                    escaped.extend_from_slice(&patch);
+                }
+                break;
+            }
+            if ring == PATCH_RINGS {
+                break;
+            }
+            let next: Vec<usize> = patch
+                .iter()
+                .flat_map(|&i| pattern.columns(i))
+                .filter(|&j| !mark[j])
+                .collect();
+            for j in next {
+                if !mark[j] {
+                    mark[j] = true;
+                    patch.push(j);
+                }
+            }
         }
     }
-    false
+    let moved = !escaped.is_empty();
+    settle(energy, x, pattern, row_values, escaped, rep);
+    moved
 }
 
 /// Move `x` along the direction `dir` (either sense, downhill) to the first minimum of the
@@ -1168,10 +1194,9 @@ fn escape_patches(
                 break;
             }
             comp.sort_unstable();
-            let (lambda, v) = lowest_mode(pattern, row_values, &comp);
             let scale = comp.iter().fold(0.0f64, |s, &i| s.max(diag[i].abs()));
-            if lambda < -1e-12 * scale {
-                found = Some((lambda, v));
+            if let Some(mode) = negative_mode(pattern, row_values, &comp, scale) {
+                found = Some(mode);
                 break;
             }
             let ring: Vec<usize> = comp
@@ -1202,9 +1227,16 @@ fn escape_patches(
     moved
 }
 
-/// The lowest eigenvalue of the principal submatrix of H (values in row order) on the sorted
-/// unknowns `set`, with its unit eigenvector.
-fn lowest_mode(pattern: &SymmetricPattern, row_values: &[f64], set: &[usize]) -> (f64, Vec<f64>) {
+/// A direction of negative curvature of the principal submatrix of H (values in row order)
+/// on the sorted unknowns `set`: its lowest eigenvalue, when below −1e-12·`scale`, with the unit
+/// eigenvector. A successful dense Cholesky factorisation rules it out first, at a fraction of
+/// the cost of the eigenproblem.
+fn negative_mode(
+    pattern: &SymmetricPattern,
+    row_values: &[f64],
+    set: &[usize],
+    scale: f64,
+) -> Option<(f64, Vec<f64>)> {
     let m = set.len();
     let mut a = DMatrix::<f64>::zeros(m, m);
     for (r, &i) in set.iter().enumerate() {
@@ -1214,7 +1246,11 @@ fn lowest_mode(pattern: &SymmetricPattern, row_values: &[f64], set: &[usize]) ->
             }
         }
     }
-    lowest_dense(a)
+    if a.clone().cholesky().is_some() {
+        return None;
+    }
+    let (lambda, v) = lowest_dense(a);
+    (lambda < -1e-12 * scale).then_some((lambda, v))
 }
 
 /// From `s0`, go downhill on the one-variable energy `f` (value, slope, curvature) to the first
