@@ -548,3 +548,78 @@ fn nearly_flat_surfaces_are_fully_cycled() {
     assert!(e > 0.99, "coupled path, k_mu = 0: efficiency {e}");
     assert!(jumps >= 2.0, "pull-in and pull-off jumps, got {jumps}");
 }
+
+// Which state does a jump end in? The experiment's: overdamped dynamics, the gradient flow of
+// the energy from the state before the step. On a 32 x 32 array (k̄_e = k̄_cr/2¹⁰, k̄_μ = 2k̄_e,
+// σ̄ = 100, the window of the benchmark, 1000 steps per phase) the direct and iterative paths
+// part at a few steps where several coupled springs lose stability together. At the first
+// such step, from their common previous state, a long explicit gradient flow (Δt = 0.05,
+// 1.5·10⁶ steps; the slowest mode relaxes as e^{−k̄_e t}) ends where the iterative path ends
+// (its local jumps follow the avalanche); the direct path's shifted Newton steps had carried
+// the group into another basin.
+#[test]
+fn the_iterative_path_follows_the_overdamped_dynamics_through_an_avalanche() {
+    use adhesion::models::fibril::{K_CR_BAR, SingleSpring};
+    use adhesion::models::spring_array::CONTACT_GAP;
+    use adhesion::numerics::newton::Energy;
+    use adhesion::surface::{Spectrum, generate};
+    let n = 32;
+    let spectrum = Spectrum::Gaussian {
+        rms: 1.0,
+        correlation_length: 0.01,
+    };
+    let map = generate(&spectrum, n, n, 1.0, 1.0, 1).unwrap();
+    let mean = map.z.iter().sum::<f64>() / map.z.len() as f64;
+    let z: Vec<f64> = map.z.iter().map(|v| 100.0 * (v - mean)).collect();
+    let k_e = K_CR_BAR * 2f64.powi(-10);
+    let s = SingleSpring::new(k_e).unwrap();
+    let (u_in, u_off) = s.bistable_range().unwrap();
+    let (u_max, u_min) = (u_off + 500.0, u_in - 400.0);
+    let a = SpringArray::new(n, n, k_e, 2.0 * k_e, z).unwrap();
+    let grid = adhesion::numerics::curve::linspace(u_max, u_min, 1000);
+    let mut d: Vec<f64> = a
+        .heights()
+        .iter()
+        .map(|z| s.gap(u_max - z, s.branch_on(u_max - z, true, false)).unwrap())
+        .collect();
+    let (mut dd, mut di) = (d.clone(), d.clone());
+    let mut direct = StableNewton::new(&a.energy_at(u_max)).unwrap();
+    let mut iterative = StableNewton::new(&a.energy_at(u_max)).unwrap();
+    let (od, oi) = (
+        NewtonOptions {
+            linear: LinearSolver::Direct,
+            ..NewtonOptions::default()
+        },
+        NewtonOptions {
+            linear: LinearSolver::Iterative,
+            ..NewtonOptions::default()
+        },
+    );
+    let contact = |x: &[f64]| x.iter().filter(|&&v| v < CONTACT_GAP).count();
+    let mut checked = false;
+    for &u in grid.iter().chain(grid.iter().rev()) {
+        let e = a.energy_at(u);
+        direct.minimize(&e, &mut dd, &od).unwrap();
+        iterative.minimize(&e, &mut di, &oi).unwrap();
+        if contact(&dd) == contact(&di) {
+            d.copy_from_slice(&di);
+            dd.copy_from_slice(&di);
+            continue;
+        }
+        let mut g = vec![0.0; d.len()];
+        for _ in 0..1_500_000 {
+            e.gradient(&d, &mut g);
+            d.iter_mut().zip(&g).for_each(|(x, gi)| *x -= 0.05 * gi);
+        }
+        let gap = |x: &[f64]| d.iter().zip(x).map(|(p, q)| (p - q).abs()).fold(0.0, f64::max);
+        assert_eq!(contact(&d), contact(&di), "at u = {u}");
+        assert!(gap(&di) < 1e-6, "flow vs iterative {:.2e} at u = {u}", gap(&di));
+        assert!(gap(&dd) > 1.0, "the direct path ends elsewhere");
+        checked = true;
+        break;
+    }
+    assert!(
+        checked,
+        "the paths no longer part in this cycle: the check has nothing left to decide"
+    );
+}
