@@ -457,8 +457,12 @@ impl StableNewton {
             self.rows
                 .diagonal_and_off_sums(&self.row_values, &mut diag, &mut off);
             let mut definite = diag.iter().all(|&d| d > 0.0);
-            // Unknowns past their own fold jump first (with the avalanche they start).
-            if jump_along_coordinates(energy, x, &self.rows, &self.row_values, &g, &diag, &off, &mut rep) {
+            // Unknowns past their own fold jump first (with the avalanche they start). From a
+            // stable start the first step is Newton's: the smooth response moves the
+            // neighbours too, and a spring's fold is judged against where they go.
+            if (rep.iterations > 1 || !definite)
+                && jump_along_coordinates(energy, x, &self.rows, &self.row_values, &g, &diag, &off, &mut rep)
+            {
                 rep.indefinite_iterations += 1;
                 local_moves = true;
                 e0 = energy.energy(x);
