@@ -844,48 +844,103 @@ fn settle(
     let n = x.len();
     let mut mark = vec![false; n];
     let mut region = Vec::new();
-    let mut frontier = Vec::new();
     for i in moved {
         if !mark[i] {
             mark[i] = true;
             region.push(i);
-            frontier.push(i);
         }
     }
     for _ in 0..SETTLE_RINGS {
-        let mut next = Vec::new();
-        for &i in &frontier {
-            for j in pattern.columns(i) {
-                if !mark[j] {
-                    mark[j] = true;
-                    region.push(j);
-                    next.push(j);
-                }
-            }
-        }
-        frontier = next;
+        add_ring(pattern, &mut region, &mut mark);
     }
     let mut seen = vec![false; n];
     for &s0 in &region {
         if seen[s0] {
             continue;
         }
-        seen[s0] = true;
-        let mut comp = vec![s0];
-        let mut k = 0;
-        while k < comp.len() {
-            let i = comp[k];
-            k += 1;
-            for j in pattern.columns(i) {
-                if mark[j] && !seen[j] {
-                    seen[j] = true;
-                    comp.push(j);
-                }
-            }
-        }
+        let mut comp = component(pattern, s0, &mark, &mut seen, usize::MAX);
         if comp.len() <= MAX_REGION {
             comp.sort_unstable();
             relax_region(energy, x, pattern, row_values, &comp, rep);
+        }
+    }
+}
+
+/// The unknowns connected to `s0` through the pattern within `member` (breadth first, `s0`
+/// included), marked in `seen`, stopping once more than `cap` are found.
+fn component(
+    pattern: &SymmetricPattern,
+    s0: usize,
+    member: &[bool],
+    seen: &mut [bool],
+    cap: usize,
+) -> Vec<usize> {
+    seen[s0] = true;
+    let mut comp = vec![s0];
+    let mut k = 0;
+    while k < comp.len() && comp.len() <= cap {
+        let i = comp[k];
+        k += 1;
+        for j in pattern.columns(i) {
+            if member[j] && !seen[j] {
+                seen[j] = true;
+                comp.push(j);
+            }
+        }
+    }
+    comp
+}
+
+/// Add to `set` the neighbours of its unknowns not yet in `seen` (one ring), marking them.
+/// Returns whether any was added.
+fn add_ring(pattern: &SymmetricPattern, set: &mut Vec<usize>, seen: &mut [bool]) -> bool {
+    let ring: Vec<usize> = set
+        .iter()
+        .flat_map(|&i| pattern.columns(i))
+        .filter(|&j| !seen[j])
+        .collect();
+    let before = set.len();
+    for j in ring {
+        if !seen[j] {
+            seen[j] = true;
+            set.push(j);
+        }
+    }
+    set.len() > before
+}
+
+/// Grow `patch` ring by ring (up to [`PATCH_RINGS`] rings, at most [`MAX_PATCH`] unknowns)
+/// until its principal submatrix of H shows negative curvature ([`negative_mode`]), and then
+/// move it along that mode to the next minimum ([`descend_along`]); the unknowns moved are
+/// appended to `escaped`. A group's unstable mode reaches into the stable unknowns around it
+/// (the Schur complement of the rest subtracts from the group's block), hence the growth.
+#[allow(clippy::too_many_arguments)]
+fn escape_patch(
+    energy: &impl Energy,
+    x: &mut [f64],
+    pattern: &SymmetricPattern,
+    row_values: &[f64],
+    diag: &[f64],
+    mut patch: Vec<usize>,
+    seen: &mut [bool],
+    escaped: &mut Vec<usize>,
+    rep: &mut NewtonReport,
+) {
+    for ring in 0..=PATCH_RINGS {
+        if patch.len() > MAX_PATCH {
+            return;
+        }
+        patch.sort_unstable();
+        let scale = patch.iter().fold(0.0f64, |s, &i| s.max(diag[i].abs()));
+        if let Some((lambda, v)) = negative_mode(pattern, row_values, &patch, scale) {
+            if descend_along(energy, x, &patch, v, lambda) != 0.0 {
+                rep.patch_escapes += 1;
+                escaped.extend_from_slice(&patch);
+            }
+            return;
+        }
+        if ring == PATCH_RINGS || !add_ring(pattern, &mut patch, seen) {
+            return;
         }
     }
 }
@@ -1011,47 +1066,18 @@ fn escape_around(
         if mark[s0] {
             continue;
         }
-        mark[s0] = true;
-        let mut patch = vec![s0];
-        let mut k = 0;
-        while k < patch.len() && patch.len() <= MAX_PATCH {
-            let i = patch[k];
-            k += 1;
-            for j in pattern.columns(i) {
-                if in_strong[j] && !mark[j] {
-                    mark[j] = true;
-                    patch.push(j);
-                }
-            }
-        }
-        for ring in 0..=PATCH_RINGS {
-            if patch.len() > MAX_PATCH {
-                break;
-            }
-            patch.sort_unstable();
-            let scale = patch.iter().fold(0.0f64, |s, &i| s.max(diag[i].abs()));
-            if let Some((lambda, v)) = negative_mode(pattern, row_values, &patch, scale) {
-                if descend_along(energy, x, &patch, v, lambda) != 0.0 {
-                    rep.patch_escapes += 1;
-                    escaped.extend_from_slice(&patch);
-                }
-                break;
-            }
-            if ring == PATCH_RINGS {
-                break;
-            }
-            let next: Vec<usize> = patch
-                .iter()
-                .flat_map(|&i| pattern.columns(i))
-                .filter(|&j| !mark[j])
-                .collect();
-            for j in next {
-                if !mark[j] {
-                    mark[j] = true;
-                    patch.push(j);
-                }
-            }
-        }
+        let patch = component(pattern, s0, &in_strong, &mut mark, MAX_PATCH);
+        escape_patch(
+            energy,
+            x,
+            pattern,
+            row_values,
+            diag,
+            patch,
+            &mut mark,
+            &mut escaped,
+            rep,
+        );
     }
     let moved = !escaped.is_empty();
     settle(energy, x, pattern, row_values, escaped, rep);
@@ -1138,20 +1164,18 @@ fn descend_along(energy: &impl Energy, x: &mut [f64], set: &[usize], mut v: Vec<
 /// eigenproblem of this order).
 const MAX_PATCH: usize = 256;
 
-/// Rings of neighbours by which [`escape_patches`] grows a patch at most.
+/// Rings of neighbours by which [`escape_patch`] grows a patch at most.
 const PATCH_RINGS: usize = 4;
 
-/// Leave a collective instability locally. Rows of H that are not diagonally dominant
-/// (h_ii ≤ Σ_{j≠i} |h_ij|) are the only places negative curvature can live: the principal
-/// submatrix of the other rows is strictly diagonally dominant, hence positive definite. Each
-/// connected group of such rows with their neighbours (a patch, at most [`MAX_PATCH`]
-/// unknowns) whose principal submatrix of H has a negative eigenvalue λ is moved along the
-/// eigenvector v (padded with zeros, vᵀHv = λ|v|² < 0 for the whole H), downhill, to the
-/// first minimum of the energy on that line, evaluated locally ([`Energy::local_energy`]).
-/// This is the unstable group's own mode, taken in one move instead of being crept along by
-/// damped steps. Returns whether any patch moved; `false` also when the energy does not offer
-/// [`Energy::local_energy`].
-#[allow(clippy::too_many_arguments)]
+/// Leave a collective instability locally. Negative curvature needs rows of H that are not
+/// diagonally dominant (h_ii ≤ Σ_{j≠i} |h_ij|): the principal submatrix of the other rows is
+/// strictly diagonally dominant, hence positive definite. Each connected group of such rows
+/// with their neighbours, grown ring by ring ([`escape_patch`]), whose principal submatrix of
+/// H has a negative eigenvalue λ is moved along the eigenvector v (padded with zeros,
+/// vᵀHv = λ|v|² < 0 for the whole H), downhill, to the first minimum of the energy on that
+/// line, evaluated locally ([`Energy::local_energy`]). This is the unstable group's own mode,
+/// taken in one move instead of being crept along by damped steps. Returns whether any patch
+/// moved; `false` also when the energy does not offer [`Energy::local_energy`].
 fn escape_patches(
     energy: &impl Energy,
     x: &mut [f64],
@@ -1176,55 +1200,18 @@ fn escape_patches(
         if seen[s0] {
             continue;
         }
-        let mut comp = vec![s0];
-        seen[s0] = true;
-        let mut k = 0;
-        while k < comp.len() {
-            let i = comp[k];
-            k += 1;
-            for j in pattern.columns(i) {
-                if in_patch[j] && !seen[j] {
-                    seen[j] = true;
-                    comp.push(j);
-                }
-            }
-        }
-        // The group's mode reaches into the stable unknowns around it (the Schur complement
-        // of the rest subtracts from the group's block): grow the patch ring by ring until its
-        // block shows the negative curvature or the patch is too large.
-        let mut found = None;
-        for _ in 0..PATCH_RINGS {
-            if comp.len() > MAX_PATCH {
-                break;
-            }
-            comp.sort_unstable();
-            let scale = comp.iter().fold(0.0f64, |s, &i| s.max(diag[i].abs()));
-            if let Some(mode) = negative_mode(pattern, row_values, &comp, scale) {
-                found = Some(mode);
-                break;
-            }
-            let ring: Vec<usize> = comp
-                .iter()
-                .flat_map(|&i| pattern.columns(i))
-                .filter(|&j| !seen[j])
-                .collect();
-            if ring.is_empty() {
-                break;
-            }
-            for j in ring {
-                if !seen[j] {
-                    seen[j] = true;
-                    comp.push(j);
-                }
-            }
-        }
-        let Some((lambda, v)) = found else {
-            continue;
-        };
-        if descend_along(energy, x, &comp, v, lambda) != 0.0 {
-            rep.patch_escapes += 1;
-            escaped.extend_from_slice(&comp);
-        }
+        let comp = component(pattern, s0, &in_patch, &mut seen, usize::MAX);
+        escape_patch(
+            energy,
+            x,
+            pattern,
+            row_values,
+            diag,
+            comp,
+            &mut seen,
+            &mut escaped,
+            rep,
+        );
     }
     let moved = !escaped.is_empty();
     settle(energy, x, pattern, row_values, escaped, rep);
