@@ -982,8 +982,12 @@ fn coupling_study(
     let mut z = unit_surface(p.springs_x, p.springs_y, p.correlation_length, p.seed)?;
     z.iter_mut().for_each(|v| *v *= p.roughness);
     let window = cycle_window(k_e, p.roughness, p.depth_sigmas, p.end_sigmas)?;
+    // The iterative path at every size: it resolves avalanches locally (a chain of coupled
+    // springs can have hundreds of generations in one step, one direct iteration each) and
+    // ends jumps where the overdamped dynamics end them.
     let opts = crate::numerics::newton::NewtonOptions {
         gradient_tol: p.gradient_tol,
+        linear: crate::numerics::newton::LinearSolver::Iterative,
         ..Default::default()
     };
     p.couplings
@@ -1273,6 +1277,7 @@ impl Scene for Fig5_10Accuracy {
         let run = |steps: usize, tol: f64| -> Result<(crate::models::spring_array::ArrayCycle, f64, usize)> {
             let opts = NewtonOptions {
                 gradient_tol: tol,
+                linear: crate::numerics::newton::LinearSolver::Iterative,
                 ..Default::default()
             };
             let t0 = std::time::Instant::now();
