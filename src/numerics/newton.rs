@@ -314,23 +314,30 @@ impl StableNewton {
     /// `Some(true)` comes a bound on ‖H⁻¹‖∞.
     fn certify(&mut self) -> (Option<bool>, f64) {
         let n_pattern = self.values.len() - self.n;
+        self.rows.gather(&self.values[..n_pattern], &mut self.row_values);
+        let mut diag = vec![0.0; self.n];
+        let mut off = vec![0.0; self.n];
+        let z_matrix = self
+            .rows
+            .diagonal_and_off_sums(&self.row_values, &mut diag, &mut off);
+        self.certify_gathered(&diag, z_matrix)
+    }
+
+    /// [`StableNewton::certify`] with the values already spread into row order and their
+    /// diagonal and Z-matrix property at hand (as the iterative path has them each iteration).
+    fn certify_gathered(&mut self, diag: &[f64], z_matrix: bool) -> (Option<bool>, f64) {
+        let n_pattern = self.values.len() - self.n;
         let values = &self.values[..n_pattern];
         if let Some((v, bound)) = &self.certified
             && v[..] == values[..]
         {
             return (Some(true), *bound);
         }
-        self.rows.gather(values, &mut self.row_values);
-        let mut diag = vec![0.0; self.n];
-        let mut off = vec![0.0; self.n];
-        if !self
-            .rows
-            .diagonal_and_off_sums(&self.row_values, &mut diag, &mut off)
-        {
+        if !z_matrix {
             return (None, f64::INFINITY);
         }
         let (found, bound) =
-            certify_z_matrix(&self.rows, &self.row_values, &diag, &mut self.certificate, 2000);
+            certify_z_matrix(&self.rows, &self.row_values, diag, &mut self.certificate, 2000);
         if found == Some(true) {
             let mut v = self.certified.take().map(|c| c.0).unwrap_or_default();
             v.clear();
@@ -441,9 +448,13 @@ impl StableNewton {
             energy.gradient(x, &mut g);
             let gnorm = inf_norm(&g);
             energy.hessian_values(x, &mut self.values[..n_pattern]);
+            self.rows.gather(&self.values[..n_pattern], &mut self.row_values);
+            let z_matrix = self
+                .rows
+                .diagonal_and_off_sums(&self.row_values, &mut diag, &mut off);
             if gnorm <= opts.gradient_tol {
                 // Converged if certified definite with a small Newton correction.
-                let (definite, bound) = self.certify();
+                let (definite, bound) = self.certify_gathered(&diag, z_matrix);
                 if definite == Some(true) && gnorm * bound <= opts.gradient_tol.sqrt() {
                     rep.gradient_norm = gnorm;
                     rep.energy = e0;
@@ -453,9 +464,6 @@ impl StableNewton {
                     return hand_over(self, x, rep);
                 }
             }
-            self.rows.gather(&self.values[..n_pattern], &mut self.row_values);
-            self.rows
-                .diagonal_and_off_sums(&self.row_values, &mut diag, &mut off);
             let mut definite = diag.iter().all(|&d| d > 0.0);
             // Unknowns past their own fold jump first (with the avalanche they start). From a
             // stable start the first step is Newton's: the smooth response moves the
@@ -517,7 +525,7 @@ impl StableNewton {
             }
             if definite {
                 if inf_norm(&p) <= opts.step_tol {
-                    if self.certify().0 != Some(true) {
+                    if self.certify_gathered(&diag, z_matrix).0 != Some(true) {
                         // A stationary point that is not a minimum: leave it along a local
                         // unstable mode if one is found, else decide by factorisation.
                         if escape_patches(energy, x, &self.rows, &self.row_values, &diag, &off, &mut rep) {
@@ -536,7 +544,7 @@ impl StableNewton {
                     Some(e1) => e0 = e1,
                     None => {
                         // No decrease along the step: at roundoff level already.
-                        if self.certify().0 == Some(true) {
+                        if self.certify_gathered(&diag, z_matrix).0 == Some(true) {
                             rep.gradient_norm = gnorm;
                             rep.energy = e0;
                             return Ok(rep);
@@ -760,6 +768,9 @@ fn jump_along_coordinates(
     // row with h_ii ≤ 0: the unknowns near a fold. One whose minimum is taken away by its
     // neighbours while its row is still dominant enters this set within a step or two.
     let mut queue: VecDeque<usize> = (0..n).filter(|&i| diag[i] <= off[i]).collect();
+    if queue.is_empty() {
+        return false;
+    }
     let seeds = queue.len();
     let mut queued = vec![false; n];
     queue.iter().for_each(|&i| queued[i] = true);
@@ -970,22 +981,14 @@ fn relax_region(
         return;
     }
     let tol = 1e-3 * inf_norm(&grad);
-    let mut off = DMatrix::<f64>::zeros(m, m);
-    for (r, &i) in set.iter().enumerate() {
-        for (c, v) in pattern.row(row_values, i) {
-            if c != i
-                && let Ok(q) = set.binary_search(&c)
-            {
-                off[(r, q)] += v;
-            }
-        }
-    }
+    // Off-diagonal entries from the global Hessian; the diagonal is set at every iteration.
+    let block = dense_block(pattern, row_values, set);
     let mut trial_grad = vec![0.0; m];
     for _ in 0..SETTLE_ITERATIONS {
         if inf_norm(&grad) <= tol {
             break;
         }
-        let mut h = off.clone();
+        let mut h = block.clone();
         for (r, &i) in set.iter().enumerate() {
             h[(r, r)] = energy.along_coordinate(x, i, x[i]).map_or(f64::NAN, |t| t.2);
         }
@@ -1218,6 +1221,20 @@ fn escape_patches(
     moved
 }
 
+/// The principal submatrix of H (values in row order) on the sorted unknowns `set`, dense.
+fn dense_block(pattern: &SymmetricPattern, row_values: &[f64], set: &[usize]) -> DMatrix<f64> {
+    let m = set.len();
+    let mut a = DMatrix::<f64>::zeros(m, m);
+    for (r, &i) in set.iter().enumerate() {
+        for (c, v) in pattern.row(row_values, i) {
+            if let Ok(q) = set.binary_search(&c) {
+                a[(r, q)] += v;
+            }
+        }
+    }
+    a
+}
+
 /// A direction of negative curvature of the principal submatrix of H (values in row order)
 /// on the sorted unknowns `set`: its lowest eigenvalue, when below −1e-12·`scale`, with the unit
 /// eigenvector. A successful dense Cholesky factorisation rules it out first, at a fraction of
@@ -1228,15 +1245,7 @@ fn negative_mode(
     set: &[usize],
     scale: f64,
 ) -> Option<(f64, Vec<f64>)> {
-    let m = set.len();
-    let mut a = DMatrix::<f64>::zeros(m, m);
-    for (r, &i) in set.iter().enumerate() {
-        for (c, v) in pattern.row(row_values, i) {
-            if let Ok(q) = set.binary_search(&c) {
-                a[(r, q)] += v;
-            }
-        }
-    }
+    let a = dense_block(pattern, row_values, set);
     if a.clone().cholesky().is_some() {
         return None;
     }
