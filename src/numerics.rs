@@ -5,6 +5,7 @@
 //! Models call these; they know nothing about contact mechanics, figures or front ends.
 
 pub mod curve;
+pub mod envelope;
 pub mod fft;
 pub mod least_squares;
 pub mod newton;

@@ -42,7 +42,9 @@ use faer::Side;
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
 use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
+
+use super::envelope::Envelope;
 use std::collections::VecDeque;
 use std::sync::Arc;
 
@@ -391,7 +393,7 @@ impl StableNewton {
     ///   those whose descent crosses non-positive curvature have no minimum left nearby and
     ///   move to their next one, and the jump spreads to their neighbours as it does in the
     ///   system (an avalanche, resolved locally: [`settle`] relaxes the region around it with
-    ///   a small dense stable Newton, [`relax_region`]);
+    ///   a small stable Newton, [`relax_region`]);
     /// - collective instabilities (every unknown stable on its own axis, the group not): the
     ///   group's lowest mode is found on a small patch of the Hessian and the patch moves
     ///   along it to the next minimum ([`escape_patches`], [`escape_around`]); where no patch
@@ -828,7 +830,7 @@ fn jump_along_coordinates(
 /// Rings of neighbours around moved unknowns that [`settle`] relaxes.
 const SETTLE_RINGS: usize = 4;
 
-/// Largest connected region that [`settle`] relaxes (a dense problem of this order).
+/// Largest connected region that [`settle`] relaxes.
 const MAX_REGION: usize = 400;
 
 /// Newton iterations per region in [`settle`] at most.
@@ -937,20 +939,49 @@ fn escape_patch(
     escaped: &mut Vec<usize>,
     rep: &mut NewtonReport,
 ) {
-    for ring in 0..=PATCH_RINGS {
+    if patch.len() > MAX_PATCH {
+        return;
+    }
+    // Rings up to the largest patch within the size limit, each unknown with its ring.
+    let mut ring_of = vec![0; patch.len()];
+    let mut testable = patch.len();
+    for ring in 1..=PATCH_RINGS {
+        if !add_ring(pattern, &mut patch, seen) {
+            break;
+        }
+        ring_of.resize(patch.len(), ring);
         if patch.len() > MAX_PATCH {
-            return;
+            break;
         }
-        patch.sort_unstable();
-        let scale = patch.iter().fold(0.0f64, |s, &i| s.max(diag[i].abs()));
-        if let Some((lambda, v)) = negative_mode(pattern, row_values, &patch, scale) {
-            if descend_along(energy, x, &patch, v, lambda) != 0.0 {
+        testable = patch.len();
+    }
+    // A principal submatrix of a positive-definite block is positive definite: one
+    // factorisation of the largest patch rules out all the smaller ones.
+    let mut largest = patch[..testable].to_vec();
+    largest.sort_unstable();
+    if Envelope::principal_block(pattern, row_values, &largest)
+        .cholesky()
+        .is_some()
+    {
+        return;
+    }
+    let last_ring = ring_of[testable - 1];
+    for ring in 0..=last_ring {
+        let mut set: Vec<usize> = (0..testable)
+            .filter(|&k| ring_of[k] <= ring)
+            .map(|k| patch[k])
+            .collect();
+        set.sort_unstable();
+        let scale = set.iter().fold(0.0f64, |s, &i| s.max(diag[i].abs()));
+        if let Some((lambda, v)) = negative_mode(pattern, row_values, &set, scale) {
+            if descend_along(energy, x, &set, v, lambda) != 0.0 {
                 rep.patch_escapes += 1;
-                escaped.extend_from_slice(&patch);
+                escaped.extend_from_slice(&set);
             }
-            return;
-        }
-        if ring == PATCH_RINGS || !add_ring(pattern, &mut patch, seen) {
+            // The rings beyond this one were not reached.
+            (0..patch.len())
+                .filter(|&k| ring_of[k] > ring)
+                .for_each(|k| seen[patch[k]] = false);
             return;
         }
     }
@@ -960,10 +991,11 @@ fn escape_patch(
 /// gradient from [`Energy::local_energy`], the Hessian block with its diagonal from
 /// [`Energy::along_coordinate`] and its off-diagonal entries from `row_values` (the last
 /// global Hessian; exact for couplings that are quadratic, as in the spring arrays, otherwise
-/// a chord approximation). Where the dense Cholesky factorisation of the block fails, the
-/// region is unstable on its own and moves along its lowest mode to the next minimum on that
-/// line ([`descend_along`]); otherwise it takes Newton steps with backtracking. Stops when the
-/// region's largest gradient component has fallen by 10³ (the global iteration finishes).
+/// a chord approximation). Where the Cholesky factorisation of the block (within its
+/// envelope, [`Envelope`]) fails, the region is unstable on its own and moves along its lowest
+/// mode to the next minimum on that line ([`descend_along`]); otherwise it takes Newton steps
+/// with backtracking. Stops when the region's largest gradient component has fallen by 10³
+/// (the global iteration finishes).
 fn relax_region(
     energy: &impl Energy,
     x: &mut [f64],
@@ -982,21 +1014,25 @@ fn relax_region(
     }
     let tol = 1e-3 * inf_norm(&grad);
     // Off-diagonal entries from the global Hessian; the diagonal is set at every iteration.
-    let block = dense_block(pattern, row_values, set);
+    let mut h = Envelope::principal_block(pattern, row_values, set);
+    if !h.all_finite() {
+        return;
+    }
     let mut trial_grad = vec![0.0; m];
+    let mut p = vec![0.0; m];
     for _ in 0..SETTLE_ITERATIONS {
         if inf_norm(&grad) <= tol {
             break;
         }
-        let mut h = block.clone();
         for (r, &i) in set.iter().enumerate() {
-            h[(r, r)] = energy.along_coordinate(x, i, x[i]).map_or(f64::NAN, |t| t.2);
+            let d = energy.along_coordinate(x, i, x[i]).map_or(f64::NAN, |t| t.2);
+            if !d.is_finite() {
+                return;
+            }
+            h.set_diagonal(r, d);
         }
-        if !h.iter().all(|v| v.is_finite()) {
-            return;
-        }
-        let Some(chol) = h.clone().cholesky() else {
-            let (lambda, v) = lowest_dense(h);
+        let Some(chol) = h.cholesky() else {
+            let (lambda, v) = lowest_mode(&h);
             if lambda.is_nan() || lambda >= 0.0 || descend_along(energy, x, set, v, lambda) == 0.0 {
                 return;
             }
@@ -1007,7 +1043,8 @@ fn relax_region(
             }
             continue;
         };
-        let p = chol.solve(&DVector::from_iterator(m, grad.iter().map(|g| -g)));
+        p.iter_mut().zip(&grad).for_each(|(pi, g)| *pi = -g);
+        chol.solve(&mut p);
         let slope: f64 = p.iter().zip(&grad).map(|(a, b)| a * b).sum();
         if slope.is_nan() || slope >= 0.0 {
             return;
@@ -1120,9 +1157,13 @@ fn descend_line(
     t != 0.0
 }
 
-/// The lowest eigenvalue of a dense symmetric matrix with its unit eigenvector.
-fn lowest_dense(a: DMatrix<f64>) -> (f64, Vec<f64>) {
-    let eig = a.symmetric_eigen();
+/// The lowest eigenvalue of a symmetric matrix with its unit eigenvector: by shift and invert
+/// within the envelope ([`Envelope::lowest_eigenpair`]), else by the dense eigenproblem.
+fn lowest_mode(a: &Envelope) -> (f64, Vec<f64>) {
+    if let Some(pair) = a.lowest_eigenpair() {
+        return pair;
+    }
+    let eig = DMatrix::from_fn(a.order(), a.order(), |r, c| a.get(r.max(c), r.min(c))).symmetric_eigen();
     match eig
         .eigenvalues
         .iter()
@@ -1163,8 +1204,7 @@ fn descend_along(energy: &impl Energy, x: &mut [f64], set: &[usize], mut v: Vec<
     t
 }
 
-/// Largest group of unknowns that [`escape_patches`] treats as one patch (a dense symmetric
-/// eigenproblem of this order).
+/// Largest group of unknowns that [`escape_patches`] treats as one patch.
 const MAX_PATCH: usize = 256;
 
 /// Rings of neighbours by which [`escape_patch`] grows a patch at most.
@@ -1221,35 +1261,21 @@ fn escape_patches(
     moved
 }
 
-/// The principal submatrix of H (values in row order) on the sorted unknowns `set`, dense.
-fn dense_block(pattern: &SymmetricPattern, row_values: &[f64], set: &[usize]) -> DMatrix<f64> {
-    let m = set.len();
-    let mut a = DMatrix::<f64>::zeros(m, m);
-    for (r, &i) in set.iter().enumerate() {
-        for (c, v) in pattern.row(row_values, i) {
-            if let Ok(q) = set.binary_search(&c) {
-                a[(r, q)] += v;
-            }
-        }
-    }
-    a
-}
-
 /// A direction of negative curvature of the principal submatrix of H (values in row order)
 /// on the sorted unknowns `set`: its lowest eigenvalue, when below −1e-12·`scale`, with the unit
-/// eigenvector. A successful dense Cholesky factorisation rules it out first, at a fraction of
-/// the cost of the eigenproblem.
+/// eigenvector ([`lowest_mode`]). A successful Cholesky factorisation rules it out first, at a
+/// fraction of the cost of the eigenproblem.
 fn negative_mode(
     pattern: &SymmetricPattern,
     row_values: &[f64],
     set: &[usize],
     scale: f64,
 ) -> Option<(f64, Vec<f64>)> {
-    let a = dense_block(pattern, row_values, set);
-    if a.clone().cholesky().is_some() {
+    let a = Envelope::principal_block(pattern, row_values, set);
+    if a.cholesky().is_some() {
         return None;
     }
-    let (lambda, v) = lowest_dense(a);
+    let (lambda, v) = lowest_mode(&a);
     (lambda < -1e-12 * scale).then_some((lambda, v))
 }
 
