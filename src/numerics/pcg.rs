@@ -75,8 +75,15 @@ impl SymmetricPattern {
 
     /// Spread values in lower-triangle order into row order (`rows`, resized).
     pub fn gather(&self, values: &[f64], rows: &mut Vec<f64>) {
-        rows.clear();
-        rows.extend(self.slots.iter().map(|&s| values[s]));
+        if self.n >= PARALLEL_ROWS {
+            rows.resize(self.slots.len(), 0.0);
+            rows.par_chunks_mut(5 * CHUNK)
+                .zip(self.slots.par_chunks(5 * CHUNK))
+                .for_each(|(r, s)| r.iter_mut().zip(s).for_each(|(ri, &k)| *ri = values[k]));
+        } else {
+            rows.clear();
+            rows.extend(self.slots.iter().map(|&s| values[s]));
+        }
     }
 
     /// Columns of the entries of row i (the diagonal included).
@@ -130,21 +137,34 @@ impl SymmetricPattern {
     /// `off` (values in row order); returns whether every off-diagonal entry is ≤ 0 (a
     /// Z-matrix).
     pub fn diagonal_and_off_sums(&self, rows: &[f64], diag: &mut [f64], off: &mut [f64]) -> bool {
-        let mut z = true;
-        for i in 0..self.n {
-            let (mut d, mut o) = (0.0, 0.0);
-            for (c, v) in self.row(rows, i) {
-                if c == i {
-                    d += v;
-                } else {
-                    o += v.abs();
-                    z &= v <= 0.0;
+        let block = |start: usize, diag: &mut [f64], off: &mut [f64]| -> bool {
+            let mut z = true;
+            for (k, (dk, ok)) in diag.iter_mut().zip(off.iter_mut()).enumerate() {
+                let i = start + k;
+                let (mut d, mut o) = (0.0, 0.0);
+                for (c, v) in self.row(rows, i) {
+                    if c == i {
+                        d += v;
+                    } else {
+                        o += v.abs();
+                        z &= v <= 0.0;
+                    }
                 }
+                *dk = d;
+                *ok = o;
             }
-            diag[i] = d;
-            off[i] = o;
+            z
+        };
+        let (diag, off) = (&mut diag[..self.n], &mut off[..self.n]);
+        if self.n >= PARALLEL_ROWS {
+            diag.par_chunks_mut(CHUNK)
+                .zip(off.par_chunks_mut(CHUNK))
+                .enumerate()
+                .map(|(b, (d, o))| block(b * CHUNK, d, o))
+                .reduce(|| true, |p, q| p && q)
+        } else {
+            block(0, diag, off)
         }
-        z
     }
 }
 
@@ -225,9 +245,13 @@ pub fn pcg_with_curvature(
     negative: &mut [f64],
 ) -> (PcgEnd, usize) {
     let n = b.len();
-    let mut r = vec![0.0; n];
-    a.apply(x, &mut r);
-    r.iter_mut().zip(b).for_each(|(ri, bi)| *ri = bi - *ri);
+    // r = b − A x (no product from a zero start, the usual one).
+    let mut r = b.to_vec();
+    if x.iter().any(|&v| v != 0.0) {
+        let mut ax = vec![0.0; n];
+        a.apply(x, &mut ax);
+        r.iter_mut().zip(&ax).for_each(|(ri, axi)| *ri -= axi);
+    }
     let mut z: Vec<f64> = r.iter().zip(inv_diag).map(|(ri, m)| ri * m).collect();
     let mut d = z.clone();
     let mut ad = vec![0.0; n];
@@ -407,6 +431,42 @@ mod tests {
         let mut rows = Vec::new();
         p.gather(&values, &mut rows);
         (p, rows)
+    }
+
+    /// Above [`PARALLEL_ROWS`] the row-order values, the diagonal, the off-diagonal sums and
+    /// the Z-matrix test come from parallel passes: they equal the entries row by row, and a
+    /// positive off-diagonal entry in the last row is seen.
+    #[test]
+    fn the_parallel_passes_read_every_row() {
+        let n = PARALLEL_ROWS + 1234;
+        let mut lower: Vec<(usize, usize)> = (0..n).map(|i| (i, i)).collect();
+        lower.extend((1..n).map(|i| (i, i - 1)));
+        lower.extend((7..n).step_by(3).map(|i| (i, i - 7)));
+        let mut values: Vec<f64> = (0..n).map(|i| 3.0 + (i % 13) as f64).collect();
+        values.extend((1..lower.len() - n + 1).map(|k| -0.5 - (k % 5) as f64 * 0.1));
+        let p = SymmetricPattern::from_lower(n, &lower);
+        let mut rows = Vec::new();
+        p.gather(&values, &mut rows);
+        let mut diag = vec![0.0; n];
+        let mut off = vec![0.0; n];
+        assert!(p.diagonal_and_off_sums(&rows, &mut diag, &mut off));
+        let mut want_off = vec![0.0; n];
+        for (&(r, c), v) in lower.iter().zip(&values).skip(n) {
+            want_off[r] += v.abs();
+            want_off[c] += v.abs();
+        }
+        for i in 0..n {
+            assert_eq!(diag[i], values[i], "diagonal {i}");
+            assert!(
+                (off[i] - want_off[i]).abs() < 1e-12,
+                "row {i}: {} vs {}",
+                off[i],
+                want_off[i]
+            );
+        }
+        *values.last_mut().expect("entries") = 0.25;
+        p.gather(&values, &mut rows);
+        assert!(!p.diagonal_and_off_sums(&rows, &mut diag, &mut off));
     }
 
     #[test]
