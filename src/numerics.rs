@@ -1,6 +1,9 @@
 //! Numerical building blocks with no physics in them: root finding, quadrature, curve tracing
-//! (all roots on an interval, turning points, the path along equilibrium branches), and
-//! nonlinear least squares (Levenberg-Marquardt), and cubic splines for tabulated data.
+//! (all roots on an interval, turning points, the path along equilibrium branches), nonlinear
+//! least squares (Levenberg-Marquardt), cubic splines for tabulated data, FFTs, and the
+//! stable Newton minimiser of non-convex energies with its sparse linear algebra (conjugate
+//! gradients with a definiteness certificate, envelope Cholesky factorisations of small
+//! blocks).
 //!
 //! Models call these; they know nothing about contact mechanics, figures or front ends.
 
