@@ -311,6 +311,17 @@ impl StableNewton {
         Ok(self.factor(0.0)?.is_some())
     }
 
+    /// The iteration's Hessian (gathered into row order) with its diagonal and off-diagonal
+    /// sums, for the local moves.
+    fn tangent<'a>(&'a self, diag: &'a [f64], off: &'a [f64]) -> Tangent<'a> {
+        Tangent {
+            pattern: &self.rows,
+            rows: &self.row_values,
+            diag,
+            off,
+        }
+    }
+
     /// Decide the definiteness of the Hessian in `self.values` without factorising when it is
     /// a Z-matrix ([`certify_z_matrix`]); `None` when undecided or not a Z-matrix. With
     /// `Some(true)` comes a bound on ‖H⁻¹‖∞.
@@ -471,7 +482,7 @@ impl StableNewton {
             // stable start the first step is Newton's: the smooth response moves the
             // neighbours too, and a spring's fold is judged against where they go.
             if (rep.iterations > 1 || !definite)
-                && jump_along_coordinates(energy, x, &self.rows, &self.row_values, &g, &diag, &off, &mut rep)
+                && jump_along_coordinates(energy, x, &self.tangent(&diag, &off), &g, &mut rep)
             {
                 rep.indefinite_iterations += 1;
                 local_moves = true;
@@ -480,7 +491,7 @@ impl StableNewton {
             }
             if !definite {
                 rep.indefinite_iterations += 1;
-                if escape_patches(energy, x, &self.rows, &self.row_values, &diag, &off, &mut rep) {
+                if escape_patches(energy, x, &self.tangent(&diag, &off), &mut rep) {
                     local_moves = true;
                     e0 = energy.energy(x);
                     continue;
@@ -506,16 +517,8 @@ impl StableNewton {
                     rep.indefinite_iterations += 1;
                     // A local unstable mode, or else down the line of negative curvature CG
                     // met (a direction d with dᵀHd ≤ 0, spread over the system).
-                    if escape_patches(energy, x, &self.rows, &self.row_values, &diag, &off, &mut rep)
-                        || escape_around(
-                            energy,
-                            x,
-                            &self.rows,
-                            &self.row_values,
-                            &diag,
-                            &direction,
-                            &mut rep,
-                        )
+                    if escape_patches(energy, x, &self.tangent(&diag, &off), &mut rep)
+                        || escape_around(energy, x, &self.tangent(&diag, &off), &direction, &mut rep)
                         || descend_line(energy, x, &mut direction, &mut trial, &mut line_gradient)
                     {
                         rep.negative_curvature_steps += 1;
@@ -530,7 +533,7 @@ impl StableNewton {
                     if self.certify_gathered(&diag, z_matrix).0 != Some(true) {
                         // A stationary point that is not a minimum: leave it along a local
                         // unstable mode if one is found, else decide by factorisation.
-                        if escape_patches(energy, x, &self.rows, &self.row_values, &diag, &off, &mut rep) {
+                        if escape_patches(energy, x, &self.tangent(&diag, &off), &mut rep) {
                             rep.indefinite_iterations += 1;
                             e0 = energy.energy(x);
                             continue;
@@ -751,17 +754,16 @@ impl StableNewton {
 /// descent crossed non-positive curvature). An avalanche thus costs work in proportion to the
 /// unknowns it moves, not one global iteration per generation. Returns whether anything moved;
 /// `false` also when the energy does not offer [`Energy::along_coordinate`].
-#[allow(clippy::too_many_arguments)]
 fn jump_along_coordinates(
     energy: &impl Energy,
     x: &mut [f64],
-    pattern: &SymmetricPattern,
-    row_values: &[f64],
+    h: &Tangent<'_>,
     g: &[f64],
-    diag: &[f64],
-    off: &[f64],
     rep: &mut NewtonReport,
 ) -> bool {
+    let Tangent {
+        pattern, diag, off, ..
+    } = *h;
     let n = x.len();
     if n == 0 || energy.along_coordinate(x, 0, x[0]).is_none() {
         return false;
@@ -823,8 +825,19 @@ fn jump_along_coordinates(
         }
     }
     let moved = !jumped_set.is_empty();
-    settle(energy, x, pattern, row_values, jumped_set, rep);
+    settle(energy, x, h, jumped_set, rep);
     moved
+}
+
+/// The Hessian of one iteration of the iterative path, as the local moves read it: its
+/// pattern, its values in row order, its diagonal and its off-diagonal absolute row sums
+/// Σ_{j≠i} |h_ij|.
+#[derive(Clone, Copy)]
+struct Tangent<'a> {
+    pattern: &'a SymmetricPattern,
+    rows: &'a [f64],
+    diag: &'a [f64],
+    off: &'a [f64],
 }
 
 /// Rings of neighbours around moved unknowns that [`settle`] relaxes.
@@ -843,14 +856,8 @@ const SETTLE_ITERATIONS: usize = 40;
 /// lose stability and jump in turn: an avalanche); resolving it here costs work in proportion
 /// to the region, where every global step costs work in proportion to the whole system. The
 /// global Newton step that follows corrects the smooth remainder.
-fn settle(
-    energy: &impl Energy,
-    x: &mut [f64],
-    pattern: &SymmetricPattern,
-    row_values: &[f64],
-    moved: Vec<usize>,
-    rep: &mut NewtonReport,
-) {
+fn settle(energy: &impl Energy, x: &mut [f64], h: &Tangent<'_>, moved: Vec<usize>, rep: &mut NewtonReport) {
+    let pattern = h.pattern;
     if moved.is_empty() || energy.local_energy(x, &moved[..1], &mut [0.0]).is_none() {
         return;
     }
@@ -874,7 +881,7 @@ fn settle(
         let mut comp = component(pattern, s0, &mark, &mut seen, usize::MAX);
         if comp.len() <= MAX_REGION {
             comp.sort_unstable();
-            relax_region(energy, x, pattern, row_values, &comp, rep);
+            relax_region(energy, x, h, &comp, rep);
         }
     }
 }
@@ -927,13 +934,10 @@ fn add_ring(pattern: &SymmetricPattern, set: &mut Vec<usize>, seen: &mut [bool])
 /// move it along that mode to the next minimum ([`descend_along`]); the unknowns moved are
 /// appended to `escaped`. A group's unstable mode reaches into the stable unknowns around it
 /// (the Schur complement of the rest subtracts from the group's block), hence the growth.
-#[allow(clippy::too_many_arguments)]
 fn escape_patch(
     energy: &impl Energy,
     x: &mut [f64],
-    pattern: &SymmetricPattern,
-    row_values: &[f64],
-    diag: &[f64],
+    h: &Tangent<'_>,
     mut patch: Vec<usize>,
     seen: &mut [bool],
     escaped: &mut Vec<usize>,
@@ -946,7 +950,7 @@ fn escape_patch(
     let mut ring_of = vec![0; patch.len()];
     let mut testable = patch.len();
     for ring in 1..=PATCH_RINGS {
-        if !add_ring(pattern, &mut patch, seen) {
+        if !add_ring(h.pattern, &mut patch, seen) {
             break;
         }
         ring_of.resize(patch.len(), ring);
@@ -959,7 +963,7 @@ fn escape_patch(
     // factorisation of the largest patch rules out all the smaller ones.
     let mut largest = patch[..testable].to_vec();
     largest.sort_unstable();
-    if Envelope::principal_block(pattern, row_values, &largest)
+    if Envelope::principal_block(h.pattern, h.rows, &largest)
         .cholesky()
         .is_some()
     {
@@ -972,8 +976,8 @@ fn escape_patch(
             .map(|k| patch[k])
             .collect();
         set.sort_unstable();
-        let scale = set.iter().fold(0.0f64, |s, &i| s.max(diag[i].abs()));
-        if let Some((lambda, v)) = negative_mode(pattern, row_values, &set, scale) {
+        let scale = set.iter().fold(0.0f64, |s, &i| s.max(h.diag[i].abs()));
+        if let Some((lambda, v)) = negative_mode(h, &set, scale) {
             if descend_along(energy, x, &set, v, lambda) != 0.0 {
                 rep.patch_escapes += 1;
                 escaped.extend_from_slice(&set);
@@ -989,21 +993,14 @@ fn escape_patch(
 
 /// Stable Newton on the unknowns `set` (sorted) alone, all others held at `x`: the energy and
 /// gradient from [`Energy::local_energy`], the Hessian block with its diagonal from
-/// [`Energy::along_coordinate`] and its off-diagonal entries from `row_values` (the last
-/// global Hessian; exact for couplings that are quadratic, as in the spring arrays, otherwise
-/// a chord approximation). Where the Cholesky factorisation of the block (within its
+/// [`Energy::along_coordinate`] and its off-diagonal entries from `h` (the last global
+/// Hessian; exact for couplings that are quadratic, as in the spring arrays, otherwise a chord
+/// approximation). Where the Cholesky factorisation of the block (within its
 /// envelope, [`Envelope`]) fails, the region is unstable on its own and moves along its lowest
 /// mode to the next minimum on that line ([`descend_along`]); otherwise it takes Newton steps
 /// with backtracking. Stops when the region's largest gradient component has fallen by 10³
 /// (the global iteration finishes).
-fn relax_region(
-    energy: &impl Energy,
-    x: &mut [f64],
-    pattern: &SymmetricPattern,
-    row_values: &[f64],
-    set: &[usize],
-    rep: &mut NewtonReport,
-) {
+fn relax_region(energy: &impl Energy, x: &mut [f64], h: &Tangent<'_>, set: &[usize], rep: &mut NewtonReport) {
     let m = set.len();
     let mut grad = vec![0.0; m];
     let Some(mut e) = energy.local_energy(x, set, &mut grad) else {
@@ -1014,8 +1011,8 @@ fn relax_region(
     }
     let tol = 1e-3 * inf_norm(&grad);
     // Off-diagonal entries from the global Hessian; the diagonal is set at every iteration.
-    let mut h = Envelope::principal_block(pattern, row_values, set);
-    if !h.all_finite() {
+    let mut block = Envelope::principal_block(h.pattern, h.rows, set);
+    if !block.all_finite() {
         return;
     }
     let mut trial_grad = vec![0.0; m];
@@ -1029,10 +1026,10 @@ fn relax_region(
             if !d.is_finite() {
                 return;
             }
-            h.set_diagonal(r, d);
+            block.set_diagonal(r, d);
         }
-        let Some(chol) = h.cholesky() else {
-            let (lambda, v) = lowest_mode(&h);
+        let Some(chol) = block.cholesky() else {
+            let (lambda, v) = lowest_mode(&block);
             if lambda.is_nan() || lambda >= 0.0 || descend_along(energy, x, set, v, lambda) == 0.0 {
                 return;
             }
@@ -1083,9 +1080,7 @@ fn relax_region(
 fn escape_around(
     energy: &impl Energy,
     x: &mut [f64],
-    pattern: &SymmetricPattern,
-    row_values: &[f64],
-    diag: &[f64],
+    h: &Tangent<'_>,
     dir: &[f64],
     rep: &mut NewtonReport,
 ) -> bool {
@@ -1106,21 +1101,11 @@ fn escape_around(
         if mark[s0] {
             continue;
         }
-        let patch = component(pattern, s0, &in_strong, &mut mark, MAX_PATCH);
-        escape_patch(
-            energy,
-            x,
-            pattern,
-            row_values,
-            diag,
-            patch,
-            &mut mark,
-            &mut escaped,
-            rep,
-        );
+        let patch = component(h.pattern, s0, &in_strong, &mut mark, MAX_PATCH);
+        escape_patch(energy, x, h, patch, &mut mark, &mut escaped, rep);
     }
     let moved = !escaped.is_empty();
-    settle(energy, x, pattern, row_values, escaped, rep);
+    settle(energy, x, h, escaped, rep);
     moved
 }
 
@@ -1219,15 +1204,10 @@ const PATCH_RINGS: usize = 4;
 /// line, evaluated locally ([`Energy::local_energy`]). This is the unstable group's own mode,
 /// taken in one move instead of being crept along by damped steps. Returns whether any patch
 /// moved; `false` also when the energy does not offer [`Energy::local_energy`].
-fn escape_patches(
-    energy: &impl Energy,
-    x: &mut [f64],
-    pattern: &SymmetricPattern,
-    row_values: &[f64],
-    diag: &[f64],
-    off: &[f64],
-    rep: &mut NewtonReport,
-) -> bool {
+fn escape_patches(energy: &impl Energy, x: &mut [f64], h: &Tangent<'_>, rep: &mut NewtonReport) -> bool {
+    let Tangent {
+        pattern, diag, off, ..
+    } = *h;
     let n = x.len();
     let seeds: Vec<usize> = (0..n).filter(|&i| diag[i] - off[i] <= 0.0).collect();
     if seeds.is_empty() || energy.local_energy(x, &seeds[..1], &mut [0.0]).is_none() {
@@ -1244,34 +1224,19 @@ fn escape_patches(
             continue;
         }
         let comp = component(pattern, s0, &in_patch, &mut seen, usize::MAX);
-        escape_patch(
-            energy,
-            x,
-            pattern,
-            row_values,
-            diag,
-            comp,
-            &mut seen,
-            &mut escaped,
-            rep,
-        );
+        escape_patch(energy, x, h, comp, &mut seen, &mut escaped, rep);
     }
     let moved = !escaped.is_empty();
-    settle(energy, x, pattern, row_values, escaped, rep);
+    settle(energy, x, h, escaped, rep);
     moved
 }
 
-/// A direction of negative curvature of the principal submatrix of H (values in row order)
-/// on the sorted unknowns `set`: its lowest eigenvalue, when below −1e-12·`scale`, with the unit
+/// A direction of negative curvature of the principal submatrix of H (the iteration's `h`) on
+/// the sorted unknowns `set`: its lowest eigenvalue, when below −1e-12·`scale`, with the unit
 /// eigenvector ([`lowest_mode`]). A successful Cholesky factorisation rules it out first, at a
 /// fraction of the cost of the eigenproblem.
-fn negative_mode(
-    pattern: &SymmetricPattern,
-    row_values: &[f64],
-    set: &[usize],
-    scale: f64,
-) -> Option<(f64, Vec<f64>)> {
-    let a = Envelope::principal_block(pattern, row_values, set);
+fn negative_mode(h: &Tangent<'_>, set: &[usize], scale: f64) -> Option<(f64, Vec<f64>)> {
+    let a = Envelope::principal_block(h.pattern, h.rows, set);
     if a.cholesky().is_some() {
         return None;
     }
