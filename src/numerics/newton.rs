@@ -746,13 +746,14 @@ impl StableNewton {
     }
 }
 
-/// Move every unknown whose own curvature `diag[i]` is not positive downhill along its axis to
-/// its next minimum, one after the other (coordinate descent; each move lowers the energy and
-/// stops at the first minimum met, so no barrier is crossed), and let the jump spread as it
+/// Move every unknown past its own fold downhill along its axis to its next minimum, one after
+/// the other (coordinate descent; each move lowers the energy and stops at the first minimum
+/// met, so no barrier is crossed). The candidates are the rows that are not diagonally
+/// dominant; one jumps when its descent crosses non-positive curvature. The jump spreads as it
 /// does in the system: the neighbours (in the Hessian's pattern) of an unknown that jumped are
-/// relaxed along their axes in turn, and pass the jump on when they jumped as well (their
-/// descent crossed non-positive curvature). An avalanche thus costs work in proportion to the
-/// unknowns it moves, not one global iteration per generation. Returns whether anything moved;
+/// relaxed along their axes in turn, and pass the jump on when they jumped as well. An
+/// avalanche thus costs work in proportion to the unknowns it moves, not one global iteration
+/// per generation; [`settle`] then relaxes its surroundings. Returns whether anything moved;
 /// `false` also when the energy does not offer [`Energy::along_coordinate`].
 fn jump_along_coordinates(
     energy: &impl Energy,
@@ -1047,22 +1048,21 @@ fn relax_region(energy: &impl Energy, x: &mut [f64], h: &Tangent<'_>, set: &[usi
             return;
         }
         let start: Vec<f64> = set.iter().map(|&i| x[i]).collect();
-        let slack = 1e-14 * e.abs().max(1.0);
-        let mut t = 1.0;
-        loop {
+        let accepted = armijo(e, slope, 1e-12, |t| {
             for ((&i, s0), pi) in set.iter().zip(&start).zip(p.iter()) {
                 x[i] = s0 + t * pi;
             }
-            let e1 = energy
+            energy
                 .local_energy(x, set, &mut trial_grad)
-                .unwrap_or(f64::INFINITY);
-            if e1.is_finite() && e1 <= e + 1e-4 * t * slope + slack {
+                .unwrap_or(f64::INFINITY)
+        });
+        // On acceptance x and the trial gradient are those of the accepted step.
+        match accepted {
+            Some(e1) => {
                 e = e1;
                 grad.copy_from_slice(&trial_grad);
-                break;
             }
-            t *= 0.5;
-            if t < 1e-12 {
+            None => {
                 for (&i, s0) in set.iter().zip(&start) {
                     x[i] = *s0;
                 }
@@ -1319,15 +1319,26 @@ fn backtrack(
     slope: f64,
     trial: &mut [f64],
 ) -> Option<f64> {
-    let slack = 1e-14 * e0.abs().max(1.0);
-    let mut t = 1.0;
-    while t >= 1e-20 {
+    let e1 = armijo(e0, slope, 1e-20, |t| {
         for ((ti, xi), pi) in trial.iter_mut().zip(x.iter()).zip(p) {
             *ti = xi + t * pi;
         }
-        let e1 = energy.energy(trial);
+        energy.energy(trial)
+    })?;
+    x.copy_from_slice(trial);
+    Some(e1)
+}
+
+/// The Armijo rule: tries the steps t = 1, 1/2, 1/4, … down to `smallest`, evaluating
+/// `energy_at(t)` (which sets up the trial state), and returns the energy of the first that
+/// lies below e0 + 10⁻⁴·t·`slope` (with a roundoff slack of 10⁻¹⁴·max(|e0|, 1)); `None` when
+/// none does. The last call of `energy_at` is the accepted step.
+fn armijo(e0: f64, slope: f64, smallest: f64, mut energy_at: impl FnMut(f64) -> f64) -> Option<f64> {
+    let slack = 1e-14 * e0.abs().max(1.0);
+    let mut t = 1.0;
+    while t >= smallest {
+        let e1 = energy_at(t);
         if e1.is_finite() && e1 <= e0 + 1e-4 * t * slope + slack {
-            x.copy_from_slice(trial);
             return Some(e1);
         }
         t *= 0.5;
