@@ -236,7 +236,9 @@ impl Energy for ArrayEnergy<'_> {
     fn local_energy(&self, d: &[f64], set: &[usize], grad: &mut [f64]) -> Option<f64> {
         let a = self.array;
         let mut e = 0.0;
-        for (gi, &i) in grad.iter_mut().zip(set) {
+        // The first member of `set` at or beyond i − nx (it only moves forward as i grows).
+        let mut row_below = 0;
+        for (k, (gi, &i)) in grad.iter_mut().zip(set).enumerate() {
             let di = d[i];
             if di <= 0.0 || di.is_nan() {
                 return Some(f64::INFINITY);
@@ -245,11 +247,17 @@ impl Energy for ArrayEnergy<'_> {
             e += 0.5 * a.k_e * r * r + lj_energy(di);
             *gi = -a.k_e * r + lj_traction(di);
             if a.k_mu > 0.0 {
+                while i >= a.nx && set[row_below] < i - a.nx {
+                    row_below += 1;
+                }
                 for j in a.neighbours(i) {
                     let t = a.heights[j] + d[j] - a.heights[i] - di;
                     *gi -= a.k_mu * t;
-                    // A pair inside the set is counted from its lower end only.
-                    if j > i || set.binary_search(&j).is_err() {
+                    // A pair inside the set is counted from its lower end only: a neighbour
+                    // below i (i − 1 or i − nx) is in the set when it is the member before i,
+                    // or the member `row_below` points at.
+                    let below_in_set = j < i && (set[k.saturating_sub(1)] == j || set[row_below] == j);
+                    if !below_in_set {
                         e += 0.5 * a.k_mu * t * t;
                     }
                 }

@@ -667,3 +667,36 @@ fn a_peeling_front_along_a_chain_is_followed_by_the_iterative_path() {
     );
     assert!(adhesion_efficiency(&c, 256) > 0.0);
 }
+
+// The local energy of a set of springs (what the iterative path's local moves minimise) against
+// the whole energy: moving the springs of the set changes both by the same amount, and its
+// gradient is theirs. The set holds pairs of neighbours along a row and across rows (each
+// coupling spring inside the set counted once), one at the grid's edge, and a lone spring.
+#[test]
+fn the_local_energy_of_a_set_of_springs_matches_the_whole_energy() {
+    use adhesion::numerics::newton::Energy;
+    let (nx, ny) = (7, 5);
+    let k_e = 0.01;
+    let a = SpringArray::new(nx, ny, k_e, 3.0 * k_e, gaussian_heights(nx * ny, 0.5, 3)).unwrap();
+    let e = a.energy_at(1.5);
+    let d: Vec<f64> = (0..nx * ny).map(|i| 1.2 + 0.05 * ((i * 7) % 11) as f64).collect();
+    let set = [0, 1, 7, 8, 9, 16, 23, 24, 30, 34];
+    let mut local_grad = vec![0.0; set.len()];
+    let e_local = e.local_energy(&d, &set, &mut local_grad).unwrap();
+    let mut grad = vec![0.0; d.len()];
+    e.gradient(&d, &mut grad);
+    for (k, &i) in set.iter().enumerate() {
+        assert_rel("gradient of a set member", local_grad[k], grad[i], 1e-12);
+    }
+    let mut moved = d.clone();
+    for (k, &i) in set.iter().enumerate() {
+        moved[i] += 0.02 * (k as f64 - 4.5);
+    }
+    let moved_local = e.local_energy(&moved, &set, &mut local_grad).unwrap();
+    assert_rel(
+        "energy change",
+        moved_local - e_local,
+        e.energy(&moved) - e.energy(&d),
+        1e-9,
+    );
+}
