@@ -7,7 +7,8 @@
 //! runs also time coupled cycles of 32 x 32 and 64 x 64 springs with the direct (Cholesky) and
 //! the iterative (CG and certificate) linear algebra. In the coupled 256 x 256 cycle some 100
 //! to 200 springs lose stability at each step of the contact range; the iterative path resolves
-//! them locally (jumps, avalanches, patch modes), about 20 global iterations per such step.
+//! them locally (jumps, avalanches, patch modes, unbalanced springs relaxed with their
+//! surroundings), some 15 global iterations per such step.
 
 use std::hint::black_box;
 use std::time::Instant;
