@@ -500,7 +500,8 @@ impl StableNewton {
             let mut definite = diag.iter().all(|&d| d > 0.0);
             // A few unknowns far out of balance while the rest is nearly balanced (never in the
             // first iteration: its step is the smooth response to the load, which decides
-            // what follows; never twice running, so that the global steps go on).
+            // what follows; never twice running, so that the global steps go on; not near
+            // convergence, where the Newton steps converge fast).
             let hot: Vec<usize> = if rep.iterations > 1 && !hot_settled && gnorm > 1e4 * opts.gradient_tol {
                 let hot: Vec<usize> = (0..n).filter(|&i| g[i].abs() >= HOT_FRACTION * gnorm).collect();
                 if hot.len() <= n / 256 + 16 {
@@ -840,7 +841,7 @@ fn jump_along_coordinates(
     let mut queued = vec![false; n];
     let mut queue: VecDeque<usize> = (0..n).filter(|&i| diag[i] <= off[i]).collect();
     queue.iter().for_each(|&i| queued[i] = true);
-    let dominant_seeds = queue.len();
+    let fold_seeds = queue.len();
     for &i in unbalanced {
         if !queued[i] {
             queued[i] = true;
@@ -879,7 +880,7 @@ fn jump_along_coordinates(
                 .columns(i)
                 .any(|j| j != i && g[j] * sense > 1e-3 * g[i].abs())
             {
-                out.held |= popped > dominant_seeds;
+                out.held |= popped > fold_seeds;
                 continue;
             }
         }
