@@ -9,7 +9,7 @@
 //! O(Σ_r w_r²) (w_r the row's width) where a dense one costs O(m³/3): for a 16 x 16 patch
 //! some 70 times less.
 
-use super::pcg::SymmetricPattern;
+use super::pcg::{SymmetricPattern, dot};
 
 /// A symmetric m x m matrix stored by rows from each row's first nonzero column to the
 /// diagonal (the lower envelope).
@@ -128,9 +128,7 @@ impl Envelope {
             l,
         })
     }
-}
 
-impl Envelope {
     /// Gershgorin's bounds on the spectrum: every eigenvalue lies in [lo, hi].
     pub fn gershgorin(&self) -> (f64, f64) {
         let m = self.order();
@@ -191,13 +189,13 @@ impl Envelope {
         let mut av = vec![0.0; m];
         for _ in 0..200 {
             factor.solve(&mut v);
-            let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+            let norm = dot(&v, &v).sqrt();
             if !(norm > 0.0 && norm.is_finite()) {
                 return None;
             }
             v.iter_mut().for_each(|x| *x /= norm);
             self.mul(&v, &mut av);
-            let rho: f64 = v.iter().zip(&av).map(|(a, b)| a * b).sum();
+            let rho = dot(&v, &av);
             let residual = av
                 .iter()
                 .zip(&v)

@@ -502,16 +502,13 @@ impl StableNewton {
             // first iteration: its step is the smooth response to the load, which decides
             // what follows; never twice running, so that the global steps go on; not near
             // convergence, where the Newton steps converge fast).
-            let hot: Vec<usize> = if rep.iterations > 1 && !hot_settled && gnorm > 1e4 * opts.gradient_tol {
-                let hot: Vec<usize> = (0..n).filter(|&i| g[i].abs() >= HOT_FRACTION * gnorm).collect();
-                if hot.len() <= n / 256 + 16 {
-                    hot
-                } else {
-                    Vec::new()
+            let mut hot = Vec::new();
+            if rep.iterations > 1 && !hot_settled && gnorm > 1e4 * opts.gradient_tol {
+                hot.extend((0..n).filter(|&i| g[i].abs() >= HOT_FRACTION * gnorm));
+                if hot.len() > n / 256 + 16 {
+                    hot.clear();
                 }
-            } else {
-                Vec::new()
-            };
+            }
             hot_settled = false;
             // Unknowns past their own fold jump first (with the avalanche they start), the
             // unbalanced ones among the candidates. From a stable start the first step is
@@ -541,9 +538,7 @@ impl StableNewton {
             // where each Newton step covers only a fraction of the way back. Relaxed locally
             // with their surroundings ([`settle`]), at the cost of their region instead of a
             // global iteration per fraction.
-            if !hot.is_empty()
-                && !jumps.held
-                && settle(energy, x, &self.tangent(&diag, &off), hot, true, &mut rep)
+            if !hot.is_empty() && !jumps.held && settle(energy, x, &self.tangent(&diag, &off), hot, &mut rep)
             {
                 hot_settled = true;
                 local_moves = true;
@@ -812,12 +807,13 @@ impl StableNewton {
 /// Move every unknown past its own fold downhill along its axis to its next minimum, one after
 /// the other (coordinate descent; each move lowers the energy and stops at the first minimum
 /// met, so no barrier is crossed). The candidates are the rows that are not diagonally
-/// dominant; one jumps when its descent crosses non-positive curvature. The jump spreads as it
+/// dominant and the `unbalanced` unknowns; one jumps when its descent crosses non-positive
+/// curvature. The jump spreads as it
 /// does in the system: the neighbours (in the Hessian's pattern) of an unknown that jumped are
 /// relaxed along their axes in turn, and pass the jump on when they jumped as well. An
 /// avalanche thus costs work in proportion to the unknowns it moves, not one global iteration
-/// per generation; [`settle`] then relaxes its surroundings. Returns whether anything moved;
-/// `false` also when the energy does not offer [`Energy::along_coordinate`].
+/// per generation; [`settle`] then relaxes its surroundings. Returns what happened
+/// ([`Jumps`]): nothing also when the energy does not offer [`Energy::along_coordinate`].
 fn jump_along_coordinates(
     energy: &impl Energy,
     x: &mut [f64],
@@ -900,7 +896,7 @@ fn jump_along_coordinates(
         }
     }
     out.moved = !jumped_set.is_empty();
-    settle(energy, x, h, jumped_set, true, rep);
+    settle(energy, x, h, jumped_set, rep);
     out
 }
 
@@ -944,15 +940,13 @@ const SETTLE_ITERATIONS: usize = 40;
 /// nonlinear part of the response to a jump is local (the neighbours follow, and some of them
 /// lose stability and jump in turn: an avalanche); resolving it here costs work in proportion
 /// to the region, where every global step costs work in proportion to the whole system. The
-/// global Newton step that follows corrects the smooth remainder. `escape`: whether a region
-/// found unstable moves along its lowest mode ([`relax_region`]). Returns whether anything
+/// global Newton step that follows corrects the smooth remainder. Returns whether anything
 /// moved.
 fn settle(
     energy: &impl Energy,
     x: &mut [f64],
     h: &Tangent<'_>,
     moved: Vec<usize>,
-    escape: bool,
     rep: &mut NewtonReport,
 ) -> bool {
     let pattern = h.pattern;
@@ -980,7 +974,7 @@ fn settle(
         let mut comp = component(pattern, s0, &mark, &mut seen, usize::MAX);
         if comp.len() <= MAX_REGION {
             comp.sort_unstable();
-            relaxed |= relax_region(energy, x, h, &comp, escape, rep);
+            relaxed |= relax_region(energy, x, h, &comp, rep);
         }
     }
     relaxed
@@ -1096,17 +1090,15 @@ fn escape_patch(
 /// [`Energy::along_coordinate`] and its off-diagonal entries from `h` (the last global
 /// Hessian; exact for couplings that are quadratic, as in the spring arrays, otherwise a chord
 /// approximation). Where the Cholesky factorisation of the block (within its
-/// envelope, [`Envelope`]) fails, the region is unstable on its own: with `escape` it moves
-/// along its lowest mode to the next minimum on that line ([`descend_along`]), without it the
-/// relaxation stops there (and leaves the instability to the global iteration); otherwise it
-/// takes Newton steps with backtracking. Stops when the region's largest gradient component
+/// envelope, [`Envelope`]) fails, the region is unstable on its own and moves along its lowest
+/// mode to the next minimum on that line ([`descend_along`]); otherwise it takes Newton steps
+/// with backtracking. Stops when the region's largest gradient component
 /// has fallen by 10³ (the global iteration finishes). Returns whether anything moved.
 fn relax_region(
     energy: &impl Energy,
     x: &mut [f64],
     h: &Tangent<'_>,
     set: &[usize],
-    escape: bool,
     rep: &mut NewtonReport,
 ) -> bool {
     let m = set.len();
@@ -1138,9 +1130,6 @@ fn relax_region(
             block.set_diagonal(r, d);
         }
         let Some(chol) = block.cholesky() else {
-            if !escape {
-                return moved;
-            }
             let (lambda, v) = lowest_mode(&block);
             if lambda.is_nan() || lambda >= 0.0 || descend_along(energy, x, set, v, lambda) == 0.0 {
                 return moved;
@@ -1219,7 +1208,7 @@ fn escape_around(
         escape_patch(energy, x, h, patch, &mut mark, &mut escaped, rep);
     }
     let moved = !escaped.is_empty();
-    settle(energy, x, h, escaped, true, rep);
+    settle(energy, x, h, escaped, rep);
     moved
 }
 
@@ -1341,7 +1330,7 @@ fn escape_patches(energy: &impl Energy, x: &mut [f64], h: &Tangent<'_>, rep: &mu
         escape_patch(energy, x, h, comp, &mut seen, &mut escaped, rep);
     }
     let moved = !escaped.is_empty();
-    settle(energy, x, h, escaped, true, rep);
+    settle(energy, x, h, escaped, rep);
     moved
 }
 

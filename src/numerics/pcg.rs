@@ -76,6 +76,7 @@ impl SymmetricPattern {
     /// Spread values in lower-triangle order into row order (`rows`, resized).
     pub fn gather(&self, values: &[f64], rows: &mut Vec<f64>) {
         if self.n >= PARALLEL_ROWS {
+            // Chunks of entries: about CHUNK rows of a five-point stencil each.
             rows.resize(self.slots.len(), 0.0);
             rows.par_chunks_mut(5 * CHUNK)
                 .zip(self.slots.par_chunks(5 * CHUNK))
