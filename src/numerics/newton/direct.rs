@@ -1,0 +1,262 @@
+//! The direct path of [`StableNewton::minimize`] ([`LinearSolver::Direct`]): sparse Cholesky
+//! factorisations `H = L Lᵀ` (faer), which are the step solve and the stability test in one.
+//! A factorisation is reused for identical Hessian values (the cache that serves an accepted
+//! state's stability test and the first step of a continuation restarting from it) and, while
+//! the gradient falls fast, for chord steps. Where H is indefinite the step is shifted,
+//! `(H + λI) p = −g` with the smallest λ found by growing it geometrically; at a stationary
+//! point that is not a minimum the state leaves along a direction of negative curvature found
+//! by inverse iteration. The iterative path hands over to this one wherever its certificate is
+//! not found.
+//!
+//! [`LinearSolver::Direct`]: super::LinearSolver::Direct
+
+use faer::Side;
+use faer::linalg::solvers::Solve;
+use faer::sparse::SparseColMat;
+use faer::sparse::linalg::solvers::Llt;
+use std::sync::Arc;
+
+use super::{Energy, Factor, NewtonOptions, NewtonReport, StableNewton, backtrack};
+use crate::error::{Error, Result};
+use crate::numerics::pcg::{dot, inf_norm};
+
+/// Chord steps (an earlier factorisation reused) continue while each cuts the largest
+/// gradient component by at least this factor; otherwise the Hessian is factorised again.
+const CHORD_CONTRACTION: f64 = 0.25;
+
+impl StableNewton {
+    /// Factorise H + λI (values already in `self.values[..n_pattern]`); `None` if not
+    /// positive definite. An unshifted factorisation of the same values as the last one is
+    /// reused.
+    pub(super) fn factor(&mut self, shift: f64) -> Result<Option<Factor>> {
+        let n_pattern = self.values.len() - self.n;
+        if shift == 0.0
+            && let Some((v, l)) = &self.cache
+            && v[..] == self.values[..n_pattern]
+        {
+            return Ok(l.clone());
+        }
+        self.computed += 1;
+        for &k in &self.diagonal {
+            self.values[k] = shift;
+        }
+        let mat = SparseColMat::new_from_argsort(self.symbolic.clone(), &self.argsort, &self.values)
+            .map_err(|e| Error::Unresolvable {
+                model: "stable Newton",
+                reason: format!("assembling the Hessian: {e:?}"),
+            })?;
+        let l = Llt::try_new_with_symbolic(self.llt.clone(), mat.as_ref(), Side::Lower)
+            .ok()
+            .map(Arc::new);
+        if shift == 0.0 {
+            let mut v = self.cache.take().map(|c| c.0).unwrap_or_default();
+            v.clear();
+            v.extend_from_slice(&self.values[..n_pattern]);
+            self.cache = Some((v, l.clone()));
+        }
+        Ok(l)
+    }
+
+    fn solve(llt: &Llt<usize, f64>, rhs: &mut [f64]) {
+        let n = rhs.len();
+        let m = faer::MatMut::from_column_major_slice_mut(rhs, n, 1);
+        llt.solve_in_place(m);
+    }
+
+    pub(super) fn minimize_inner(
+        &mut self,
+        energy: &impl Energy,
+        x: &mut [f64],
+        opts: &NewtonOptions,
+        mut e0: f64,
+    ) -> Result<NewtonReport> {
+        let n = self.n;
+        let n_pattern = self.values.len() - n;
+        let mut rep = NewtonReport::default();
+        let mut g = vec![0.0; n];
+        let mut p = vec![0.0; n];
+        let mut trial = vec![0.0; n];
+        // A positive-definite factorisation from an earlier iterate and the gradient norm there:
+        // while the gradient keeps falling fast, steps reuse it (chord steps) instead of
+        // factorising again. Acceptance always factorises at the accepted state itself.
+        let mut chord: Option<(Factor, f64)> = None;
+        while rep.iterations < opts.max_iterations {
+            rep.iterations += 1;
+            energy.gradient(x, &mut g);
+            let gnorm = inf_norm(&g);
+            if let Some((f, g_prev)) = &chord
+                && gnorm > opts.gradient_tol
+                && gnorm <= CHORD_CONTRACTION * g_prev
+            {
+                for (pi, gi) in p.iter_mut().zip(&g) {
+                    *pi = -gi;
+                }
+                Self::solve(f, &mut p);
+                let accepted = match backtrack(energy, x, &p, e0, dot(&g, &p), &mut trial) {
+                    Some(e1) => {
+                        e0 = e1;
+                        true
+                    }
+                    None => false,
+                };
+                if accepted {
+                    chord = chord.map(|(f, _)| (f, gnorm));
+                } else {
+                    chord = None;
+                }
+                continue;
+            }
+            chord = None;
+            energy.hessian_values(x, &mut self.values[..n_pattern]);
+            // Scale for the shift: the largest diagonal magnitude.
+            let scale = inf_norm(&self.values[..n_pattern]).max(1e-300);
+            let plain = self.factor(0.0)?;
+            let (llt, definite) = match plain {
+                Some(l) => (l, true),
+                None => {
+                    rep.indefinite_iterations += 1;
+                    let mut shift = if self.last_shift > 0.0 {
+                        0.25 * self.last_shift
+                    } else {
+                        1e-6 * scale
+                    };
+                    loop {
+                        if let Some(l) = self.factor(shift)? {
+                            self.last_shift = shift;
+                            break (l, false);
+                        }
+                        shift *= 4.0;
+                        if shift > 1e12 * scale {
+                            return Err(Error::Unresolvable {
+                                model: "stable Newton",
+                                reason: format!(
+                                    "no shift up to {shift:.3e} makes the Hessian positive definite"
+                                ),
+                            });
+                        }
+                    }
+                }
+            };
+            for (pi, gi) in p.iter_mut().zip(&g) {
+                *pi = -gi;
+            }
+            Self::solve(&llt, &mut p);
+            // A small gradient alone does not make an equilibrium: just past a fold none
+            // exists, yet the gradient there is as small as the distance past the fold times
+            // the stiffness, while the Hessian is still (barely) positive definite. The Newton
+            // correction tells them apart: it is of the order of the gradient at a regular
+            // minimum and large near the vanishing curvature of a fold. Accept only when it is
+            // below √(gradient_tol) as well; otherwise keep descending (the jump, if any).
+            if definite && gnorm <= opts.gradient_tol && inf_norm(&p) <= opts.gradient_tol.sqrt() {
+                rep.gradient_norm = gnorm;
+                rep.energy = e0;
+                return Ok(rep);
+            }
+            if definite {
+                chord = Some((llt.clone(), gnorm));
+            }
+            let mut slope = dot(&g, &p);
+            if !definite && (gnorm <= opts.gradient_tol || slope > -1e-300) {
+                // A stationary point that is not a minimum: leave along negative curvature.
+                Self::negative_curvature_direction(&llt, &mut p)?;
+                rep.negative_curvature_steps += 1;
+                if dot(&g, &p) > 0.0 {
+                    p.iter_mut().for_each(|v| *v = -*v);
+                }
+                slope = dot(&g, &p).min(0.0);
+            }
+            if definite && inf_norm(&p) <= opts.step_tol {
+                rep.gradient_norm = gnorm;
+                rep.energy = e0;
+                x.iter_mut().zip(&p).for_each(|(xi, pi)| *xi += pi);
+                rep.energy = energy.energy(x);
+                return Ok(rep);
+            }
+            match backtrack(energy, x, &p, e0, slope, &mut trial) {
+                Some(e1) => e0 = e1,
+                None if definite => {
+                    // No decrease along the step: at roundoff level already.
+                    rep.gradient_norm = gnorm;
+                    rep.energy = e0;
+                    return Ok(rep);
+                }
+                None => {
+                    return Err(Error::NoConvergence {
+                        method: "stable Newton (line search)",
+                        iterations: rep.iterations,
+                        residual: gnorm,
+                    });
+                }
+            }
+        }
+        energy.gradient(x, &mut g);
+        Err(Error::NoConvergence {
+            method: "stable Newton",
+            iterations: rep.iterations,
+            residual: inf_norm(&g),
+        })
+    }
+
+    /// A direction of most negative curvature of H, by inverse iteration with the shifted
+    /// factor (H + λI)⁻¹, whose dominant eigenvector is H's lowest. Written into `v`.
+    fn negative_curvature_direction(llt: &Llt<usize, f64>, v: &mut [f64]) -> Result<()> {
+        // Deterministic start with components in every direction.
+        for (i, vi) in v.iter_mut().enumerate() {
+            *vi = 1.0 + 0.5 * ((i as f64) * 0.618_033_988_75).fract();
+        }
+        for _ in 0..30 {
+            Self::solve(llt, v);
+            let norm = dot(v, v).sqrt();
+            if !(norm > 0.0 && norm.is_finite()) {
+                return Err(Error::Unresolvable {
+                    model: "stable Newton",
+                    reason: "inverse iteration for a negative-curvature direction failed".into(),
+                });
+            }
+            v.iter_mut().for_each(|vi| *vi /= norm);
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::numerics::newton::wells::Wells;
+    use crate::numerics::newton::{NewtonOptions, StableNewton};
+
+    #[test]
+    fn a_stationary_saddle_is_left_along_negative_curvature() {
+        // Start exactly at the stationary point x = 0 of a coupled chain: gradient zero.
+        let e = Wells { n: 50, c: 0.1 };
+        let mut x = vec![0.0; 50];
+        let mut s = StableNewton::new(&e).unwrap();
+        let rep = s.minimize(&e, &mut x, &NewtonOptions::default()).unwrap();
+        assert!(rep.negative_curvature_steps >= 1);
+        assert!(s.is_stable(&e, &x).unwrap());
+        assert!(rep.gradient_norm <= 1e-10);
+        assert!(
+            rep.energy < -0.2 * 50.0,
+            "a minimum well below the start, E = {}",
+            rep.energy
+        );
+    }
+
+    // Reuse: restarting from the state just accepted (same Hessian values) and testing its
+    // stability compute no new factorisation; a restart from elsewhere does.
+    #[test]
+    fn the_factorisation_of_the_accepted_state_is_reused() {
+        let e = Wells { n: 20, c: 0.3 };
+        let mut x: Vec<f64> = (0..20).map(|i| 0.5 + 0.02 * i as f64).collect();
+        let mut s = StableNewton::new(&e).unwrap();
+        let opts = NewtonOptions::default();
+        let first = s.minimize(&e, &mut x, &opts).unwrap();
+        assert!(first.factorizations >= 1);
+        let again = s.minimize(&e, &mut x, &opts).unwrap();
+        assert_eq!((again.iterations, again.factorizations), (1, 0));
+        assert!(s.is_stable(&e, &x).unwrap());
+        let mut y = vec![1.3; 20];
+        let other = s.minimize(&e, &mut y, &opts).unwrap();
+        assert!(other.factorizations >= 1);
+        assert!(y.iter().zip(&x).all(|(a, b)| (a - b).abs() < 1e-8));
+    }
+}
