@@ -1,6 +1,7 @@
 //! Physical models, one module per theory. Models know equations only: no printing, no files, no
 //! front-end types. Every public function names the equation it implements.
 
+pub mod axisymmetric;
 pub mod classical;
 pub mod ddh;
 pub mod fibril;

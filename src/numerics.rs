@@ -8,9 +8,11 @@
 //! Models call these; they know nothing about contact mechanics, figures or front ends.
 
 pub mod curve;
+pub mod elliptic;
 pub mod envelope;
 pub mod fft;
 pub mod least_squares;
+pub mod loading;
 pub mod newton;
 pub mod pcg;
 pub mod quadrature;

@@ -26,6 +26,7 @@ use crate::models::fibril::{
     SingleSpring, SpringBranch, lj_curvature, lj_energy, lj_traction, max_traction_gap,
 };
 use crate::numerics::curve::linspace;
+use crate::numerics::loading::{Controlled, PathOptions, follow};
 use crate::numerics::newton::{Energy, NewtonOptions, StableNewton};
 
 /// Gap below which a spring counts as in contact (units of σ).
@@ -283,6 +284,23 @@ impl Energy for ArrayEnergy<'_> {
                 k += 1;
             });
         }
+    }
+}
+
+impl Controlled for SpringArray {
+    type At<'a> = ArrayEnergy<'a>;
+
+    fn at(&self, lambda: f64) -> ArrayEnergy<'_> {
+        self.energy_at(lambda)
+    }
+
+    /// 1 when any spring changed contact state (gap across [`CONTACT_GAP`]), else 0.
+    fn jump_measure(&self, before: &[f64], after: &[f64]) -> f64 {
+        let changed = before
+            .iter()
+            .zip(after)
+            .any(|(b, a)| (*b < CONTACT_GAP) != (*a < CONTACT_GAP));
+        f64::from(u8::from(changed))
     }
 }
 
@@ -633,52 +651,55 @@ pub fn coupled_cycle(
         all_stable: true,
         ..ArrayCycle::default()
     };
-    let path: Vec<(f64, bool)> = grid
-        .iter()
-        .map(|&u| (u, true))
-        .chain(grid.iter().rev().map(|&u| (u, false)))
-        .collect();
-    let total = path.len();
-    for (k, &(u, loading)) in path.iter().enumerate() {
-        let e = array.energy_at(u);
-        let before: Vec<bool> = d.iter().map(|&x| x < CONTACT_GAP).collect();
-        let force_before = array.force(u, &d);
-        let rep = solver.minimize(&e, &mut d, opts)?;
-        out.newton_iterations += rep.iterations;
-        out.all_stable &= solver.is_stable(&e, &d)?;
-        let step = ArrayStep {
-            u,
-            force: array.force(u, &d),
-            contact_ratio: SpringArray::contact_ratio(&d),
-        };
-        let into = before
-            .iter()
-            .zip(&d)
-            .filter(|(b, x)| !**b && **x < CONTACT_GAP)
-            .count();
-        let out_of = before
-            .iter()
-            .zip(&d)
-            .filter(|(b, x)| **b && **x >= CONTACT_GAP)
-            .count();
-        // A jump: the previous state became unstable (the solver met an indefinite tangent), or
-        // springs changed contact state within one step (for k̄_e < k̄_cr only possible through
-        // an instability; a Newton step may carry a spring past its vanished branch at once).
-        if rep.left_unstable_state() || into + out_of > 0 {
-            out.jumps.push(ArrayJump {
+    // The shared loading-path driver, without refinement: a step is a jump when the previous
+    // state became unstable (the solver met an indefinite tangent) or springs changed contact
+    // state within it (for k̄_e < k̄_cr only possible through an instability; a Newton step may
+    // carry a spring past its vanished branch at once).
+    let path = PathOptions {
+        newton: *opts,
+        refine_to: None,
+        trial_iterations: opts.max_iterations,
+        unstable_start_is_jump: true,
+    };
+    let unloading: Vec<f64> = grid.iter().rev().copied().collect();
+    let total = 2 * grid.len();
+    let mut done = 0;
+    let mut start = u_max;
+    for (loading, targets) in [(true, &grid), (false, &unloading)] {
+        let stats = follow(array, &mut solver, &mut d, start, targets, &path, |v| {
+            let u = v.lambda;
+            let step = ArrayStep {
                 u,
-                into_contact: into,
-                out_of_contact: out_of,
-                force_before,
-                force_after: step.force,
-            });
-        }
-        if loading {
-            out.loading.push(step);
-        } else {
-            out.unloading.push(step);
-        }
-        on_step((k + 1) as f64 / total as f64)?;
+                force: array.force(u, v.x),
+                contact_ratio: SpringArray::contact_ratio(v.x),
+            };
+            if let Some((_, before)) = v.jumped_from {
+                let changed = |into: bool| {
+                    before
+                        .iter()
+                        .zip(v.x)
+                        .filter(|(b, x)| (**b < CONTACT_GAP) != into && (**x < CONTACT_GAP) == into)
+                        .count()
+                };
+                out.jumps.push(ArrayJump {
+                    u,
+                    into_contact: changed(true),
+                    out_of_contact: changed(false),
+                    force_before: array.force(u, before),
+                    force_after: step.force,
+                });
+            }
+            if loading {
+                out.loading.push(step);
+            } else {
+                out.unloading.push(step);
+            }
+            done += 1;
+            on_step(done as f64 / total as f64)
+        })?;
+        out.newton_iterations += stats.newton_iterations;
+        out.all_stable &= stats.all_stable;
+        start = *targets.last().unwrap_or(&start);
     }
     Ok(out)
 }

@@ -4,6 +4,7 @@
 
 mod ch2;
 mod ch3;
+mod ch4;
 mod ch5;
 mod ch6;
 mod cli;

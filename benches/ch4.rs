@@ -1,0 +1,56 @@
+//! Chapter 4 speed: one displacement-controlled cycle of the smooth tip of Fig. 4.5 with the
+//! axisymmetric surface model (Lennard-Jones interaction, stable minimiser, jumps located to
+//! 1e-3 ζ0), on the grid the tests use (ring width 0.25 b, 4 Gauss points per interval), to a
+//! shallow and a deeper maximum depth; and the set-up of the tip (kernel and stiffness).
+
+use std::hint::black_box;
+
+use adhesion::models::axisymmetric::cycle::{CycleOptions, run_cycle};
+use adhesion::models::axisymmetric::tip::{Tip, TipParams};
+use criterion::{Criterion, criterion_group, criterion_main};
+
+fn fig4_5(fine_radius: f64) -> TipParams {
+    let nu: f64 = 0.25;
+    TipParams {
+        radius: 5e-6,
+        modulus: 4.4e6 / (1.0 - nu * nu),
+        c6: 3.0,
+        c12: 1.0,
+        sigma: 1e-9,
+        hamaker: 2e-21,
+        amplitude: 0.0,
+        wavelength: 1.25e-7,
+        ring_width: 0.25,
+        fine_radius,
+        growth: 1.1,
+        quadrature_points: 4,
+        reach: 30.0,
+    }
+}
+
+fn chapter4(c: &mut Criterion) {
+    let mut group = c.benchmark_group("ch4");
+    group.sample_size(10);
+    group.bench_function("tip set-up, 250 nm fine zone", |b| {
+        b.iter(|| black_box(Tip::new(&fig4_5(2.5e-7)).expect("tip")));
+    });
+    for (label, fine, h_min) in [("to 3 zeta0", 2.5e-7, -3.0), ("to 15 zeta0", 4.0e-7, -15.0)] {
+        let tip = Tip::new(&fig4_5(fine)).expect("tip");
+        let z = tip.scales().length;
+        let opts = CycleOptions {
+            h_start: 12.0 * z,
+            h_min: h_min * z,
+            step: 0.2 * z,
+            refine_to: 1e-3 * z,
+            contact_gap: 1e-9,
+            keep_profiles: false,
+        };
+        group.bench_function(format!("smooth-tip cycle {label} ({} rings)", tip.len()), |b| {
+            b.iter(|| black_box(run_cycle(&tip, &opts, |_| Ok(())).expect("cycle")));
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, chapter4);
+criterion_main!(benches);

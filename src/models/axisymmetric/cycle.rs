@@ -1,0 +1,218 @@
+//! Displacement-controlled loading-unloading cycles of a [`Tip`] (sections 4.3-4.5): the tip
+//! approaches from far, is pressed to the maximum depth |h_min| and retracted, and every state
+//! the experiment visits is a stable equilibrium reached from the previous one by
+//! [`crate::numerics::loading::follow`], with each jump (pull-in, pull-off, the asperity-level
+//! instabilities of a wavy tip) located by bisection of the step.
+//!
+//! Reported per cycle: the measured P-h path, the jumps with the states on both sides, the
+//! adhesive force P_adh (the most tensile force of the path) and the hysteresis H (the area of
+//! the loop, −∮ P dh, the energy lost in the cycle).
+
+use crate::error::{Error, Result};
+use crate::models::axisymmetric::tip::{ContactSet, Tip};
+use crate::numerics::loading::{PathOptions, PathStats, follow};
+use crate::numerics::newton::{NewtonOptions, StableNewton};
+use crate::numerics::quadrature::trapezoid;
+
+/// One accepted state of a cycle.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TipState {
+    /// Indentation depth h [m] (negative: pressed beyond the equilibrium distance).
+    pub depth: f64,
+    /// Force P [N], compressive positive.
+    pub force: f64,
+    /// Contact set (gap below the threshold).
+    pub contact: ContactSet,
+    /// Whether the state was certified stable (positive-definite Hessian).
+    pub stable: bool,
+    /// Ring displacements (normal units), kept for the states a figure draws; empty otherwise.
+    pub displacement: Vec<f64>,
+}
+
+/// A jump of the cycle.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TipJump {
+    /// Whether it happened on loading.
+    pub loading: bool,
+    /// The last state on the branch (depth within the refinement tolerance of the fold).
+    pub before: TipState,
+    /// The state after the jump.
+    pub after: TipState,
+}
+
+impl TipJump {
+    /// Whether the contact area grew (a pull-in, of the tip or of an asperity).
+    pub fn is_pull_in(&self) -> bool {
+        self.after.contact.area() > self.before.contact.area()
+    }
+}
+
+/// A loading-unloading cycle.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct TipCycle {
+    /// Loading states, depth decreasing.
+    pub loading: Vec<TipState>,
+    /// Unloading states, depth increasing.
+    pub unloading: Vec<TipState>,
+    /// Jumps in the order they happened.
+    pub jumps: Vec<TipJump>,
+    /// Cost and certification of the walk.
+    pub stats: PathStats,
+}
+
+impl TipCycle {
+    /// Adhesive force P_adh: the most tensile force on the measured path [N] (negative).
+    pub fn adhesive_force(&self) -> f64 {
+        self.loading
+            .iter()
+            .chain(&self.unloading)
+            .map(|s| s.force)
+            .fold(0.0, f64::min)
+    }
+
+    /// Hysteresis H = −∮ P dh over the measured path [J]: the area between loading and
+    /// unloading (jumps are vertical in depth and add nothing beyond the trapezoids).
+    pub fn hysteresis(&self) -> f64 {
+        let load: Vec<(f64, f64)> = self.loading.iter().map(|s| (s.depth, s.force)).collect();
+        // Unloading starts where loading turned.
+        let unload: Vec<(f64, f64)> = self
+            .loading
+            .last()
+            .into_iter()
+            .chain(&self.unloading)
+            .map(|s| (s.depth, s.force))
+            .collect();
+        // Loading runs to decreasing depth: ∫ P dh there is negative of the area under it.
+        -(trapezoid(&load) + trapezoid(&unload))
+    }
+
+    /// Number of jumps on loading and on unloading.
+    pub fn jump_counts(&self) -> (usize, usize) {
+        let l = self.jumps.iter().filter(|j| j.loading).count();
+        (l, self.jumps.len() - l)
+    }
+}
+
+/// How a cycle is run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CycleOptions {
+    /// Depth at the start and end of the cycle [m] (positive: apart).
+    pub h_start: f64,
+    /// Deepest depth h_min [m] (negative).
+    pub h_min: f64,
+    /// Depth step [m].
+    pub step: f64,
+    /// Jumps are located to this depth tolerance [m].
+    pub refine_to: f64,
+    /// Contact threshold of the gap [m] (σ in section 4.2.2).
+    pub contact_gap: f64,
+    /// Keep the ring displacements of every state (for profiles); otherwise of jump states
+    /// only.
+    pub keep_profiles: bool,
+}
+
+/// Run one cycle. `progress(fraction)` is called after every accepted state and may return
+/// an error to stop (cancellation).
+///
+/// # Errors
+/// [`Error::InvalidParameter`] for an empty or reversed depth range or a non-positive step;
+/// minimiser failures; errors of `progress`.
+pub fn run_cycle(
+    tip: &Tip,
+    opts: &CycleOptions,
+    mut progress: impl FnMut(f64) -> Result<()>,
+) -> Result<TipCycle> {
+    if !(opts.h_min < opts.h_start && opts.h_min.is_finite() && opts.h_start.is_finite()) {
+        return Err(Error::invalid(
+            "h_min",
+            opts.h_min,
+            "must be below the start depth",
+        ));
+    }
+    if !(opts.step > 0.0 && opts.step.is_finite()) {
+        return Err(Error::invalid("step", opts.step, "must be positive"));
+    }
+    let n_steps = ((opts.h_start - opts.h_min) / opts.step).ceil() as usize;
+    if n_steps > 1_000_000 {
+        return Err(Error::invalid(
+            "step",
+            opts.step,
+            format!("gives {n_steps} steps per phase, more than 1e6"),
+        ));
+    }
+    let depths: Vec<f64> = (0..=n_steps)
+        .map(|k| opts.h_start - (opts.h_start - opts.h_min) * k as f64 / n_steps as f64)
+        .collect();
+    let approach = |h: f64| tip.approach(h);
+    let loading: Vec<f64> = depths.iter().skip(1).map(|&h| approach(h)).collect();
+    let unloading: Vec<f64> = depths.iter().rev().skip(1).map(|&h| approach(h)).collect();
+    let newton = NewtonOptions {
+        gradient_tol: 1e-7,
+        step_tol: 1e-6,
+        max_iterations: 1000,
+        ..NewtonOptions::default()
+    };
+    let path = PathOptions {
+        newton,
+        refine_to: Some(opts.refine_to / tip.scales().length),
+        trial_iterations: 40,
+        unstable_start_is_jump: false,
+    };
+    let mut solver = StableNewton::new(&tip.energy_at(approach(opts.h_start)))?;
+    let mut u = vec![0.0; tip.len()];
+    // Relax at the start depth.
+    solver.minimize(&tip.energy_at(approach(opts.h_start)), &mut u, &newton)?;
+    let state = |delta: f64, u: &[f64], stable: bool, keep: bool| TipState {
+        depth: tip.depth(delta),
+        force: tip.force(delta, u),
+        contact: tip.contact(delta, u, opts.contact_gap),
+        stable,
+        displacement: if keep { u.to_vec() } else { Vec::new() },
+    };
+    let mut cycle = TipCycle::default();
+    cycle.loading.push(state(
+        approach(opts.h_start),
+        &u,
+        solver.is_stable(&tip.energy_at(approach(opts.h_start)), &u)?,
+        opts.keep_profiles,
+    ));
+    let total = (loading.len() + unloading.len()) as f64;
+    let mut done = 0usize;
+    let start_delta = approach(opts.h_start);
+    let mut last_delta = start_delta;
+    for (phase, targets) in [(true, &loading), (false, &unloading)] {
+        let stats = follow(tip, &mut solver, &mut u, last_delta, targets, &path, |v| {
+            let s = state(
+                v.lambda,
+                v.x,
+                v.stable,
+                opts.keep_profiles || v.jumped_from.is_some(),
+            );
+            if let Some((l0, x0)) = v.jumped_from {
+                cycle.jumps.push(TipJump {
+                    loading: phase,
+                    before: state(l0, x0, true, true),
+                    after: s.clone(),
+                });
+            }
+            if phase {
+                cycle.loading.push(s);
+            } else {
+                cycle.unloading.push(s);
+            }
+            done = done.max(v.target + 1 + if phase { 0 } else { loading.len() });
+            progress(done as f64 / total)
+        })?;
+        last_delta = *targets.last().unwrap_or(&last_delta);
+        cycle.stats.states += stats.states;
+        cycle.stats.minimisations += stats.minimisations;
+        cycle.stats.newton_iterations += stats.newton_iterations;
+        cycle.stats.jumps += stats.jumps;
+        cycle.stats.all_stable = if phase {
+            stats.all_stable
+        } else {
+            cycle.stats.all_stable && stats.all_stable
+        };
+    }
+    Ok(cycle)
+}

@@ -1,0 +1,516 @@
+//! The axisymmetric elastic tip against a rigid flat substrate with the Lennard-Jones surface
+//! interaction: the surface (boundary-element) model of chapter 4.
+//!
+//! The tip is an elastic half-space with the profile (4.10),
+//!
+//! ```text
+//! z_s(r) = δ + r²/(2R) + A [1 − cos(2π r/λ)],
+//! ```
+//!
+//! δ the separation of the undeformed apex from the substrate (z0 of (4.10)) and f(r) the rest.
+//! The surface displaces by u(r) towards the substrate, so the gap is g = δ + f(r) − u(r). For
+//! a rigid flat
+//! substrate the Lennard-Jones body force (4.15) integrated through a material column of the
+//! tip is the plate traction (ERRATA on (4.19)), so the interaction energy per unit area of the
+//! surface is the plate energy (4.4),
+//!
+//! ```text
+//! φ(g) = −a₂/g² + a₈/g⁸,   a₂ = A_H C6/(12π),   a₈ = A_H C12 σ⁶/(360π),
+//! ```
+//!
+//! which for C6 > 0 is φ(g) = −(4w/3)[(ζ0/g)² − ¼(ζ0/g)⁸] with φ(ζ0) = −w, Eqs. (4.6)-(4.7b).
+//! The total energy of a state u (ring-wise constant tractions, displacements at the ring
+//! mid-radii, [`RingGrid`]) is
+//!
+//! ```text
+//! Π(u) = ½ uᵀ K u + Σ_i A_i φ(g_i),   g_i = δ + f(r_i) − u_i,
+//! ```
+//!
+//! with K the ring stiffness of the half-space. Its gradient K u − A φ'(g) vanishes at an
+//! equilibrium, and its Hessian K + diag(A_i φ''(g_i)) decides stability. The force on the tip
+//! (compressive positive) is P = −Σ A_i φ'(g_i).
+//!
+//! Scaling: normal lengths in ζ0 (σ when C6 = 0), tractions in p_ref = w/ζ0 (the repulsive
+//! scale a₈/σ⁹ when C6 = 0), radial lengths in b = ζ0 E*/p_ref = ζ0² E*/w, the width of the
+//! zone over which the adhesive traction acts at a contact edge. Then E* = 1 and every term is
+//! of order one.
+
+use std::f64::consts::PI;
+
+use crate::error::{Error, Result};
+use crate::models::axisymmetric::kernel::RingGrid;
+use crate::numerics::loading::Controlled;
+use crate::numerics::newton::Energy;
+
+/// Largest number of rings a tip may have: the dense Hessian has N² entries (N = 3000 is
+/// 72 MB and a factorisation of about 9 Gflop).
+pub const MAX_RINGS: usize = 3000;
+
+/// Parameters of the surface model of a tip (SI).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TipParams {
+    /// Radius of curvature R of the apex [m].
+    pub radius: f64,
+    /// Plane-strain modulus E* = E/(1 − ν²) [Pa].
+    pub modulus: f64,
+    /// C6 of the potential (4.1) [-]; 0 switches the attraction off.
+    pub c6: f64,
+    /// C12 of the potential (4.1) [-].
+    pub c12: f64,
+    /// Characteristic distance σ of the potential (4.1) [m].
+    pub sigma: f64,
+    /// Hamaker constant A_H [J].
+    pub hamaker: f64,
+    /// Amplitude A of the waviness (4.10) [m]; 0 for a smooth tip.
+    pub amplitude: f64,
+    /// Wavelength λ of the waviness (4.10) [m].
+    pub wavelength: f64,
+    /// Ring width h in units of b = ζ0² E*/w [-].
+    pub ring_width: f64,
+    /// Radius of the zone of uniform rings [m] (cover the largest contact radius and the
+    /// interaction zone beyond it).
+    pub fine_radius: f64,
+    /// Growth factor of the ring widths outside the fine zone [-].
+    pub growth: f64,
+    /// Gauss points per interval between ring mid-radii for the interaction energy [-]: the
+    /// displacement is interpolated linearly between mid-radii, so the energy varies smoothly
+    /// as a contact edge crosses a ring (1 point per interval is collocation-like and lets the
+    /// edge hop from ring to ring).
+    pub quadrature_points: usize,
+    /// Undeformed gap up to which the rings extend [in units of ζ0]: beyond it the traction is
+    /// below (ζ0/g)³ of its scale and is neglected.
+    pub reach: f64,
+}
+
+/// The scales of the non-dimensional variables.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TipScales {
+    /// Normal length unit: ζ0 (4.6), or σ when C6 = 0 [m].
+    pub length: f64,
+    /// Traction unit p_ref: w/ζ0, or a₈/σ⁹ when C6 = 0 [Pa].
+    pub traction: f64,
+    /// Radial length unit b = length · E*/p_ref [m].
+    pub radial: f64,
+    /// Work of adhesion w (4.7b) [J/m²] (0 when C6 = 0).
+    pub work_of_adhesion: f64,
+}
+
+impl TipScales {
+    /// Force unit p_ref b² [N].
+    pub fn force(&self) -> f64 {
+        self.traction * self.radial * self.radial
+    }
+
+    /// Energy unit p_ref · length · b² [J].
+    pub fn energy(&self) -> f64 {
+        self.force() * self.length
+    }
+}
+
+/// A validated tip with its ring grid and stiffness.
+#[derive(Debug, Clone)]
+pub struct Tip {
+    params: TipParams,
+    scales: TipScales,
+    grid: RingGrid,
+    /// Quadrature points of the interaction (see [`QuadPoint`]).
+    points: Vec<QuadPoint>,
+    /// Non-dimensional profile f(r_i) (in the normal unit).
+    profile: Vec<f64>,
+    /// Stiffness K (row-major, non-dimensional).
+    stiffness: Vec<f64>,
+    /// Coefficients of φ̂(ĝ) = −alpha2/ĝ² + alpha8/ĝ⁸ (energy per area in p_ref · length).
+    alpha2: f64,
+    alpha8: f64,
+    /// Largest relative asymmetry of the collocation flexibility.
+    asymmetry: f64,
+}
+
+impl Tip {
+    /// Validate the parameters, build the grid and the stiffness.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming the parameter; grid errors.
+    pub fn new(p: &TipParams) -> Result<Self> {
+        let positive = |name: &'static str, v: f64| {
+            if v > 0.0 && v.is_finite() {
+                Ok(())
+            } else {
+                Err(Error::invalid(name, v, "must be positive"))
+            }
+        };
+        positive("radius", p.radius)?;
+        positive("modulus", p.modulus)?;
+        positive("c12", p.c12)?;
+        positive("sigma", p.sigma)?;
+        positive("hamaker", p.hamaker)?;
+        positive("wavelength", p.wavelength)?;
+        positive("ring_width", p.ring_width)?;
+        positive("fine_radius", p.fine_radius)?;
+        positive("reach", p.reach)?;
+        if !(p.c6 >= 0.0 && p.c6.is_finite()) {
+            return Err(Error::invalid("c6", p.c6, "must be zero or positive"));
+        }
+        if !(p.amplitude >= 0.0 && p.amplitude.is_finite()) {
+            return Err(Error::invalid(
+                "amplitude",
+                p.amplitude,
+                "must be zero or positive",
+            ));
+        }
+        let a2 = p.hamaker * p.c6 / (12.0 * PI);
+        let a8 = p.hamaker * p.c12 * p.sigma.powi(6) / (360.0 * PI);
+        let (length, traction, w) = if p.c6 > 0.0 {
+            let zeta0 = (2.0 * p.c12 / (15.0 * p.c6)).powf(1.0 / 6.0) * p.sigma; // (4.6)
+            let w = p.c6 / (16.0 * PI) * p.hamaker / (zeta0 * zeta0); // (4.7b)
+            (zeta0, w / zeta0, w)
+        } else {
+            (p.sigma, a8 / p.sigma.powi(9), 0.0)
+        };
+        let radial = length * p.modulus / traction;
+        let scales = TipScales {
+            length,
+            traction,
+            radial,
+            work_of_adhesion: w,
+        };
+        if !(radial.is_finite() && radial > 0.0 && traction.is_finite()) {
+            return Err(Error::invalid(
+                "modulus",
+                p.modulus,
+                "gives a non-finite length scale with these interaction parameters",
+            ));
+        }
+        // The rings reach to where the undeformed gap is `reach` normal units.
+        let r_reach = (2.0 * p.radius * p.reach * length).sqrt();
+        let r_max = r_reach.max(p.fine_radius * 1.5);
+        // The grid is built in radial units b. Its stiffness (E* = 1) maps displacements in b
+        // to forces in E* b²; with u in the normal unit and forces in p_ref b², the factor is
+        // E* · length / p_ref = b, i.e. one: K̂ is the grid's stiffness as it is.
+        let grid = RingGrid::new(
+            p.ring_width,
+            (p.fine_radius / radial).max(p.ring_width),
+            p.growth,
+            r_max / radial,
+            MAX_RINGS,
+        )?;
+        let (stiffness, asymmetry) = grid.stiffness()?;
+        let shape = |rb: f64| {
+            let r = rb * radial;
+            let wavy = p.amplitude * (1.0 - (2.0 * PI * r / p.wavelength).cos());
+            (r * r / (2.0 * p.radius) + wavy) / length
+        };
+        let profile = grid.nodes.iter().map(|&rb| shape(rb)).collect();
+        let points = quadrature_points(&grid, p.quadrature_points, shape)?;
+        Ok(Self {
+            params: *p,
+            scales,
+            grid,
+            points,
+            profile,
+            stiffness,
+            alpha2: a2 / (traction * length.powi(3)),
+            alpha8: a8 / (traction * length.powi(9)),
+            asymmetry,
+        })
+    }
+
+    /// The parameters.
+    pub fn params(&self) -> &TipParams {
+        &self.params
+    }
+
+    /// The scales of the non-dimensional variables.
+    pub fn scales(&self) -> &TipScales {
+        &self.scales
+    }
+
+    /// The ring grid (radii in the radial unit b).
+    pub fn grid(&self) -> &RingGrid {
+        &self.grid
+    }
+
+    /// Ring mid-radii [m].
+    pub fn radii(&self) -> Vec<f64> {
+        self.grid.nodes.iter().map(|r| r * self.scales.radial).collect()
+    }
+
+    /// Number of unknowns (rings).
+    pub fn len(&self) -> usize {
+        self.profile.len()
+    }
+
+    /// Whether the tip has no ring (never, after [`Tip::new`]).
+    pub fn is_empty(&self) -> bool {
+        self.profile.is_empty()
+    }
+
+    /// Largest relative asymmetry of the collocation flexibility (a discretisation measure).
+    pub fn asymmetry(&self) -> f64 {
+        self.asymmetry
+    }
+
+    /// Plate energy per unit area φ̂(ĝ), Eq. (4.4) (non-dimensional).
+    pub fn phi(&self, g: f64) -> f64 {
+        let g2 = 1.0 / (g * g);
+        let g8 = g2 * g2 * g2 * g2;
+        -self.alpha2 * g2 + self.alpha8 * g8
+    }
+
+    /// φ̂'(ĝ): the traction, positive when attractive, Eqs. (4.5), (4.19) (ERRATA).
+    pub fn phi_prime(&self, g: f64) -> f64 {
+        let gi = 1.0 / g;
+        let g3 = gi * gi * gi;
+        let g9 = g3 * g3 * g3;
+        2.0 * self.alpha2 * g3 - 8.0 * self.alpha8 * g9
+    }
+
+    /// φ̂''(ĝ).
+    pub fn phi_second(&self, g: f64) -> f64 {
+        let gi = 1.0 / g;
+        let g4 = gi * gi * gi * gi;
+        let g10 = g4 * g4 * gi * gi;
+        -6.0 * self.alpha2 * g4 + 72.0 * self.alpha8 * g10
+    }
+
+    /// Gap at ring i for approach `delta` (normal units).
+    fn gap(&self, delta: f64, u: &[f64], i: usize) -> f64 {
+        delta + self.profile[i] - u[i]
+    }
+
+    /// Gaps at the ring mid-radii (normal units).
+    pub fn gaps(&self, delta: f64, u: &[f64]) -> Vec<f64> {
+        (0..self.len()).map(|i| self.gap(delta, u, i)).collect()
+    }
+
+    /// Gap at a quadrature point.
+    fn point_gap(&self, delta: f64, u: &[f64], q: &QuadPoint) -> f64 {
+        delta + q.profile - q.shape_a * u[q.a] - q.shape_b * u[q.b]
+    }
+
+    /// Force on the tip P = −∫ φ'(g) dA, compressive positive [N].
+    pub fn force(&self, delta: f64, u: &[f64]) -> f64 {
+        let p: f64 = self
+            .points
+            .iter()
+            .map(|q| -q.weight * self.phi_prime(self.point_gap(delta, u, q)))
+            .sum();
+        p * self.scales.force()
+    }
+
+    /// Traction on the tip at each ring, compressive positive [Pa].
+    pub fn tractions(&self, delta: f64, u: &[f64]) -> Vec<f64> {
+        (0..self.len())
+            .map(|i| -self.phi_prime(self.gap(delta, u, i)) * self.scales.traction)
+            .collect()
+    }
+
+    /// Indentation depth h = δ − ζ0 [m] of approach `delta` (normal units): h < 0 when the
+    /// apex is pressed closer than the equilibrium distance, the sign convention of (3.3).
+    pub fn depth(&self, delta: f64) -> f64 {
+        (delta - 1.0) * self.scales.length
+    }
+
+    /// Approach δ̂ (normal units) of indentation depth `h` [m], the inverse of [`Tip::depth`].
+    pub fn approach(&self, h: f64) -> f64 {
+        h / self.scales.length + 1.0
+    }
+
+    /// The contact set: the radial intervals [m] where the gap is below `threshold` [m] (the
+    /// definition of section 4.2.2 with threshold σ), with edges interpolated linearly between
+    /// ring mid-radii. Several intervals mean a multiply connected (annular) contact.
+    pub fn contact(&self, delta: f64, u: &[f64], threshold: f64) -> ContactSet {
+        let t = threshold / self.scales.length;
+        let r = self.radii();
+        let g = self.gaps(delta, u);
+        let mut intervals = Vec::new();
+        let mut start: Option<f64> = None;
+        for i in 0..g.len() {
+            let inside = g[i] < t;
+            let edge = |k: usize| {
+                // Linear crossing between nodes k-1 and k.
+                let (g0, g1) = (g[k - 1], g[k]);
+                r[k - 1] + (t - g0) / (g1 - g0) * (r[k] - r[k - 1])
+            };
+            match (inside, start) {
+                (true, None) => start = Some(if i == 0 { 0.0 } else { edge(i) }),
+                (false, Some(s)) => {
+                    intervals.push((s, edge(i)));
+                    start = None;
+                }
+                _ => {}
+            }
+        }
+        if let Some(s) = start {
+            intervals.push((s, *r.last().unwrap_or(&s)));
+        }
+        ContactSet { intervals }
+    }
+
+    /// The energy at approach `delta` (normal units), as an [`Energy`] of the ring
+    /// displacements.
+    pub fn energy_at(&self, delta: f64) -> TipEnergy<'_> {
+        TipEnergy { tip: self, delta }
+    }
+}
+
+/// A quadrature point of the interaction energy ∫ φ(g) dA: the displacement there is
+/// interpolated linearly between the ring mid-radii `a` and `b` (constant inside the first
+/// mid-radius, where the surface is flat by symmetry, and beyond the last).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct QuadPoint {
+    /// Weight: 2πr × the Gauss weight × the interval's length (in b²).
+    weight: f64,
+    /// Profile f(r) (normal units).
+    profile: f64,
+    a: usize,
+    b: usize,
+    shape_a: f64,
+    shape_b: f64,
+}
+
+/// The quadrature points of a grid: `n` Gauss points on each interval between mid-radii, on
+/// [0, r_0] and on [r_{N−1}, e_N].
+fn quadrature_points(grid: &RingGrid, n: usize, shape: impl Fn(f64) -> f64) -> Result<Vec<QuadPoint>> {
+    if n == 0 || n > 16 {
+        return Err(Error::invalid("quadrature_points", n, "must be between 1 and 16"));
+    }
+    let (x, w) = crate::numerics::quadrature::gauss_legendre(n);
+    let nodes = &grid.nodes;
+    let last = nodes.len() - 1;
+    let outer = *grid.edges.last().unwrap_or(&nodes[last]);
+    let mut intervals = vec![(0.0, nodes[0], 0, 0)];
+    intervals.extend((0..last).map(|i| (nodes[i], nodes[i + 1], i, i + 1)));
+    intervals.push((nodes[last], outer, last, last));
+    let mut out = Vec::with_capacity(intervals.len() * n);
+    for (lo, hi, a, b) in intervals {
+        let half = 0.5 * (hi - lo);
+        for (xi, wi) in x.iter().zip(&w) {
+            let r = lo + half * (xi + 1.0);
+            let t = if a == b { 0.0 } else { (r - lo) / (hi - lo) };
+            out.push(QuadPoint {
+                weight: 2.0 * PI * r * wi * half,
+                profile: shape(r),
+                a,
+                b,
+                shape_a: if a == b { 1.0 } else { 1.0 - t },
+                shape_b: if a == b { 0.0 } else { t },
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// The contact set of a state.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ContactSet {
+    /// Radial intervals (inner, outer) [m], increasing; the first starts at 0 for a contact
+    /// that includes the apex.
+    pub intervals: Vec<(f64, f64)>,
+}
+
+impl ContactSet {
+    /// Contact radius a: the outer edge of the outermost interval [m] (0 out of contact).
+    pub fn radius(&self) -> f64 {
+        self.intervals.last().map_or(0.0, |i| i.1)
+    }
+
+    /// Real contact area Σ π(r_out² − r_in²) [m²].
+    pub fn area(&self) -> f64 {
+        self.intervals.iter().map(|(a, b)| PI * (b * b - a * a)).sum()
+    }
+
+    /// Whether the contact is multiply connected (more than one interval).
+    pub fn is_multiply_connected(&self) -> bool {
+        self.intervals.len() > 1
+    }
+}
+
+/// The total energy of a [`Tip`] at one approach.
+#[derive(Debug, Clone, Copy)]
+pub struct TipEnergy<'a> {
+    tip: &'a Tip,
+    delta: f64,
+}
+
+impl Energy for TipEnergy<'_> {
+    fn dim(&self) -> usize {
+        self.tip.len()
+    }
+
+    fn energy(&self, u: &[f64]) -> f64 {
+        let t = self.tip;
+        let n = t.len();
+        let mut elastic = 0.0;
+        for i in 0..n {
+            let row = &t.stiffness[i * n..(i + 1) * n];
+            elastic += u[i] * row.iter().zip(u).map(|(k, x)| k * x).sum::<f64>();
+        }
+        let mut adhesive = 0.0;
+        for q in &t.points {
+            let g = t.point_gap(self.delta, u, q);
+            if g <= 0.0 {
+                return f64::INFINITY;
+            }
+            adhesive += q.weight * t.phi(g);
+        }
+        0.5 * elastic + adhesive
+    }
+
+    fn gradient(&self, u: &[f64], g: &mut [f64]) {
+        let t = self.tip;
+        let n = t.len();
+        for (gi, row) in g.iter_mut().zip(t.stiffness.chunks_exact(n)) {
+            *gi = row.iter().zip(u).map(|(k, x)| k * x).sum();
+        }
+        for q in &t.points {
+            let f = q.weight * t.phi_prime(t.point_gap(self.delta, u, q));
+            g[q.a] -= f * q.shape_a;
+            g[q.b] -= f * q.shape_b;
+        }
+    }
+
+    fn hessian_pattern(&self) -> Vec<(usize, usize)> {
+        let n = self.tip.len();
+        (0..n).flat_map(|i| (0..=i).map(move |j| (i, j))).collect()
+    }
+
+    fn hessian_values(&self, u: &[f64], values: &mut [f64]) {
+        let t = self.tip;
+        let n = t.len();
+        let mut k = 0;
+        for i in 0..n {
+            values[k..k + i + 1].copy_from_slice(&t.stiffness[i * n..i * n + i + 1]);
+            k += i + 1;
+        }
+        // Entry (i, j ≤ i) of the lower triangle sits at i(i+1)/2 + j.
+        let at = |i: usize, j: usize| i * (i + 1) / 2 + j;
+        for q in &t.points {
+            let c = q.weight * t.phi_second(t.point_gap(self.delta, u, q));
+            values[at(q.a, q.a)] += c * q.shape_a * q.shape_a;
+            values[at(q.b, q.b)] += c * q.shape_b * q.shape_b;
+            if q.a != q.b {
+                let (hi, lo) = if q.a > q.b { (q.a, q.b) } else { (q.b, q.a) };
+                values[at(hi, lo)] += c * q.shape_a * q.shape_b;
+            }
+        }
+    }
+}
+
+impl Controlled for Tip {
+    type At<'a> = TipEnergy<'a>;
+
+    fn at(&self, lambda: f64) -> TipEnergy<'_> {
+        self.energy_at(lambda)
+    }
+
+    /// The largest change of a ring displacement in units of half the interaction range.
+    fn jump_measure(&self, before: &[f64], after: &[f64]) -> f64 {
+        before
+            .iter()
+            .zip(after)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max)
+            / 0.5
+    }
+}

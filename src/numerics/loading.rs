@@ -1,0 +1,325 @@
+//! Quasi-static loading paths: the states an experiment visits when a control parameter λ (a
+//! displacement, a depth) is stepped, and the jumps between them.
+//!
+//! Under displacement control a system stays in the basin of the minimum it sits in until that
+//! minimum ceases to exist (a fold of the equilibrium branch), then jumps to another stable
+//! state. [`follow`] walks a sequence of control values, minimising the energy at each from the
+//! previous state with [`StableNewton`] (which accepts only states with a positive-definite
+//! Hessian, so a jump ends in a stable state and never on a saddle), and certifies each accepted
+//! state.
+//!
+//! A step is a *jump* when the model's own measure of the change, [`Controlled::jump_measure`],
+//! reaches 1 (for example, the largest displacement change in units of the interaction range),
+//! or, where [`PathOptions::unstable_start_is_jump`] asks for it, when the solver had to leave
+//! an unstable start (the previous state no longer was a minimum).
+//! With [`PathOptions::refine_to`] a jump is located by bisection of the step: trial states
+//! between the last accepted value and the target are minimised from the last accepted state;
+//! those that stay on the branch are accepted (they lie on the path), until the last value on the
+//! branch and the first beyond it differ by at most the tolerance. On a smooth branch the
+//! change of state shrinks with the step, so a false alarm of the measure resolves into finer
+//! steps without a jump; at a fold it does not, and the jump is reported there. Each jump costs
+//! about log2(step/tolerance) extra minimisations.
+//!
+//! The driver stores nothing but the current state: every accepted state is handed to a
+//! visitor, which records what its model needs (a force, a contact set, a profile), reports
+//! progress, and may stop the walk with an error (cancellation).
+
+use crate::error::{Error, Result};
+use crate::numerics::newton::{Energy, NewtonOptions, NewtonReport, StableNewton};
+
+/// A family of energies over a control parameter λ, with a measure of how far a step moved.
+pub trait Controlled {
+    /// The energy at one control value.
+    type At<'a>: Energy
+    where
+        Self: 'a;
+    /// The energy at control value `lambda`.
+    fn at(&self, lambda: f64) -> Self::At<'_>;
+    /// How far the state moved from `before` to `after`, in units where a jump moves at least
+    /// about 1 and a smooth step of the path's size much less than 1.
+    fn jump_measure(&self, before: &[f64], after: &[f64]) -> f64;
+}
+
+/// Options of [`follow`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PathOptions {
+    /// Tolerances of the minimiser.
+    pub newton: NewtonOptions,
+    /// Locate each jump by bisection until the last value on the branch and the first beyond
+    /// it differ by at most this (in units of λ); `None`: jumps are reported at the step where
+    /// they were met.
+    pub refine_to: Option<f64>,
+    /// Largest number of Newton iterations of a bisection trial: a trial that needs more is
+    /// on its way to another state (near a fold the way out of the vanished basin is slow),
+    /// and counts as a jump.
+    pub trial_iterations: usize,
+    /// Count a step whose start was unstable (the minimiser met an indefinite Hessian) as a
+    /// jump even when the state moved little. Where the model's measure alone tells jumps
+    /// apart, leave this off: a start just beyond a stable state can be slightly indefinite
+    /// on a branch that goes on (a softening contact edge), and each such step would be
+    /// bisected for nothing.
+    pub unstable_start_is_jump: bool,
+}
+
+/// One accepted state of the path, as handed to the visitor.
+#[derive(Debug)]
+pub struct Visit<'a> {
+    /// Control value.
+    pub lambda: f64,
+    /// The equilibrium state.
+    pub x: &'a [f64],
+    /// The previous accepted state when this state was reached by a jump, `None` on the branch.
+    pub jumped_from: Option<(f64, &'a [f64])>,
+    /// Whether the Hessian of the state is positive definite (always, unless the minimiser's
+    /// acceptance rule failed; recorded so that callers can assert it).
+    pub stable: bool,
+    /// The minimiser's report for this state.
+    pub report: NewtonReport,
+    /// Index of the target value being walked towards (bisection states share it).
+    pub target: usize,
+}
+
+/// What a walk cost.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct PathStats {
+    /// States accepted (targets plus bisection states).
+    pub states: usize,
+    /// Minimisations run (rejected bisection trials included).
+    pub minimisations: usize,
+    /// Newton iterations in all minimisations.
+    pub newton_iterations: usize,
+    /// Jumps.
+    pub jumps: usize,
+    /// Whether every accepted state was certified stable.
+    pub all_stable: bool,
+}
+
+/// Walk the control values `targets` from the stable state `x` (updated in place to the last
+/// state), handing every accepted state to `visit`.
+///
+/// # Errors
+/// Minimiser failures ([`crate::error::Error::NoConvergence`]), and whatever `visit` returns.
+///
+/// # Panics
+/// If `x.len()` differs from the energy's dimension.
+pub fn follow<C: Controlled>(
+    model: &C,
+    solver: &mut StableNewton,
+    x: &mut Vec<f64>,
+    lambda_start: f64,
+    targets: &[f64],
+    opts: &PathOptions,
+    mut visit: impl FnMut(&Visit<'_>) -> Result<()>,
+) -> Result<PathStats> {
+    let mut stats = PathStats {
+        all_stable: true,
+        ..PathStats::default()
+    };
+    let mut lambda = lambda_start;
+    let mut trial = x.clone();
+    let trial_opts = NewtonOptions {
+        max_iterations: opts.trial_iterations.min(opts.newton.max_iterations),
+        ..opts.newton
+    };
+    // Minimise from `x` at `at` into `trial`: Some((report, jumped, stable)), or None when a
+    // bisection trial ran out of iterations (a jump under way).
+    let mut attempt = |x: &[f64],
+                       trial: &mut Vec<f64>,
+                       at: f64,
+                       bisecting: bool,
+                       stats: &mut PathStats|
+     -> Result<Option<(NewtonReport, bool, bool)>> {
+        trial.clear();
+        trial.extend_from_slice(x);
+        let e = model.at(at);
+        stats.minimisations += 1;
+        let newton = if bisecting { &trial_opts } else { &opts.newton };
+        let rep = match solver.minimize(&e, trial, newton) {
+            Ok(rep) => rep,
+            Err(Error::NoConvergence { iterations, .. }) if bisecting => {
+                stats.newton_iterations += iterations;
+                return Ok(None);
+            }
+            Err(e) => return Err(e),
+        };
+        stats.newton_iterations += rep.iterations;
+        let jumped =
+            (opts.unstable_start_is_jump && rep.left_unstable_state()) || model.jump_measure(x, trial) >= 1.0;
+        let stable = solver.is_stable(&e, trial)?;
+        Ok(Some((rep, jumped, stable)))
+    };
+    for (k, &target) in targets.iter().enumerate() {
+        loop {
+            let refine = opts.refine_to.filter(|&tol| (target - lambda).abs() > tol);
+            let first = attempt(x, &mut trial, target, refine.is_some(), &mut stats)?;
+            if let Some((rep, jumped, stable)) = first
+                && (!jumped || refine.is_none())
+            {
+                stats.states += 1;
+                stats.jumps += usize::from(jumped);
+                stats.all_stable &= stable;
+                visit(&Visit {
+                    lambda: target,
+                    x: &trial,
+                    jumped_from: jumped.then_some((lambda, x.as_slice())),
+                    stable,
+                    report: rep,
+                    target: k,
+                })?;
+                std::mem::swap(x, &mut trial);
+                lambda = target;
+                break;
+            }
+            // Bisect towards the fold: accept trial states that stay on the branch.
+            let tol = refine.unwrap_or(0.0);
+            let mut hi = target;
+            while (hi - lambda).abs() > tol {
+                let mid = 0.5 * (lambda + hi);
+                match attempt(x, &mut trial, mid, true, &mut stats)? {
+                    Some((rep, false, stable)) => {
+                        stats.states += 1;
+                        stats.all_stable &= stable;
+                        visit(&Visit {
+                            lambda: mid,
+                            x: &trial,
+                            jumped_from: None,
+                            stable,
+                            report: rep,
+                            target: k,
+                        })?;
+                        std::mem::swap(x, &mut trial);
+                        lambda = mid;
+                    }
+                    _ => hi = mid,
+                }
+            }
+            // `hi` is within the tolerance of the last state on the branch: jump there (or,
+            // when the bisection found no jump after all, go on from here). Just past a fold
+            // the way out is slowest; where the minimiser does not find it, the jump is taken
+            // from further past the fold (doubling the distance, at most to the target).
+            let mut at = hi;
+            let (rep, jumped, stable) = loop {
+                let full = (at - target).abs() <= f64::EPSILON * target.abs().max(1.0);
+                match attempt(x, &mut trial, at, !full, &mut stats)? {
+                    Some(found) => break found,
+                    None => {
+                        let further = lambda + 2.0 * (at - lambda);
+                        at = if (further - lambda).abs() >= (target - lambda).abs() {
+                            target
+                        } else {
+                            further
+                        };
+                    }
+                }
+            };
+            stats.states += 1;
+            stats.jumps += usize::from(jumped);
+            stats.all_stable &= stable;
+            visit(&Visit {
+                lambda: at,
+                x: &trial,
+                jumped_from: jumped.then_some((lambda, x.as_slice())),
+                stable,
+                report: rep,
+                target: k,
+            })?;
+            std::mem::swap(x, &mut trial);
+            lambda = at;
+            if at == target {
+                break;
+            }
+        }
+    }
+    Ok(stats)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One unknown x in the tilted double well E = x⁴/4 − x²/2 − λx: folds at
+    /// λ = ±2/(3√3), where the outer minimum on the side of the tilt vanishes.
+    struct Well;
+    struct WellAt(f64);
+    impl Energy for WellAt {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn energy(&self, x: &[f64]) -> f64 {
+            x[0].powi(4) / 4.0 - x[0] * x[0] / 2.0 - self.0 * x[0]
+        }
+        fn gradient(&self, x: &[f64], g: &mut [f64]) {
+            g[0] = x[0].powi(3) - x[0] - self.0;
+        }
+        fn hessian_pattern(&self) -> Vec<(usize, usize)> {
+            vec![(0, 0)]
+        }
+        fn hessian_values(&self, x: &[f64], v: &mut [f64]) {
+            v[0] = 3.0 * x[0] * x[0] - 1.0;
+        }
+    }
+    impl Controlled for Well {
+        type At<'a> = WellAt;
+        fn at(&self, lambda: f64) -> WellAt {
+            WellAt(lambda)
+        }
+        fn jump_measure(&self, before: &[f64], after: &[f64]) -> f64 {
+            (after[0] - before[0]).abs() / 0.5
+        }
+    }
+
+    /// (λ, x) of every state, (λ before, λ after, x before) of every jump, the statistics.
+    type Walk = (Vec<(f64, f64)>, Vec<(f64, f64, f64)>, PathStats);
+
+    fn walk(refine: Option<f64>) -> Walk {
+        let mut solver = StableNewton::new(&WellAt(0.0)).expect("1x1 pattern");
+        // Start in the left well at λ = -0.1 and tilt to the right until it vanishes.
+        let mut x = vec![-1.0];
+        let opts = PathOptions {
+            newton: NewtonOptions::default(),
+            refine_to: refine,
+            trial_iterations: 50,
+            unstable_start_is_jump: true,
+        };
+        let targets: Vec<f64> = (0..=10).map(|i| -0.1 + 0.06 * i as f64).collect();
+        let mut states = Vec::new();
+        let mut jumps = Vec::new();
+        let stats = follow(&Well, &mut solver, &mut x, -0.2, &targets, &opts, |v| {
+            states.push((v.lambda, v.x[0]));
+            if let Some((l0, x0)) = v.jumped_from {
+                jumps.push((l0, v.lambda, x0[0]));
+            }
+            Ok(())
+        })
+        .expect("walk");
+        (states, jumps, stats)
+    }
+
+    #[test]
+    fn jump_is_located_at_the_fold_by_bisection() {
+        let fold = 2.0 / (3.0 * 3f64.sqrt());
+        let (states, jumps, stats) = walk(Some(1e-9));
+        assert_eq!(jumps.len(), 1);
+        let (before, after, x0) = jumps[0];
+        // The last state on the branch is within the minimiser's gradient tolerance (1e-10)
+        // of the fold: past it by less than that, a near-equilibrium is still accepted.
+        assert!((before - fold).abs() < 1e-9 && after > fold, "{before} {after}");
+        assert!(after - before <= 1e-9);
+        // Just before the fold the left minimum sits at x = -1/√3; the jump lands in the right
+        // well (x³ − x = λ at x > 1).
+        assert!((x0 + 1.0 / 3f64.sqrt()).abs() < 1e-4, "{x0}");
+        let landed = states.iter().find(|s| s.0 == after).expect("after state").1;
+        assert!(landed > 1.0);
+        assert!(stats.all_stable && stats.jumps == 1);
+        // The states are visited in increasing λ.
+        assert!(states.windows(2).all(|w| w[1].0 > w[0].0));
+    }
+
+    #[test]
+    fn without_refinement_the_jump_is_reported_at_its_step() {
+        let (_, jumps, stats) = walk(None);
+        assert_eq!(jumps.len(), 1);
+        assert!((jumps[0].1 - 0.44).abs() < 1e-12, "{:?}", jumps[0]);
+        assert_eq!(stats.states, 11);
+    }
+}

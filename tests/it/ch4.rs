@@ -1,0 +1,146 @@
+//! Chapter 4: the Lennard-Jones contact of a smooth tip with the axisymmetric surface model,
+//! sections 4.2-4.4, and the loading-path driver it runs on.
+//!
+//! The surface model is exact for a rigid flat substrate up to the strain of the surface layer
+//! (ERRATA on (4.19)); its limits are the DMT force 2πwR for a stiff tip (small Tabor
+//! parameter) and the JKR force 1.5πwR for a compliant one. Fig. 4.5's parameters (μ_T ≈ 5)
+//! sit between, near JKR (χ = 0.124 in the Maugis-Dugdale reading).
+
+use std::f64::consts::PI;
+
+use adhesion::models::axisymmetric::cycle::{CycleOptions, TipCycle, run_cycle};
+use adhesion::models::axisymmetric::tip::{Tip, TipParams};
+use adhesion::numerics::newton::{Energy, NewtonOptions, StableNewton, plain_newton};
+
+/// Fig. 4.5: R = 5 µm, E = 4.4 MPa, ν = 0.25, C6 = 3, C12 = 1, σ = 1 nm, A_H = 2e-21 J; a
+/// grid of ring width 0.25 b (b = ζ0²E*/w ≈ 4.9 nm) over 250 nm, 4 Gauss points per interval.
+fn fig4_5(modulus_factor: f64) -> TipParams {
+    let nu: f64 = 0.25;
+    TipParams {
+        radius: 5e-6,
+        modulus: modulus_factor * 4.4e6 / (1.0 - nu * nu),
+        c6: 3.0,
+        c12: 1.0,
+        sigma: 1e-9,
+        hamaker: 2e-21,
+        amplitude: 0.0,
+        wavelength: 1.25e-7,
+        ring_width: 0.25,
+        fine_radius: 2.5e-7,
+        growth: 1.1,
+        quadrature_points: 4,
+        reach: 30.0,
+    }
+}
+
+/// A shallow cycle: from 12 ζ0 apart to 3 ζ0 deep, steps of 0.2 ζ0, jumps to 1e-3 ζ0.
+fn shallow_cycle(tip: &Tip, keep_profiles: bool) -> TipCycle {
+    let z = tip.scales().length;
+    let opts = CycleOptions {
+        h_start: 12.0 * z,
+        h_min: -3.0 * z,
+        step: 0.2 * z,
+        refine_to: 1e-3 * z,
+        contact_gap: 1e-9,
+        keep_profiles,
+    };
+    run_cycle(tip, &opts, |_| Ok(())).expect("cycle")
+}
+
+// Sec. 4.4, Fig. 4.5: one pull-in on loading and one pull-off on unloading, nothing else (a
+// grid fine enough that the contact edge does not hop from ring to ring); every accepted
+// state has a positive-definite Hessian (asserted by the driver's certificate); the adhesive
+// force lies between the JKR (1.5πwR) and DMT (2πwR) limits, near JKR at μ_T ≈ 5.
+#[test]
+fn smooth_tip_has_one_pull_in_and_one_pull_off_and_only_stable_states() {
+    let tip = Tip::new(&fig4_5(1.0)).expect("tip");
+    let w = tip.scales().work_of_adhesion;
+    let cycle = shallow_cycle(&tip, false);
+    assert!(cycle.stats.all_stable, "an accepted state was not stable");
+    assert!(cycle.loading.iter().chain(&cycle.unloading).all(|s| s.stable));
+    assert_eq!(cycle.jumps.len(), 2, "{:?}", cycle.jump_counts());
+    let (pull_in, pull_off) = (&cycle.jumps[0], &cycle.jumps[1]);
+    assert!(pull_in.loading && pull_in.is_pull_in());
+    assert!(!pull_off.loading && !pull_off.is_pull_in());
+    assert_eq!(pull_in.before.contact.radius(), 0.0);
+    assert_eq!(pull_off.after.contact.radius(), 0.0);
+    // Pull-off happens at a larger separation than pull-in (the neck), Fig. 4.5a.
+    assert!(pull_off.before.depth > pull_in.before.depth);
+    let ratio = -cycle.adhesive_force() / (PI * w * 5e-6);
+    assert!((1.5..1.6).contains(&ratio), "P_adh/(πwR) = {ratio}");
+    // The loop encloses energy: the instabilities dissipate.
+    assert!(cycle.hysteresis() > 0.0);
+    // After pull-off the tip is free: the force returns to the loading branch's value.
+    let (first, last) = (&cycle.loading[0], cycle.unloading.last().expect("states"));
+    assert!((first.force - last.force).abs() < 1e-6 * PI * w * 5e-6);
+}
+
+// The DMT limit (sec. 4.4, (3.3) as χ → 0): a tip 1000 times stiffer has μ_T ≈ 0.05, no
+// instability at all, and its most tensile force approaches 2πwR (Derjaguin: the undeformed
+// sphere's plate interaction, −2πR φ(ζ0) at touching).
+#[test]
+fn stiff_tip_reaches_the_dmt_force_without_instabilities() {
+    // The ring width must resolve the sphere's interaction zone √(2Rζ0) ≈ 77 nm, which is far
+    // below b ≈ 4.9 µm here: rings of 2.5 nm.
+    let mut p = fig4_5(1000.0);
+    p.ring_width = 5e-4;
+    let tip = Tip::new(&p).expect("tip");
+    let w = tip.scales().work_of_adhesion;
+    let cycle = shallow_cycle(&tip, false);
+    assert!(cycle.jumps.is_empty(), "{} jumps", cycle.jumps.len());
+    assert!(cycle.stats.all_stable);
+    let ratio = -cycle.adhesive_force() / (PI * w * 5e-6);
+    assert!((ratio - 2.0).abs() < 0.03, "P_adh/(πwR) = {ratio}");
+    // No instability, no loss (up to the trapezoid rule on identical paths).
+    let scale = PI * w * 5e-6 * tip.scales().length;
+    assert!(
+        cycle.hysteresis().abs() < 1e-3 * scale,
+        "H = {} πwRζ0",
+        cycle.hysteresis() / scale
+    );
+}
+
+/// Fraction of the way from the free state just before pull-in towards the state after it
+/// where plain Newton starts (0.02 to 0.2 all reach the saddle).
+const T_START: f64 = 0.05;
+
+// Stability is the subject: just before pull-in the free state and a saddle (the unstable
+// equilibrium of the incipient neck) lie close together and annihilate at the fold. Plain
+// Newton started a little way from the free state towards contact converges to the saddle, an
+// equilibrium no experiment can observe; the stable minimiser from the same start ends in a
+// state with a positive-definite Hessian and lower energy.
+#[test]
+fn plain_newton_finds_the_saddle_the_stable_minimiser_avoids() {
+    let tip = Tip::new(&fig4_5(1.0)).expect("tip");
+    let cycle = shallow_cycle(&tip, true);
+    let pull_in = &cycle.jumps[0];
+    let (before, after) = (&pull_in.before, &pull_in.after);
+    let e = tip.energy_at(tip.approach(before.depth));
+    let opts = NewtonOptions {
+        gradient_tol: 1e-7,
+        step_tol: 1e-6,
+        max_iterations: 200,
+        ..NewtonOptions::default()
+    };
+    let mut solver = StableNewton::new(&e).expect("solver");
+    let start: Vec<f64> = before
+        .displacement
+        .iter()
+        .zip(&after.displacement)
+        .map(|(a, b)| a + T_START * (b - a))
+        .collect();
+    let mut saddle = start.clone();
+    plain_newton(&e, &mut saddle, &opts).expect("plain Newton converges");
+    let mut g = vec![0.0; e.dim()];
+    e.gradient(&saddle, &mut g);
+    assert!(
+        g.iter().all(|x| x.abs() < 1e-6),
+        "plain Newton ended at an equilibrium"
+    );
+    assert!(e.energy(&saddle).is_finite());
+    assert!(!solver.is_stable(&e, &saddle).expect("test"), "it is a saddle");
+    let mut stable = start;
+    solver.minimize(&e, &mut stable, &opts).expect("stable minimiser");
+    assert!(solver.is_stable(&e, &stable).expect("test"));
+    assert!(e.energy(&stable) < e.energy(&saddle));
+}
