@@ -5,6 +5,7 @@ pub mod classical;
 pub mod ddh;
 pub mod fibril;
 pub mod fuller_tabor;
+pub mod lennard_jones;
 pub mod machine_stiffness;
 pub mod maugis_dugdale;
 pub mod peeling;
