@@ -10,3 +10,4 @@ pub mod machine_stiffness;
 pub mod maugis_dugdale;
 pub mod peeling;
 pub mod spring_array;
+pub mod wavy_jkr;
