@@ -79,9 +79,9 @@ pub struct WavyJkrParams {
     /// Adhesion parameter ℓ = πw/(E*R) ≥ 0 [-], Eq. (4.25) (printed "χ" in (4.26)).
     pub ell: f64,
     /// Amplitude of the undulation Ā = A/R ≥ 0 [-].
-    pub amplitude: f64,
+    pub amplitude_bar: f64,
     /// Wavelength of the undulation λ̄ = λ/R > 0 [-].
-    pub wavelength: f64,
+    pub wavelength_bar: f64,
 }
 
 impl Default for WavyJkrParams {
@@ -90,8 +90,8 @@ impl Default for WavyJkrParams {
     fn default() -> Self {
         Self {
             ell: 2.26e-5,
-            amplitude: 1.25e-4,
-            wavelength: 1.25e-2,
+            amplitude_bar: 1.25e-4,
+            wavelength_bar: 1.25e-2,
         }
     }
 }
@@ -155,8 +155,8 @@ pub struct WavyCycle {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WavyJkr {
     ell: f64,
-    amplitude: f64,
-    wavelength: f64,
+    amplitude_bar: f64,
+    wavelength_bar: f64,
     /// k = 2π/λ̄.
     k: f64,
     /// π²Ā/λ̄, the coefficient of the H₀ terms.
@@ -170,25 +170,25 @@ impl WavyJkr {
     /// [`Error::InvalidParameter`] naming `ell` or `amplitude` unless ≥ 0 and finite, or
     /// `wavelength` unless positive and finite.
     pub fn new(params: &WavyJkrParams) -> Result<Self> {
-        for (name, v) in [("ell", params.ell), ("amplitude", params.amplitude)] {
+        for (name, v) in [("ell", params.ell), ("amplitude_bar", params.amplitude_bar)] {
             if !(v.is_finite() && v >= 0.0) {
                 return Err(Error::invalid(name, v, "must be finite and not negative"));
             }
         }
-        let lambda = params.wavelength;
+        let lambda = params.wavelength_bar;
         if !(lambda.is_finite() && lambda > 0.0) {
             return Err(Error::invalid(
-                "wavelength",
+                "wavelength_bar",
                 lambda,
                 "must be positive and finite",
             ));
         }
         Ok(Self {
             ell: params.ell,
-            amplitude: params.amplitude,
-            wavelength: lambda,
+            amplitude_bar: params.amplitude_bar,
+            wavelength_bar: lambda,
             k: 2.0 * PI / lambda,
-            c: PI * PI * params.amplitude / lambda,
+            c: PI * PI * params.amplitude_bar / lambda,
         })
     }
 
@@ -196,8 +196,8 @@ impl WavyJkr {
     pub fn params(&self) -> WavyJkrParams {
         WavyJkrParams {
             ell: self.ell,
-            amplitude: self.amplitude,
-            wavelength: self.wavelength,
+            amplitude_bar: self.amplitude_bar,
+            wavelength_bar: self.wavelength_bar,
         }
     }
 
@@ -218,7 +218,7 @@ impl WavyJkr {
     /// ```
     pub fn non_adhesive_force(&self, a: f64) -> f64 {
         let (h0, h1) = struve_h0_h1(self.k * a);
-        2.0 / 3.0 * a.powi(3) + self.c * a * a * h0 - 0.5 * PI * self.amplitude * a * h1
+        2.0 / 3.0 * a.powi(3) + self.c * a * a * h0 - 0.5 * PI * self.amplitude_bar * a * h1
     }
 
     /// Indentation depth h̄ at contact radius `a` = ā ≥ 0.
@@ -262,7 +262,7 @@ impl WavyJkr {
         let x = self.k * a;
         let (h0, h1) = struve_h0_h1(x);
         2.0 * a * a - 1.5 * (2.0 * self.ell * a).sqrt() + self.c * (2.0 * a * h0 + x * a * (2.0 / PI - h1))
-            - 0.5 * PI * self.amplitude * x * h0
+            - 0.5 * PI * self.amplitude_bar * x * h0
     }
 
     /// Slope of the P̄-h̄ curve at `a` = ā, dP̄/dh̄ = (dP̄/dā)/(dh̄/dā) (∞ at a fold).
@@ -305,7 +305,7 @@ impl WavyJkr {
                 "must be at least 4",
             ));
         }
-        let step = self.wavelength.min(a_max) / per_wavelength as f64;
+        let step = self.wavelength_bar.min(a_max) / per_wavelength as f64;
         let n = (a_max / step).ceil();
         if n > MAX_CURVE_SAMPLES as f64 {
             return Err(Error::invalid(
@@ -340,7 +340,7 @@ impl WavyJkr {
     /// Spacing of the marches of [`Self::cycle`]: 1/64 of the smallest length of the problem
     /// (the wavelength, the JKR pull-in radius (2ℓ)^(1/3), the Hertz radius √h̄_max).
     fn march_step(&self, h_max: f64) -> f64 {
-        let scale = self.wavelength.min((2.0 * self.ell).cbrt()).min(h_max.sqrt());
+        let scale = self.wavelength_bar.min((2.0 * self.ell).cbrt()).min(h_max.sqrt());
         scale / CYCLE_SAMPLES_PER_WAVELENGTH as f64
     }
 
@@ -645,8 +645,8 @@ mod tests {
     /// removes the endpoint singularity), to 1e-13 relative: (h̄_H, P̄_H).
     fn sneddon(model: &WavyJkr, a: f64) -> (f64, f64) {
         let p = model.params();
-        let k = 2.0 * PI / p.wavelength;
-        let slope = |x: f64| x + p.amplitude * k * (k * x).sin();
+        let k = 2.0 * PI / p.wavelength_bar;
+        let slope = |x: f64| x + p.amplitude_bar * k * (k * x).sin();
         let depth = integrate(|t: f64| slope(a * t.sin()), 0.0, PI / 2.0, 0.0, 1e-13).unwrap();
         let force = integrate(
             |t: f64| t.sin().powi(2) * slope(a * t.sin()),
@@ -669,7 +669,7 @@ mod tests {
         let p = m.params();
         for a in [1e-3, 5e-3, 1.2e-2, 2.6e-2, 4.1e-2, 0.1] {
             let (h_q, p_q) = sneddon(&m, a);
-            let wave_scale = p.amplitude * (1.0 + a / p.wavelength);
+            let wave_scale = p.amplitude_bar * (1.0 + a / p.wavelength_bar);
             let h_model = m.non_adhesive_depth(a);
             let p_model = m.non_adhesive_force(a);
             assert!(
@@ -696,8 +696,8 @@ mod tests {
         let ell = PI * w / (modulus * radius);
         let m = WavyJkr::new(&WavyJkrParams {
             ell,
-            amplitude: 0.0,
-            wavelength: 1e-2,
+            amplitude_bar: 0.0,
+            wavelength_bar: 1e-2,
         })
         .unwrap();
         for a in [1e-4, 3e-3, 1e-2, 5e-2] {
@@ -715,12 +715,12 @@ mod tests {
         // Ā = 1e-6 and 1e-3.
         let base = WavyJkrParams::default();
         let jkr = WavyJkr::new(&WavyJkrParams {
-            amplitude: 0.0,
+            amplitude_bar: 0.0,
             ..base
         })
         .unwrap();
         let tiny = WavyJkr::new(&WavyJkrParams {
-            amplitude: 1e-18,
+            amplitude_bar: 1e-18,
             ..base
         })
         .unwrap();
@@ -729,7 +729,7 @@ mod tests {
             assert!((tiny.force(a) - jkr.force(a)).abs() < 1e-12 * jkr.force(a).abs());
             let q = |amp: f64| {
                 let m = WavyJkr::new(&WavyJkrParams {
-                    amplitude: amp,
+                    amplitude_bar: amp,
                     ..base
                 })
                 .unwrap();
@@ -745,8 +745,8 @@ mod tests {
         // depth ā²(1 + Āk²) to O((kā)²) relative.
         let m = WavyJkr::new(&WavyJkrParams {
             ell: 0.0,
-            amplitude: 1e-3,
-            wavelength: 10.0,
+            amplitude_bar: 1e-3,
+            wavelength_bar: 10.0,
         })
         .unwrap();
         let k = 2.0 * PI / 10.0;
@@ -837,8 +837,8 @@ mod tests {
         let ell = 2.26e-5;
         let m = WavyJkr::new(&WavyJkrParams {
             ell,
-            amplitude: 0.0,
-            wavelength: 1.25e-2,
+            amplitude_bar: 0.0,
+            wavelength_bar: 1.25e-2,
         })
         .unwrap();
         let cycle = m.cycle(7e-4).unwrap();
@@ -906,12 +906,18 @@ mod tests {
             (WavyJkrParams { ell: -1.0, ..d }, "ell"),
             (
                 WavyJkrParams {
-                    amplitude: f64::NAN,
+                    amplitude_bar: f64::NAN,
                     ..d
                 },
-                "amplitude",
+                "amplitude_bar",
             ),
-            (WavyJkrParams { wavelength: 0.0, ..d }, "wavelength"),
+            (
+                WavyJkrParams {
+                    wavelength_bar: 0.0,
+                    ..d
+                },
+                "wavelength_bar",
+            ),
         ] {
             let e = WavyJkr::new(&p).unwrap_err().to_string();
             assert!(e.contains(&format!("`{name}`")), "{e}");
