@@ -72,6 +72,17 @@ pub struct LennardJones {
 impl LennardJones {
     /// Validate the parameters and precompute ζ₀ and w.
     ///
+    /// ```
+    /// use adhesion::models::lennard_jones::{LennardJones, LennardJonesParams};
+    /// // Figure 4.5: C₆ = 3, C₁₂ = 1, σ = 1 nm, A_H = 2e-21 J; R = 5 µm, E* = 4.4 MPa/(1 − 0.25²).
+    /// let lj = LennardJones::new(&LennardJonesParams::default())?;
+    /// let modulus = 4.4e6 / (1.0 - 0.25 * 0.25);
+    /// assert!((lj.zeta0() - 0.5952e-9).abs() < 1e-13);
+    /// assert!((lj.ell(5e-6, modulus) - 4.51e-5).abs() < 5e-8);
+    /// assert!((lj.chi(modulus) - 0.124).abs() < 5e-4);
+    /// # Ok::<(), adhesion::Error>(())
+    /// ```
+    ///
     /// # Errors
     /// [`Error::InvalidParameter`] naming `c6` unless C₆ ≥ 0, and `c12`, `sigma`, `hamaker`
     /// unless positive (all finite).

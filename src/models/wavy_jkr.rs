@@ -358,6 +358,16 @@ impl WavyJkr {
     ///
     /// by adaptive Gauss-Kronrod quadrature along each followed segment (relative 1e-12).
     ///
+    /// ```
+    /// use adhesion::models::wavy_jkr::{JumpKind, WavyJkr, WavyJkrParams};
+    /// // Figure 4.7b to |h_min|/R = 7e-4: asperity-scale jumps between pull-in and pull-off.
+    /// let cycle = WavyJkr::new(&WavyJkrParams::default())?.cycle(7e-4)?;
+    /// assert_eq!(cycle.jumps.first().map(|j| j.kind), Some(JumpKind::PullIn));
+    /// assert_eq!(cycle.jumps.last().map(|j| j.kind), Some(JumpKind::PullOff));
+    /// assert!(cycle.jumps.len() > 2 && cycle.hysteresis > 0.0);
+    /// # Ok::<(), adhesion::Error>(())
+    /// ```
+    ///
     /// # Errors
     /// [`Error::InvalidParameter`] unless `h_max` > 0 and finite, or when ℓ = 0 (no pull-in:
     /// the contact radius at first touch is zero); [`Error::Unresolvable`] when a march does
