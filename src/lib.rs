@@ -5,8 +5,10 @@
 //! numbers in doc comments are that work's): the classical Hertz/JKR/DMT/Maugis-Dugdale theories
 //! and the Fuller-Tabor rough-surface model (ch. 1, 3), JKR with machine stiffness and the fitting
 //! of measured force-indentation curves (ch. 2, app. A), the Maugis-Dugdale/Nayak model of
-//! depth-dependent hysteresis (ch. 3, app. B), spring-array models of fibrillar adhesion on random
-//! rough surfaces (ch. 5, app. C) and peeling from wavy substrates (ch. 6).
+//! depth-dependent hysteresis (ch. 3, app. B), the Lennard-Jones interaction, the critical
+//! separation of the contact instabilities and the JKR theory of a wavy tip (ch. 4), spring-array
+//! models of fibrillar adhesion on random rough surfaces (ch. 5, app. C) and peeling from wavy
+//! substrates (ch. 6).
 //!
 //! ## Module map (data flows down)
 //!
@@ -29,6 +31,12 @@
 //! | a, h, P | `a`, `h`, `p` | contact radius, indentation depth, force (compression positive) |
 //! | a₀, h₀, P₀ | `a0()`, `h0()`, `p0()` | JKR scales (πR²w/E*)^(1/3), (π²Rw²/E*²)^(1/3), πwR |
 //! | μ_T | `tabor_parameter` | Tabor parameter, Eq. (1.8) |
+//! | C₆, C₁₂, σ | `c6`, `c12`, `sigma` | weights and length of the LJ potential (4.1) [-, -, m] |
+//! | A_H | `hamaker` | Hamaker constant 4π²ερ₁ρ₂σ⁶ [J] |
+//! | ζ₀ | `zeta0()` | equilibrium separation of two LJ half-spaces, Eq. (4.6) [m] |
+//! | δ₀ | `dugdale_range()` | range of the equivalent Dugdale zone, (9√3/16) ζ₀ [m] |
+//! | ℓ, χ | `ell`, `chi` | πw/(E*R) and w/(E*δ₀), Eqs. (3.1)-(3.2), (4.25) |
+//! | Ā, λ̄ | `amplitude_bar`, `wavelength_bar` | amplitude A and wavelength λ of the wavy tip (4.10), over R |
 //! | σ_rms | `sigma` | RMS roughness [m] |
 //! | h_o, P_o | | Fuller-Tabor scales \|h_D\|, \|P_C\| |
 //!

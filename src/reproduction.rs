@@ -16,6 +16,7 @@ mod appc;
 mod ch1;
 mod ch2;
 mod ch3;
+mod ch4;
 mod ch5;
 mod ch6;
 
@@ -107,6 +108,7 @@ pub fn claims() -> Vec<Claim> {
         ch1::claims(),
         ch2::claims(),
         ch3::claims(),
+        ch4::claims(),
         ch5::claims(),
         ch6::claims(),
         appc::claims(),

@@ -1,0 +1,202 @@
+//! The printed numbers of chapter 4 that the analytic models compute: the coefficients and the
+//! critical point of the instability criterion (4.23) (Sec. 4.3), ℓ and χ of the captions of
+//! Figures 4.5 and 4.7 from the LJ parameters (4.6), (4.7b), (4.25), and the geometry of the
+//! wavy tip of Sec. 4.5.1. The finite-element results of the chapter are not here.
+
+use std::f64::consts::PI;
+
+use super::{Claim, Expect, Precision};
+use crate::error::Result;
+use crate::models::lennard_jones::{InstabilityCriterion, LennardJones, LennardJonesParams, TractionLaw};
+
+/// Poisson's ratio of every chapter 4 simulation.
+const NU: f64 = 0.25;
+
+/// The LJ interaction C₆ = 3, C₁₂ = 1, σ = 1 nm with Hamaker constant `hamaker` [J].
+fn interaction(hamaker: f64) -> Result<LennardJones> {
+    LennardJones::new(&LennardJonesParams {
+        hamaker,
+        ..LennardJonesParams::default()
+    })
+}
+
+/// E* = E/(1 − ν²) [Pa] for Young's modulus `young` [Pa].
+fn effective_modulus(young: f64) -> f64 {
+    young / (1.0 - NU * NU)
+}
+
+/// Figure 4.5: R = 5 µm, E = 4.4 MPa, A_H = 2e-21 J: (ℓ, χ).
+fn fig4_5_ell_chi() -> Result<(f64, f64)> {
+    let lj = interaction(2e-21)?;
+    let modulus = effective_modulus(4.4e6);
+    Ok((lj.ell(5e-6, modulus), lj.chi(modulus)))
+}
+
+/// Tip radius R of Figure 4.7 [m].
+const FIG4_7_RADIUS: f64 = 10e-6;
+/// Amplitude A of the undulation (4.10) of Figure 4.7 [m].
+const FIG4_7_AMPLITUDE: f64 = 1.25e-9;
+/// Wavelength λ of the undulation (4.10) of Figure 4.7 [m].
+const FIG4_7_WAVELENGTH: f64 = 0.125e-6;
+
+/// R_a/R = λ²/(4π²AR), the asperity radius of (4.10) over the tip radius (Sec. 4.5.1).
+fn asperity_radius_ratio() -> f64 {
+    FIG4_7_WAVELENGTH.powi(2) / (4.0 * PI * PI * FIG4_7_AMPLITUDE * FIG4_7_RADIUS)
+}
+
+/// The criterion (4.23) for C₆ = 3, C₁₂ = 1 with the printed traction (4.19).
+fn criterion() -> Result<InstabilityCriterion> {
+    InstabilityCriterion::new(&interaction(2e-21)?, TractionLaw::AsPrinted)
+}
+
+/// The claims of chapter 4.
+pub fn claims() -> Vec<Claim> {
+    vec![
+        Claim {
+            id: "ch4.c1",
+            source: "Eq. (4.23)",
+            quantity: "c1 (coefficient of z^-7/2) for C6 = 3, C12 = 1, from (4.21)-(4.22) with the printed (4.19)",
+            printed: "23.1",
+            precision: Precision::Printed,
+            code: "models::lennard_jones::InstabilityCriterion::c1",
+            compute: || Ok(criterion()?.c1()),
+            expect: Expect::Reproduced,
+        },
+        Claim {
+            id: "ch4.c2",
+            source: "Eq. (4.23)",
+            quantity: "c2 (coefficient of z^-19/2) for C6 = 3, C12 = 1 (the printed definitions of c1, c2 are swapped, ERRATA)",
+            printed: "13.7",
+            precision: Precision::Printed,
+            code: "models::lennard_jones::InstabilityCriterion::c2",
+            compute: || Ok(criterion()?.c2()),
+            expect: Expect::Reproduced,
+        },
+        Claim {
+            id: "ch4.critical_tabor",
+            source: "Sec. 4.3",
+            quantity: "critical Tabor parameter mu_T* of (4.23), unrounded coefficients",
+            printed: "0.20155",
+            precision: Precision::Printed,
+            code: "models::lennard_jones::InstabilityCriterion::critical_tabor",
+            compute: || Ok(criterion()?.critical_tabor()),
+            expect: Expect::Differs(
+                "unrounded c1 = 23.1039, c2 = 13.7123 give 0.201584; the print follows from the rounded 23.1, 13.7 (ERRATA (4.23), claim ch4.critical_tabor_rounded)",
+            ),
+        },
+        Claim {
+            id: "ch4.critical_tabor_rounded",
+            source: "Sec. 4.3",
+            quantity: "critical Tabor parameter mu_T* of (4.23) with the printed, rounded c1 = 23.1, c2 = 13.7",
+            printed: "0.20155",
+            precision: Precision::Printed,
+            code: "models::lennard_jones::InstabilityCriterion::from_coefficients",
+            compute: || Ok(InstabilityCriterion::from_coefficients(23.1, 13.7)?.critical_tabor()),
+            expect: Expect::Reproduced,
+        },
+        Claim {
+            id: "ch4.critical_separation",
+            source: "Sec. 4.3",
+            quantity: "double root z_c*/zeta0 of (4.23) at mu_T*, unrounded coefficients",
+            printed: "1.08258",
+            precision: Precision::Printed,
+            code: "models::lennard_jones::InstabilityCriterion::double_root",
+            compute: || Ok(criterion()?.double_root()),
+            expect: Expect::Differs(
+                "unrounded c1, c2 give 1.082713; the print follows from the rounded 23.1, 13.7 (ERRATA (4.23), claim ch4.critical_separation_rounded)",
+            ),
+        },
+        Claim {
+            id: "ch4.critical_separation_rounded",
+            source: "Sec. 4.3",
+            quantity: "double root z_c*/zeta0 of (4.23) with the printed, rounded c1 = 23.1, c2 = 13.7",
+            printed: "1.08258",
+            precision: Precision::Printed,
+            code: "models::lennard_jones::InstabilityCriterion::from_coefficients",
+            compute: || Ok(InstabilityCriterion::from_coefficients(23.1, 13.7)?.double_root()),
+            expect: Expect::Reproduced,
+        },
+        Claim {
+            id: "ch4.fig4.5_ell",
+            source: "Fig. 4.5",
+            quantity: "ell = pi w/(E* R), w = C6 A_H/(16 pi zeta0^2) (4.7b), R = 5 um, E = 4.4 MPa, nu = 0.25, A_H = 2e-21 J",
+            printed: "4.51e-5",
+            precision: Precision::Printed,
+            code: "models::lennard_jones::LennardJones::ell",
+            compute: || Ok(fig4_5_ell_chi()?.0),
+            expect: Expect::Reproduced,
+        },
+        Claim {
+            id: "ch4.fig4.5_chi",
+            source: "Fig. 4.5",
+            quantity: "chi = w/(E* delta0), delta0 = (9 sqrt3/16) zeta0 from the consistent traction (ERRATA (4.19); the printed c3 of Sec. 4.4 would give 0.446)",
+            printed: "0.124",
+            precision: Precision::Printed,
+            code: "models::lennard_jones::LennardJones::chi",
+            compute: || Ok(fig4_5_ell_chi()?.1),
+            expect: Expect::Reproduced,
+        },
+        Claim {
+            id: "ch4.fig4.7_ell",
+            source: "Fig. 4.7",
+            quantity: "ell = pi w/(E* R) of the wavy-tip theory (printed as chi, ERRATA (4.26)), R = 10 um, E = 2.2 MPa, nu = 0.25, A_H = 1e-21 J",
+            printed: "2.26e-5",
+            precision: Precision::Printed,
+            code: "models::lennard_jones::LennardJones::ell",
+            compute: || Ok(interaction(1e-21)?.ell(FIG4_7_RADIUS, effective_modulus(2.2e6))),
+            expect: Expect::Reproduced,
+        },
+        Claim {
+            id: "ch4.fig4.7_amplitude_ratio",
+            source: "Fig. 4.7",
+            quantity: "A/R for A = 1.25 nm, R = 10 um",
+            printed: "1.25e-4",
+            precision: Precision::Relative(1e-12),
+            code: "reproduction::ch4",
+            compute: || Ok(FIG4_7_AMPLITUDE / FIG4_7_RADIUS),
+            expect: Expect::Reproduced,
+        },
+        Claim {
+            id: "ch4.fig4.7_wavelength_ratio",
+            source: "Fig. 4.7",
+            quantity: "lambda/R for lambda = 0.125 um, R = 10 um",
+            printed: "1.25e-2",
+            precision: Precision::Relative(1e-12),
+            code: "reproduction::ch4",
+            compute: || Ok(FIG4_7_WAVELENGTH / FIG4_7_RADIUS),
+            expect: Expect::Reproduced,
+        },
+        Claim {
+            id: "ch4.aspect_ratio",
+            source: "Sec. 4.5.1",
+            quantity: "A/lambda of the tip of Figs. 4.7-4.8 (A = 1.25 nm, lambda = 0.125 um)",
+            printed: "0.01",
+            precision: Precision::Relative(1e-12),
+            code: "reproduction::ch4",
+            compute: || Ok(FIG4_7_AMPLITUDE / FIG4_7_WAVELENGTH),
+            expect: Expect::Reproduced,
+        },
+        Claim {
+            id: "ch4.asperity_radius_ratio",
+            source: "Sec. 4.5.1",
+            quantity: "R_a/R = lambda^2/(4 pi^2 A R) of the tip of Figs. 4.7-4.8",
+            printed: "0.0317",
+            precision: Precision::Printed,
+            code: "reproduction::ch4::asperity_radius_ratio",
+            compute: || Ok(asperity_radius_ratio()),
+            expect: Expect::Reproduced,
+        },
+        Claim {
+            id: "ch4.contact_radius_ratio",
+            source: "Sec. 4.5.1",
+            quantity: "ratio of the JKR pull-in contact radii (2 pi R_a w/E*)^(1/3)/(2 pi R w/E*)^(1/3), printed as R_a/R",
+            printed: "0.0317",
+            precision: Precision::Printed,
+            code: "reproduction::ch4::asperity_radius_ratio",
+            compute: || Ok(asperity_radius_ratio().cbrt()),
+            expect: Expect::Differs(
+                "the ratio of the contact radii is (R_a/R)^(1/3) = 0.316; the text prints R_a/R (ERRATA Sec. 4.5.1)",
+            ),
+        },
+    ]
+}
