@@ -660,7 +660,6 @@ pub fn coupled_cycle(
         refine_to: None,
         trial_iterations: opts.max_iterations,
         unstable_start_is_jump: true,
-        extrapolate: false,
     };
     let unloading: Vec<f64> = grid.iter().rev().copied().collect();
     let total = 2 * grid.len();

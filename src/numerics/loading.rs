@@ -59,11 +59,6 @@ pub struct PathOptions {
     /// on a branch that goes on (a softening contact edge), and each such step would be
     /// bisected for nothing.
     pub unstable_start_is_jump: bool,
-    /// Start the minimisation at each new target from the secant extrapolation of the last
-    /// two states on the branch instead of from the last state. Jumps are still decided from
-    /// the last state: where the extrapolated start ends in a jump (or does not converge), the
-    /// step is repeated from the last state before anything is concluded.
-    pub extrapolate: bool,
 }
 
 /// One accepted state of the path, as handed to the visitor.
@@ -128,20 +123,14 @@ pub fn follow<C: Controlled>(
     };
     // Minimise from `x` at `at` into `trial`: Some((report, jumped, stable)), or None when a
     // bisection trial ran out of iterations (a jump under way).
-    // The branch's slope dx/dλ from the last two states on it (for `extrapolate`).
-    let mut slope: Option<Vec<f64>> = None;
     let mut attempt = |x: &[f64],
                        trial: &mut Vec<f64>,
                        at: f64,
                        bisecting: bool,
-                       predicted: Option<(&[f64], f64)>,
                        stats: &mut PathStats|
      -> Result<Option<(NewtonReport, bool, bool)>> {
         trial.clear();
-        match predicted {
-            Some((dx, dl)) => trial.extend(x.iter().zip(dx).map(|(xi, di)| xi + di * dl)),
-            None => trial.extend_from_slice(x),
-        }
+        trial.extend_from_slice(x);
         let e = model.at(at);
         stats.minimisations += 1;
         let newton = if bisecting { &trial_opts } else { &opts.newton };
@@ -162,11 +151,7 @@ pub fn follow<C: Controlled>(
     for (k, &target) in targets.iter().enumerate() {
         loop {
             let refine = opts.refine_to.filter(|&tol| (target - lambda).abs() > tol);
-            let predicted = slope.as_deref().map(|dx| (dx, target - lambda));
-            let mut first = attempt(x, &mut trial, target, refine.is_some(), predicted, &mut stats)?;
-            if predicted.is_some() && !matches!(first, Some((_, false, _))) {
-                first = attempt(x, &mut trial, target, refine.is_some(), None, &mut stats)?;
-            }
+            let first = attempt(x, &mut trial, target, refine.is_some(), &mut stats)?;
             if let Some((rep, jumped, stable)) = first
                 && (!jumped || refine.is_none())
             {
@@ -181,7 +166,6 @@ pub fn follow<C: Controlled>(
                     report: rep,
                     target: k,
                 })?;
-                slope = (opts.extrapolate && !jumped).then(|| secant(x, &trial, target - lambda));
                 std::mem::swap(x, &mut trial);
                 lambda = target;
                 break;
@@ -191,7 +175,7 @@ pub fn follow<C: Controlled>(
             let mut hi = target;
             while (hi - lambda).abs() > tol {
                 let mid = 0.5 * (lambda + hi);
-                match attempt(x, &mut trial, mid, true, None, &mut stats)? {
+                match attempt(x, &mut trial, mid, true, &mut stats)? {
                     Some((rep, false, stable)) => {
                         stats.states += 1;
                         stats.all_stable &= stable;
@@ -216,7 +200,7 @@ pub fn follow<C: Controlled>(
             let mut at = hi;
             let (rep, jumped, stable) = loop {
                 let full = (at - target).abs() <= f64::EPSILON * target.abs().max(1.0);
-                match attempt(x, &mut trial, at, !full, None, &mut stats)? {
+                match attempt(x, &mut trial, at, !full, &mut stats)? {
                     Some(found) => break found,
                     None => {
                         let further = lambda + 2.0 * (at - lambda);
@@ -239,7 +223,6 @@ pub fn follow<C: Controlled>(
                 report: rep,
                 target: k,
             })?;
-            slope = (opts.extrapolate && !jumped).then(|| secant(x, &trial, at - lambda));
             std::mem::swap(x, &mut trial);
             lambda = at;
             if at == target {
@@ -248,11 +231,6 @@ pub fn follow<C: Controlled>(
         }
     }
     Ok(stats)
-}
-
-/// (b − a)/dλ.
-fn secant(a: &[f64], b: &[f64], dl: f64) -> Vec<f64> {
-    a.iter().zip(b).map(|(ai, bi)| (bi - ai) / dl).collect()
 }
 
 #[cfg(test)]
@@ -302,7 +280,6 @@ mod tests {
             refine_to: refine,
             trial_iterations: 50,
             unstable_start_is_jump: true,
-            extrapolate: true,
         };
         let targets: Vec<f64> = (0..=10).map(|i| -0.1 + 0.06 * i as f64).collect();
         let mut states = Vec::new();

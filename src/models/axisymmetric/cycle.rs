@@ -157,7 +157,6 @@ pub fn run_cycle(
         refine_to: Some(opts.refine_to / tip.scales().length),
         trial_iterations: 40,
         unstable_start_is_jump: false,
-        extrapolate: true,
     };
     let mut solver = StableNewton::new(&tip.energy_at(approach(opts.h_start)))?;
     let mut u = vec![0.0; tip.len()];
