@@ -19,6 +19,7 @@ use crate::params::{ParamSpec, ParamValues, Params};
 pub mod fig1;
 pub mod fig2;
 pub mod fig3;
+pub mod fig4;
 pub mod fig5;
 pub mod fig6;
 pub mod figc;
@@ -150,6 +151,7 @@ pub fn all() -> Vec<&'static dyn SceneDyn> {
         fig1::SCENES,
         fig2::SCENES,
         fig3::SCENES,
+        fig4::SCENES,
         fig5::SCENES,
         fig6::SCENES,
         figc::SCENES,
@@ -180,7 +182,7 @@ pub const CHAPTERS: &[(&str, &str)] = &[
     ("1", "Classical theories and Fuller-Tabor"),
     ("2", "Machine stiffness (JKR with a spring)"),
     ("3", "Maugis-Dugdale and depth-dependent hysteresis"),
-    ("4", "Finite elements with a Lennard-Jones body force"),
+    ("4", "Lennard-Jones adhesion of smooth and wavy tips"),
     ("5", "Fibrils and spring arrays"),
     ("6", "Peeling from wavy substrates"),
     ("C", "Random rough surfaces (appendix C)"),

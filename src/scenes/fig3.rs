@@ -42,7 +42,7 @@ fn check_list(name: &str, values: &[f64]) -> Result<()> {
 /// Draw one MD curve with its displacement-controlled cycle into `panel`: stable runs solid,
 /// unstable dashed, the free branch P = 0, the jumps, pull-in and pull-off markers and the
 /// shaded loss. Returns the loss.
-fn draw_md(
+pub(crate) fn draw_md(
     panel: &mut Panel,
     md: &MaugisDugdale,
     name: &str,
