@@ -79,7 +79,10 @@ fn tip_for(
     let w = lj.work_of_adhesion();
     // JKR contact radius at depth |h_min|: a²/R − √(2πwa/E*) = |h_min| (bisection on a).
     let depth = |a: f64| a * a / radius - (2.0 * PI * w * a / modulus).sqrt();
-    let (mut lo, mut hi) = (0.0, (radius * h_min.abs()).sqrt() + (4.0 * PI * w * radius * radius / modulus).cbrt());
+    let (mut lo, mut hi) = (
+        0.0,
+        (radius * h_min.abs()).sqrt() + (4.0 * PI * w * radius * radius / modulus).cbrt(),
+    );
     for _ in 0..100 {
         let mid = 0.5 * (lo + hi);
         if depth(mid) < h_min.abs() {
@@ -139,7 +142,11 @@ fn draw_cycle(panel: &mut Panel, cycle: &TipCycle, name: &str, color: usize, sca
             run.push(pt(s));
         }
         if run.len() > 1 {
-            panel.add(Series::new(name, Style::Stable, run).with_color(color).without_legend());
+            panel.add(
+                Series::new(name, Style::Stable, run)
+                    .with_color(color)
+                    .without_legend(),
+            );
         }
     }
     if let Some(last) = panel.series.iter_mut().rev().find(|s| s.name == name) {
@@ -171,18 +178,33 @@ impl Scene for Fig4_5 {
         path is the measured one: stable states solid, jumps dashed; the MD reference shows its unstable \
         branch dashed and its loss shaded.";
     const RESULTS: &'static [(&'static str, &'static str)] = &[
-        ("tabor_parameter_norm", "mu_T = (R w^2/(E*^2 zeta0^3))^(1/3), Eq. (1.8)"),
+        (
+            "tabor_parameter_norm",
+            "mu_T = (R w^2/(E*^2 zeta0^3))^(1/3), Eq. (1.8)",
+        ),
         ("ell_norm", "ell = pi w/(E* R), Eq. (4.25)"),
-        ("chi_norm", "chi = w/(E* delta0), delta0 = (9 sqrt 3/16) zeta0, Eq. (4.25)"),
-        ("adhesive_force_norm", "P_adh/(pi w R) of the surface model (JKR 1.5, DMT 2)"),
-        ("md_adhesive_force_norm", "pull-off force of the MD theory / (pi w R)"),
+        (
+            "chi_norm",
+            "chi = w/(E* delta0), delta0 = (9 sqrt 3/16) zeta0, Eq. (4.25)",
+        ),
+        (
+            "adhesive_force_norm",
+            "P_adh/(pi w R) of the surface model (JKR 1.5, DMT 2)",
+        ),
+        (
+            "md_adhesive_force_norm",
+            "pull-off force of the MD theory / (pi w R)",
+        ),
         ("hysteresis_norm", "H/(2E* R^3), loop area of the surface model"),
         ("md_loss_norm", "loss of the MD theory (3.4) / (2E* R^3)"),
         ("pull_in_depth_norm", "h/R at the pull-in of the surface model"),
         ("pull_off_depth_norm", "h/R at the pull-off of the surface model"),
         ("jumps_count", "jumps on the cycle (2: one pull-in, one pull-off)"),
         ("rings_count", "rings of the surface model"),
-        ("all_states_stable_count", "1 when every state was certified stable"),
+        (
+            "all_states_stable_count",
+            "1 when every state was certified stable",
+        ),
     ];
 
     fn quick(p: &mut Self::Params) {
@@ -248,8 +270,18 @@ impl Scene for Fig4_5 {
             Axis::linear("Indentation depth h/R", ""),
             Axis::linear("Contact force P/(2E*R²)", ""),
         )
-        .titled("(a)", format!("μ_T = {:.3}", lj.tabor_parameter(p.radius, modulus)));
-        let md_loss = draw_md(&mut ph, &md, &format!("MD (3.3), χ = {chi:.3}"), 7, a_max.max(1e-6), 300)?;
+        .titled(
+            "(a)",
+            format!("μ_T = {:.3}", lj.tabor_parameter(p.radius, modulus)),
+        );
+        let md_loss = draw_md(
+            &mut ph,
+            &md,
+            &format!("MD (3.3), χ = {chi:.3}"),
+            7,
+            a_max.max(1e-6),
+            300,
+        )?;
         draw_cycle(&mut ph, &cycle, "surface model (LJ)", 0, scale);
         fig.panels.push(ph);
 
@@ -286,7 +318,10 @@ impl Scene for Fig4_5 {
         fig.result("tabor_parameter_norm", lj.tabor_parameter(p.radius, modulus));
         fig.result("ell_norm", ell);
         fig.result("chi_norm", chi);
-        fig.result("adhesive_force_norm", -cycle.adhesive_force() / (PI * w * p.radius));
+        fig.result(
+            "adhesive_force_norm",
+            -cycle.adhesive_force() / (PI * w * p.radius),
+        );
         // The most tensile force on the MD path an experiment follows (its stable states),
         // as P_adh of the model: not the force at the displacement-controlled fold.
         let md_adhesive = md_curve
@@ -295,18 +330,30 @@ impl Scene for Fig4_5 {
             .map(|s| s.p)
             .fold(0.0, f64::min)
             .min(md_cycle.pull_off_from.p);
-        fig.result("md_adhesive_force_norm", -md_adhesive * scale.1 / (PI * w * p.radius));
+        fig.result(
+            "md_adhesive_force_norm",
+            -md_adhesive * scale.1 / (PI * w * p.radius),
+        );
         fig.result("hysteresis_norm", cycle.hysteresis() / (scale.1 * p.radius));
         fig.result("md_loss_norm", md_loss);
         // Without instabilities (small μ_T) there is no pull-in or pull-off depth: 0, and a note.
-        fig.result("pull_in_depth_norm", pull_in.map_or(0.0, |j| j.before.depth / p.radius));
-        fig.result("pull_off_depth_norm", pull_off.map_or(0.0, |j| j.before.depth / p.radius));
+        fig.result(
+            "pull_in_depth_norm",
+            pull_in.map_or(0.0, |j| j.before.depth / p.radius),
+        );
+        fig.result(
+            "pull_off_depth_norm",
+            pull_off.map_or(0.0, |j| j.before.depth / p.radius),
+        );
         if cycle.jumps.is_empty() {
             fig.note("No instability on this cycle: the pull-in and pull-off depths are reported as 0.");
         }
         fig.result("jumps_count", cycle.jumps.len() as f64);
         fig.result("rings_count", tip.len() as f64);
-        fig.result("all_states_stable_count", f64::from(u8::from(cycle.stats.all_stable)));
+        fig.result(
+            "all_states_stable_count",
+            f64::from(u8::from(cycle.stats.all_stable)),
+        );
         fig.note(format!(
             "Surface model: {} rings of {:.2} b (b = ζ0²E*/w = {:.2} nm), {} Gauss points per interval; \
              {} states, jumps located to 1e-3 ζ0; every state certified stable: {}.",

@@ -144,3 +144,64 @@ fn plain_newton_finds_the_saddle_the_stable_minimiser_avoids() {
     assert!(solver.is_stable(&e, &stable).expect("test"));
     assert!(e.energy(&stable) < e.energy(&saddle));
 }
+
+/// Fig. 4.7: R = 10 µm, E = 2.2 MPa, ν = 0.25, A_H = 1e-21 J, σ = 1 nm, C6 = 3, C12 = 1, and the
+/// waviness A = `amplitude`, λ = 0.125 µm, on the grid of [`fig4_5`].
+fn fig4_7(amplitude: f64) -> TipParams {
+    let nu: f64 = 0.25;
+    TipParams {
+        radius: 10e-6,
+        modulus: 2.2e6 / (1.0 - nu * nu),
+        hamaker: 1e-21,
+        amplitude,
+        wavelength: 1.25e-7,
+        fine_radius: 4.5e-7,
+        ..fig4_5(1.0)
+    }
+}
+
+/// A cycle from 25 ζ0 apart (beyond every pull-off here) to `h_min` [m], steps of 0.25 ζ0.
+fn cycle_to(tip: &Tip, h_min: f64) -> TipCycle {
+    let z = tip.scales().length;
+    let opts = CycleOptions {
+        h_start: 25.0 * z,
+        h_min,
+        step: 0.25 * z,
+        refine_to: 1e-3 * z,
+        contact_gap: 1e-9,
+        keep_profiles: false,
+    };
+    run_cycle(tip, &opts, |_| Ok(())).expect("cycle")
+}
+
+// Sec. 4.5.1, Fig. 4.7a: depth-dependent hysteresis. The wavy tip (A = 1.25 nm) pressed to
+// |h_min|/R = 7e-4 meets more asperity-level instabilities than pressed to 1.5e-4, and loses
+// more energy; the smooth tip's single loop does not depend on the depth (both cycles end
+// free, so the loss is the loop's area).
+#[test]
+fn wavy_tip_loss_grows_with_depth_and_the_smooth_tip_loss_does_not() {
+    let depths = [1.5e-4 * 10e-6, 7e-4 * 10e-6];
+    let mut losses = Vec::new();
+    for amplitude in [1.25e-9, 0.0] {
+        let tip = Tip::new(&fig4_7(amplitude)).expect("tip");
+        let scale = 2.0 * tip.params().modulus * 1e-15; // 2E*R³
+        let cycles: Vec<TipCycle> = depths.iter().map(|&h| cycle_to(&tip, -h)).collect();
+        for c in &cycles {
+            assert!(c.stats.all_stable);
+            // Ends free: the last jump is a pull-off to no contact.
+            let last = c.jumps.last().expect("jumps");
+            assert!(!last.loading && last.after.contact.radius() == 0.0);
+        }
+        let (shallow, deep) = (&cycles[0], &cycles[1]);
+        let (h0, h1) = (shallow.hysteresis() / scale, deep.hysteresis() / scale);
+        losses.push((h0, h1, shallow.jumps.len(), deep.jumps.len()));
+        if amplitude > 0.0 {
+            assert!(deep.jumps.len() > shallow.jumps.len(), "{losses:?}");
+            assert!(h1 > 1.3 * h0, "wavy: {h0} -> {h1}");
+        } else {
+            assert_eq!((shallow.jumps.len(), deep.jumps.len()), (2, 2));
+            assert!((h1 - h0).abs() < 0.02 * h0, "smooth: {h0} -> {h1}");
+        }
+    }
+    eprintln!("(H shallow, H deep, jumps shallow, jumps deep) / 2E*R^3, wavy then smooth: {losses:?}");
+}
