@@ -10,21 +10,9 @@ use adhesion::models::axisymmetric::tip::{Tip, TipParams};
 use criterion::{Criterion, criterion_group, criterion_main};
 
 fn fig4_5(fine_radius: f64) -> TipParams {
-    let nu: f64 = 0.25;
     TipParams {
-        radius: 5e-6,
-        modulus: 4.4e6 / (1.0 - nu * nu),
-        c6: 3.0,
-        c12: 1.0,
-        sigma: 1e-9,
-        hamaker: 2e-21,
-        amplitude: 0.0,
-        wavelength: 1.25e-7,
-        ring_width: 0.25,
         fine_radius,
-        growth: 1.1,
-        quadrature_points: 4,
-        reach: 30.0,
+        ..TipParams::default()
     }
 }
 

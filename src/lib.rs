@@ -6,7 +6,8 @@
 //! and the Fuller-Tabor rough-surface model (ch. 1, 3), JKR with machine stiffness and the fitting
 //! of measured force-indentation curves (ch. 2, app. A), the Maugis-Dugdale/Nayak model of
 //! depth-dependent hysteresis (ch. 3, app. B), the Lennard-Jones interaction, the critical
-//! separation of the contact instabilities and the JKR theory of a wavy tip (ch. 4), spring-array
+//! separation of the contact instabilities, the axisymmetric surface model of smooth and wavy
+//! tips with its displacement-controlled cycles, and the JKR theory of a wavy tip (ch. 4), spring-array
 //! models of fibrillar adhesion on random rough surfaces (ch. 5, app. C) and peeling from wavy
 //! substrates (ch. 6).
 //!
@@ -37,10 +38,15 @@
 //! | δ₀ | `dugdale_range()` | range of the equivalent Dugdale zone, (9√3/16) ζ₀ [m] |
 //! | ℓ, χ | `ell`, `chi` | πw/(E*R) and w/(E*δ₀), Eqs. (3.1)-(3.2), (4.25) |
 //! | Ā, λ̄ | `amplitude_bar`, `wavelength_bar` | amplitude A and wavelength λ of the wavy tip (4.10), over R |
+//! | A, λ | `amplitude`, `wavelength` | waviness of the tip (4.10) [m] |
+//! | b | `TipScales::radial` | radial scale ζ₀²E*/w of the surface model; ring widths are in b |
 //! | σ_rms | `sigma` | RMS roughness [m] |
 //! | h_o, P_o | | Fuller-Tabor scales \|h_D\|, \|P_C\| |
 //!
 //! Non-dimensional quantities carry the suffix `_bar` in code and `_norm` in exported results.
+//!
+//! Other sources are cited by a short key: `[Johnson85]` K. L. Johnson, *Contact Mechanics*,
+//! Cambridge University Press, 1985.
 
 pub mod cli;
 pub mod error;

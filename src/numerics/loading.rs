@@ -94,6 +94,41 @@ pub struct PathStats {
     pub all_stable: bool,
 }
 
+/// The walk's current state and the trial just minimised.
+struct Current<'a> {
+    x: &'a mut Vec<f64>,
+    trial: &'a mut Vec<f64>,
+    lambda: &'a mut f64,
+    stats: &'a mut PathStats,
+}
+
+impl Current<'_> {
+    /// Hand the trial state at `at` (with its report, whether it jumped and whether it is
+    /// stable) to the visitor and make it the current state.
+    fn accept(
+        &mut self,
+        visit: &mut impl FnMut(&Visit<'_>) -> Result<()>,
+        at: f64,
+        (report, jumped, stable): (NewtonReport, bool, bool),
+        target: usize,
+    ) -> Result<()> {
+        self.stats.states += 1;
+        self.stats.jumps += usize::from(jumped);
+        self.stats.all_stable &= stable;
+        visit(&Visit {
+            lambda: at,
+            x: self.trial,
+            jumped_from: jumped.then_some((*self.lambda, self.x.as_slice())),
+            stable,
+            report,
+            target,
+        })?;
+        std::mem::swap(self.x, self.trial);
+        *self.lambda = at;
+        Ok(())
+    }
+}
+
 /// Walk the control values `targets` from the stable state `x` (updated in place to the last
 /// state), handing every accepted state to `visit`.
 ///
@@ -155,19 +190,13 @@ pub fn follow<C: Controlled>(
             if let Some((rep, jumped, stable)) = first
                 && (!jumped || refine.is_none())
             {
-                stats.states += 1;
-                stats.jumps += usize::from(jumped);
-                stats.all_stable &= stable;
-                visit(&Visit {
-                    lambda: target,
-                    x: &trial,
-                    jumped_from: jumped.then_some((lambda, x.as_slice())),
-                    stable,
-                    report: rep,
-                    target: k,
-                })?;
-                std::mem::swap(x, &mut trial);
-                lambda = target;
+                let mut current = Current {
+                    x,
+                    trial: &mut trial,
+                    lambda: &mut lambda,
+                    stats: &mut stats,
+                };
+                current.accept(&mut visit, target, (rep, jumped, stable), k)?;
                 break;
             }
             // Bisect towards the fold: accept trial states that stay on the branch.
@@ -177,18 +206,13 @@ pub fn follow<C: Controlled>(
                 let mid = 0.5 * (lambda + hi);
                 match attempt(x, &mut trial, mid, true, &mut stats)? {
                     Some((rep, false, stable)) => {
-                        stats.states += 1;
-                        stats.all_stable &= stable;
-                        visit(&Visit {
-                            lambda: mid,
-                            x: &trial,
-                            jumped_from: None,
-                            stable,
-                            report: rep,
-                            target: k,
-                        })?;
-                        std::mem::swap(x, &mut trial);
-                        lambda = mid;
+                        let mut current = Current {
+                            x,
+                            trial: &mut trial,
+                            lambda: &mut lambda,
+                            stats: &mut stats,
+                        };
+                        current.accept(&mut visit, mid, (rep, false, stable), k)?;
                     }
                     _ => hi = mid,
                 }
@@ -212,19 +236,13 @@ pub fn follow<C: Controlled>(
                     }
                 }
             };
-            stats.states += 1;
-            stats.jumps += usize::from(jumped);
-            stats.all_stable &= stable;
-            visit(&Visit {
-                lambda: at,
-                x: &trial,
-                jumped_from: jumped.then_some((lambda, x.as_slice())),
-                stable,
-                report: rep,
-                target: k,
-            })?;
-            std::mem::swap(x, &mut trial);
-            lambda = at;
+            let mut current = Current {
+                x,
+                trial: &mut trial,
+                lambda: &mut lambda,
+                stats: &mut stats,
+            };
+            current.accept(&mut visit, at, (rep, jumped, stable), k)?;
             if at == target {
                 break;
             }

@@ -15,21 +15,10 @@ use adhesion::numerics::newton::{Energy, NewtonOptions, StableNewton, plain_newt
 /// Fig. 4.5: R = 5 µm, E = 4.4 MPa, ν = 0.25, C6 = 3, C12 = 1, σ = 1 nm, A_H = 2e-21 J; a
 /// grid of ring width 0.25 b (b = ζ0²E*/w ≈ 4.9 nm) over 250 nm, 4 Gauss points per interval.
 fn fig4_5(modulus_factor: f64) -> TipParams {
-    let nu: f64 = 0.25;
+    let d = TipParams::default();
     TipParams {
-        radius: 5e-6,
-        modulus: modulus_factor * 4.4e6 / (1.0 - nu * nu),
-        c6: 3.0,
-        c12: 1.0,
-        sigma: 1e-9,
-        hamaker: 2e-21,
-        amplitude: 0.0,
-        wavelength: 1.25e-7,
-        ring_width: 0.25,
-        fine_radius: 2.5e-7,
-        growth: 1.1,
-        quadrature_points: 4,
-        reach: 30.0,
+        modulus: modulus_factor * d.modulus,
+        ..d
     }
 }
 

@@ -39,6 +39,7 @@ use std::f64::consts::PI;
 
 use crate::error::{Error, Result};
 use crate::models::axisymmetric::kernel::RingGrid;
+use crate::models::lennard_jones::{LennardJones, LennardJonesParams};
 use crate::numerics::loading::Controlled;
 use crate::numerics::newton::Energy;
 
@@ -82,6 +83,29 @@ pub struct TipParams {
     pub reach: f64,
 }
 
+impl Default for TipParams {
+    /// The smooth tip of Fig. 4.5 (R = 5 µm, E = 4.4 MPa, ν = 0.25, C6 = 3, C12 = 1, σ = 1 nm,
+    /// A_H = 2e-21 J) on the grid that keeps the contact edge from hopping (rings of 0.25 b, 4
+    /// Gauss points per interval) over a fine zone of 250 nm (cycles to a few ζ0 deep).
+    fn default() -> Self {
+        Self {
+            radius: 5e-6,
+            modulus: 4.4e6 / (1.0 - 0.25 * 0.25),
+            c6: 3.0,
+            c12: 1.0,
+            sigma: 1e-9,
+            hamaker: 2e-21,
+            amplitude: 0.0,
+            wavelength: 1.25e-7,
+            ring_width: 0.25,
+            fine_radius: 2.5e-7,
+            growth: 1.1,
+            quadrature_points: 4,
+            reach: 30.0,
+        }
+    }
+}
+
 /// The scales of the non-dimensional variables.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TipScales {
@@ -119,9 +143,8 @@ pub struct Tip {
     profile: Vec<f64>,
     /// Stiffness K (row-major, non-dimensional).
     stiffness: Vec<f64>,
-    /// Coefficients of φ̂(ĝ) = −alpha2/ĝ² + alpha8/ĝ⁸ (energy per area in p_ref · length).
-    alpha2: f64,
-    alpha8: f64,
+    /// The plate interaction (4.4)-(4.5) in SI units; the non-dimensional φ̂ is read from it.
+    law: LennardJones,
     /// Largest relative asymmetry of the collocation flexibility.
     asymmetry: f64,
 }
@@ -141,16 +164,10 @@ impl Tip {
         };
         positive("radius", p.radius)?;
         positive("modulus", p.modulus)?;
-        positive("c12", p.c12)?;
-        positive("sigma", p.sigma)?;
-        positive("hamaker", p.hamaker)?;
         positive("wavelength", p.wavelength)?;
         positive("ring_width", p.ring_width)?;
         positive("fine_radius", p.fine_radius)?;
         positive("reach", p.reach)?;
-        if !(p.c6 >= 0.0 && p.c6.is_finite()) {
-            return Err(Error::invalid("c6", p.c6, "must be zero or positive"));
-        }
         if !(p.amplitude >= 0.0 && p.amplitude.is_finite()) {
             return Err(Error::invalid(
                 "amplitude",
@@ -158,14 +175,19 @@ impl Tip {
                 "must be zero or positive",
             ));
         }
-        let a2 = p.hamaker * p.c6 / (12.0 * PI);
-        let a8 = p.hamaker * p.c12 * p.sigma.powi(6) / (360.0 * PI);
-        let (length, traction, w) = if p.c6 > 0.0 {
-            let zeta0 = (2.0 * p.c12 / (15.0 * p.c6)).powf(1.0 / 6.0) * p.sigma; // (4.6)
-            let w = p.c6 / (16.0 * PI) * p.hamaker / (zeta0 * zeta0); // (4.7b)
-            (zeta0, w / zeta0, w)
+        // Validates C6, C12, σ, A_H, naming them.
+        let law = LennardJones::new(&LennardJonesParams {
+            c6: p.c6,
+            c12: p.c12,
+            sigma: p.sigma,
+            hamaker: p.hamaker,
+        })?;
+        let w = law.work_of_adhesion();
+        let (length, traction) = if p.c6 > 0.0 {
+            (law.zeta0(), w / law.zeta0())
         } else {
-            (p.sigma, a8 / p.sigma.powi(9), 0.0)
+            // The repulsive term's own scale, C12 A_H/(360πσ³).
+            (p.sigma, law.energy_scale() * p.c12 / (360.0 * p.sigma))
         };
         let radial = length * p.modulus / traction;
         let scales = TipScales {
@@ -209,8 +231,7 @@ impl Tip {
             points,
             profile,
             stiffness,
-            alpha2: a2 / (traction * length.powi(3)),
-            alpha8: a8 / (traction * length.powi(9)),
+            law,
             asymmetry,
         })
     }
@@ -250,27 +271,22 @@ impl Tip {
         self.asymmetry
     }
 
-    /// Plate energy per unit area φ̂(ĝ), Eq. (4.4) (non-dimensional).
+    /// Plate energy per unit area φ̂(ĝ) = φ(ĝ ℓ)/(p_ref ℓ), Eq. (4.4), ℓ the normal unit.
     pub fn phi(&self, g: f64) -> f64 {
-        let g2 = 1.0 / (g * g);
-        let g8 = g2 * g2 * g2 * g2;
-        -self.alpha2 * g2 + self.alpha8 * g8
+        let s = &self.scales;
+        self.law.plate_energy(g * s.length) / (s.traction * s.length)
     }
 
-    /// φ̂'(ĝ): the traction, positive when attractive, Eqs. (4.5), (4.19) (ERRATA).
+    /// φ̂'(ĝ): the traction over p_ref, positive when attractive, Eqs. (4.5), (4.19) (ERRATA).
     pub fn phi_prime(&self, g: f64) -> f64 {
-        let gi = 1.0 / g;
-        let g3 = gi * gi * gi;
-        let g9 = g3 * g3 * g3;
-        2.0 * self.alpha2 * g3 - 8.0 * self.alpha8 * g9
+        let s = &self.scales;
+        self.law.traction(g * s.length) / s.traction
     }
 
-    /// φ̂''(ĝ).
+    /// φ̂''(ĝ): the traction's slope in normal units.
     pub fn phi_second(&self, g: f64) -> f64 {
-        let gi = 1.0 / g;
-        let g4 = gi * gi * gi * gi;
-        let g10 = g4 * g4 * gi * gi;
-        -6.0 * self.alpha2 * g4 + 72.0 * self.alpha8 * g10
+        let s = &self.scales;
+        self.law.traction_slope(g * s.length) * s.length / s.traction
     }
 
     /// Gap at ring i for approach `delta` (normal units).
