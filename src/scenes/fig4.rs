@@ -23,7 +23,11 @@ use crate::models::wavy_jkr::{WavyJkr, WavyJkrParams};
 use crate::params::Range;
 
 /// The scenes of this chapter, in figure order.
-pub const SCENES: &[&dyn SceneDyn] = &[&Registered::<Fig4_5>::NEW, &Registered::<Fig4_7>::NEW];
+pub const SCENES: &[&dyn SceneDyn] = &[
+    &Registered::<Fig4_5>::NEW,
+    &Registered::<Fig4_7>::NEW,
+    &Registered::<Fig4_8>::NEW,
+];
 
 crate::scene_params! {
     /// Parameters of scene fig4.5 (section 4.4, the caption of Fig. 4.5). The maximum depth is
@@ -407,6 +411,30 @@ crate::scene_params! {
     }
 }
 
+/// The states A-D of Figs. 4.7a and 4.8 on a (deep) cycle: A, B before and after the loading
+/// jump in contact nearest h/R = −4e-4; C, D the loading and unloading states nearest
+/// h/R = 6e-5 (two metastable states at one depth).
+fn marked_states(cycle: &TipCycle, radius: f64) -> [Option<TipState>; 4] {
+    let off = |s: &TipState, at: f64| (s.depth / radius - at).abs();
+    let jump = cycle
+        .jumps
+        .iter()
+        .filter(|j| j.loading && j.before.contact.radius() > 0.0)
+        .min_by(|a, b| off(&a.before, -4e-4).total_cmp(&off(&b.before, -4e-4)));
+    let nearest = |states: &[TipState]| {
+        states
+            .iter()
+            .min_by(|a, b| off(a, 6e-5).total_cmp(&off(b, 6e-5)))
+            .cloned()
+    };
+    [
+        jump.map(|j| j.before.clone()),
+        jump.map(|j| j.after.clone()),
+        nearest(&cycle.loading),
+        nearest(&cycle.unloading),
+    ]
+}
+
 /// Fig. 4.7: depth-dependent hysteresis of a wavy tip, surface model against (4.26).
 pub struct Fig4_7;
 
@@ -534,43 +562,12 @@ impl Scene for Fig4_7 {
             draw_cycle(&mut a, cycle, &format!("|h_min|/R = {depth}"), color, scale);
         }
         let pt = |s: &TipState| (s.depth / scale.0, s.force / scale.1);
-        // A, B: the loading jump of the deep cycle nearest h/R = −4e-4.
-        if let Some(j) = deep
-            .jumps
-            .iter()
-            .filter(|j| j.loading && j.before.contact.radius() > 0.0)
-            .min_by(|a, b| {
-                (a.before.depth / p.radius + 4e-4)
-                    .abs()
-                    .total_cmp(&(b.before.depth / p.radius + 4e-4).abs())
-            })
-        {
-            for (label, s) in [("A", &j.before), ("B", &j.after)] {
-                let (x, y) = pt(s);
-                a.mark(
-                    Marker::new(label, MarkerShape::Point, x, y)
-                        .with_label(label)
-                        .with_color(3),
-                );
-            }
-        }
-        // C, D: loading and unloading states of the deep cycle nearest h/R = 6e-5.
-        let nearest = |states: &[TipState]| {
-            states
-                .iter()
-                .min_by(|a, b| {
-                    (a.depth / p.radius - 6e-5)
-                        .abs()
-                        .total_cmp(&(b.depth / p.radius - 6e-5).abs())
-                })
-                .cloned()
-        };
-        for (label, s) in [("C", nearest(&deep.loading)), ("D", nearest(&deep.unloading))] {
+        for (label, s) in ["A", "B", "C", "D"].iter().zip(marked_states(&deep, p.radius)) {
             if let Some(s) = s {
                 let (x, y) = pt(&s);
                 a.mark(
-                    Marker::new(label, MarkerShape::Point, x, y)
-                        .with_label(label)
+                    Marker::new(*label, MarkerShape::Point, x, y)
+                        .with_label(*label)
                         .with_color(3),
                 );
             }
@@ -639,6 +636,140 @@ impl Scene for Fig4_7 {
             tip.len(),
             p.ring_width
         ));
+        Ok(fig)
+    }
+}
+
+/// Fig. 4.8: the deformed surface at the states A-D of Fig. 4.7a.
+pub struct Fig4_8;
+
+impl Scene for Fig4_8 {
+    type Params = Fig4_7Params;
+    const ID: &'static str = "fig4.8";
+    const CHAPTER: &'static str = "4";
+    const TITLE: &'static str = "Wavy tip: surface profiles at the states A-D";
+    const CAPTION: &'static str = "Gap between the deformed wavy tip and the substrate against the radius at the states \
+        of Fig. 4.7a on the deep cycle (surface model; only the deep cycle's |h_min| is used): (a) A and B \
+        just before and after a pull-in near h/R = -4e-4, the contact grows across an asperity by a finite \
+        amount; (b) C (loading) and D (unloading) at the same depth h/R = 6e-5, two metastable states with \
+        different contact regions. The dotted line is the contact threshold sigma (section 4.2.2).";
+    const RESULTS: &'static [(&'static str, &'static str)] = &[
+        ("contact_radius_a_nm", "contact radius at A"),
+        ("contact_radius_b_nm", "contact radius at B"),
+        ("contact_radius_c_nm", "contact radius at C"),
+        ("contact_radius_d_nm", "contact radius at D"),
+        ("depth_ab_norm", "h/R of the jump A -> B"),
+        ("depth_cd_norm", "h/R of the states C and D"),
+    ];
+
+    fn quick(p: &mut Self::Params) {
+        Fig4_7::quick(p);
+    }
+
+    fn validate(p: &Self::Params) -> Result<()> {
+        Fig4_7::validate(p)
+    }
+
+    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        let lj = LennardJones::new(&LennardJonesParams {
+            c6: p.c6,
+            c12: p.c12,
+            sigma: p.sigma,
+            hamaker: p.hamaker,
+        })?;
+        let modulus = p.youngs_modulus / (1.0 - p.poisson_ratio * p.poisson_ratio);
+        let zeta0 = lj.zeta0();
+        let depth = p.depth_2_over_radius * p.radius;
+        let tip = tip_for(
+            &lj,
+            p.radius,
+            modulus,
+            p.amplitude,
+            p.wavelength,
+            -depth,
+            p.ring_width,
+            p.quadrature_points,
+        )?;
+        let opts = CycleOptions {
+            h_start: p.h_start_over_zeta0 * zeta0,
+            h_min: -depth,
+            step: p.step_over_zeta0 * zeta0,
+            refine_to: 1e-3 * zeta0,
+            contact_gap: p.contact_gap,
+            keep_profiles: true,
+        };
+        let deep = run_cycle(&tip, &opts, |f| {
+            job.progress(f, "deep cycle");
+            job.check()
+        })?;
+        let states = marked_states(&deep, p.radius);
+        let radii = tip.radii();
+        let r_max = 1.3
+            * deep
+                .loading
+                .iter()
+                .map(|s| s.contact.radius())
+                .fold(p.wavelength, f64::max);
+        let profile = |s: &TipState| -> Vec<(f64, f64)> {
+            let gaps = tip.gaps(tip.approach(s.depth), &s.displacement);
+            radii
+                .iter()
+                .zip(gaps)
+                .take_while(|(r, _)| **r <= r_max)
+                .map(|(r, g)| (r * 1e9, g * zeta0 * 1e9))
+                .collect()
+        };
+        let mut fig = Figure::new(Self::ID, Self::TITLE);
+        let titles = [
+            ("(a)", "A, B: before and after a pull-in"),
+            ("(b)", "C (loading), D (unloading): same depth"),
+        ];
+        let labels = ["A", "B", "C", "D"];
+        for (k, (label, title)) in titles.iter().enumerate() {
+            let mut panel = Panel::new(
+                Axis::linear("Radius r", "nm"),
+                Axis::linear("Gap g", "nm").with_range(0.0, 8.0),
+            )
+            .titled(*label, *title);
+            for i in 0..2 {
+                let n = 2 * k + i;
+                let Some(s) = &states[n] else { continue };
+                panel.add(
+                    Series::new(
+                        format!(
+                            "{} (h/R = {:.2e}, a = {:.0} nm)",
+                            labels[n],
+                            s.depth / p.radius,
+                            s.contact.radius() * 1e9
+                        ),
+                        Style::Stable,
+                        profile(s),
+                    )
+                    .with_color(n),
+                );
+            }
+            panel.add(
+                Series::new(
+                    "contact threshold σ",
+                    Style::Reference,
+                    vec![(0.0, p.contact_gap * 1e9), (r_max * 1e9, p.contact_gap * 1e9)],
+                )
+                .with_color(7),
+            );
+            fig.panels.push(panel);
+        }
+        for (n, name) in ["a", "b", "c", "d"].iter().enumerate() {
+            let a = states[n].as_ref().map_or(0.0, |s| s.contact.radius());
+            fig.result(format!("contact_radius_{name}_nm"), a * 1e9);
+        }
+        fig.result(
+            "depth_ab_norm",
+            states[0].as_ref().map_or(0.0, |s| s.depth / p.radius),
+        );
+        fig.result(
+            "depth_cd_norm",
+            states[2].as_ref().map_or(0.0, |s| s.depth / p.radius),
+        );
         Ok(fig)
     }
 }
