@@ -32,6 +32,7 @@ fn chapter4(c: &mut Criterion) {
             refine_to: 1e-3 * z,
             contact_gap: 1e-9,
             keep_profiles: false,
+            unload_to: None,
         };
         group.bench_function(format!("smooth-tip cycle {label} ({} rings)", tip.len()), |b| {
             b.iter(|| black_box(run_cycle(&tip, &opts, |_| Ok(())).expect("cycle")));

@@ -255,6 +255,7 @@ impl Scene for Fig4_5 {
             refine_to: 1e-3 * zeta0,
             contact_gap: p.contact_gap,
             keep_profiles: false,
+            unload_to: None,
         };
         let cycle = run_cycle(&tip, &opts, |f| {
             job.progress(f, "cycle");
@@ -525,6 +526,7 @@ impl Scene for Fig4_7 {
             refine_to: 1e-3 * zeta0,
             contact_gap: p.contact_gap,
             keep_profiles: keep,
+            unload_to: None,
         };
         // The two cycles in parallel; progress from the deep one.
         let (shallow, deep) = rayon::join(
@@ -697,6 +699,9 @@ impl Scene for Fig4_8 {
             refine_to: 1e-3 * zeta0,
             contact_gap: p.contact_gap,
             keep_profiles: true,
+            // D lies at h/R = 6e-5 on unloading: the rest of the cycle (the pull-off and its
+            // recessions) is not drawn here.
+            unload_to: Some(1.5e-4 * p.radius),
         };
         let deep = run_cycle(&tip, &opts, |f| {
             job.progress(f, "deep cycle");

@@ -32,6 +32,7 @@ fn shallow_cycle(tip: &Tip, keep_profiles: bool) -> TipCycle {
         refine_to: 1e-3 * z,
         contact_gap: 1e-9,
         keep_profiles,
+        unload_to: None,
     };
     run_cycle(tip, &opts, |_| Ok(())).expect("cycle")
 }
@@ -159,6 +160,7 @@ fn cycle_to(tip: &Tip, h_min: f64) -> TipCycle {
         refine_to: 1e-3 * z,
         contact_gap: 1e-9,
         keep_profiles: false,
+        unload_to: None,
     };
     run_cycle(tip, &opts, |_| Ok(())).expect("cycle")
 }

@@ -109,6 +109,9 @@ pub struct CycleOptions {
     /// Keep the ring displacements of every state (for profiles); otherwise of jump states
     /// only.
     pub keep_profiles: bool,
+    /// Stop unloading at this depth [m] instead of returning to the start (a figure that needs
+    /// only part of the unloading path); `None`: the whole cycle.
+    pub unload_to: Option<f64>,
 }
 
 /// Run one cycle. `progress(fraction)` is called after every accepted state and may return
@@ -145,7 +148,13 @@ pub fn run_cycle(
         .collect();
     let approach = |h: f64| tip.approach(h);
     let loading: Vec<f64> = depths.iter().skip(1).map(|&h| approach(h)).collect();
-    let unloading: Vec<f64> = depths.iter().rev().skip(1).map(|&h| approach(h)).collect();
+    let unloading: Vec<f64> = depths
+        .iter()
+        .rev()
+        .skip(1)
+        .take_while(|&&h| opts.unload_to.is_none_or(|end| h <= end))
+        .map(|&h| approach(h))
+        .collect();
     let newton = NewtonOptions {
         gradient_tol: 1e-7,
         step_tol: 1e-6,
