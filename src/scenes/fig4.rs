@@ -63,6 +63,27 @@ crate::scene_params! {
     }
 }
 
+/// The interaction (4.1)-(4.7b) and the plane-strain modulus E* = E/(1 − ν²) of a scene.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] naming the interaction parameter.
+fn material(
+    c6: f64,
+    c12: f64,
+    sigma: f64,
+    hamaker: f64,
+    youngs_modulus: f64,
+    poisson_ratio: f64,
+) -> Result<(LennardJones, f64)> {
+    let lj = LennardJones::new(&LennardJonesParams {
+        c6,
+        c12,
+        sigma,
+        hamaker,
+    })?;
+    Ok((lj, youngs_modulus / (1.0 - poisson_ratio * poisson_ratio)))
+}
+
 /// The surface model of a smooth or wavy tip built from scene parameters, with the radius of
 /// the fine zone chosen from the deepest depth: 1.15 times the JKR contact radius there plus
 /// 10 b (the interaction zone beyond the edge).
@@ -229,13 +250,7 @@ impl Scene for Fig4_5 {
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        let lj = LennardJones::new(&LennardJonesParams {
-            c6: p.c6,
-            c12: p.c12,
-            sigma: p.sigma,
-            hamaker: p.hamaker,
-        })?;
-        let modulus = p.youngs_modulus / (1.0 - p.poisson_ratio * p.poisson_ratio);
+        let (lj, modulus) = material(p.c6, p.c12, p.sigma, p.hamaker, p.youngs_modulus, p.poisson_ratio)?;
         let zeta0 = lj.zeta0();
         let w = lj.work_of_adhesion();
         let tip = tip_for(
@@ -500,13 +515,7 @@ impl Scene for Fig4_7 {
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        let lj = LennardJones::new(&LennardJonesParams {
-            c6: p.c6,
-            c12: p.c12,
-            sigma: p.sigma,
-            hamaker: p.hamaker,
-        })?;
-        let modulus = p.youngs_modulus / (1.0 - p.poisson_ratio * p.poisson_ratio);
+        let (lj, modulus) = material(p.c6, p.c12, p.sigma, p.hamaker, p.youngs_modulus, p.poisson_ratio)?;
         let zeta0 = lj.zeta0();
         let depths = [p.depth_1_over_radius * p.radius, p.depth_2_over_radius * p.radius];
         let tip = tip_for(
@@ -673,13 +682,7 @@ impl Scene for Fig4_8 {
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        let lj = LennardJones::new(&LennardJonesParams {
-            c6: p.c6,
-            c12: p.c12,
-            sigma: p.sigma,
-            hamaker: p.hamaker,
-        })?;
-        let modulus = p.youngs_modulus / (1.0 - p.poisson_ratio * p.poisson_ratio);
+        let (lj, modulus) = material(p.c6, p.c12, p.sigma, p.hamaker, p.youngs_modulus, p.poisson_ratio)?;
         let zeta0 = lj.zeta0();
         let depth = p.depth_2_over_radius * p.radius;
         let tip = tip_for(
