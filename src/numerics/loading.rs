@@ -38,6 +38,9 @@ pub trait Controlled {
     /// How far the state moved from `before` to `after`, in units where a jump moves at least
     /// about 1 and a smooth step of the path's size much less than 1.
     fn jump_measure(&self, before: &[f64], after: &[f64]) -> f64;
+    /// Adapt the start `x` (the state accepted at `from`) of a minimisation at `to`, e.g. so
+    /// that it lies inside the energy's domain; by default it is left as it is.
+    fn prepare_start(&self, _from: f64, _to: f64, _x: &mut [f64]) {}
 }
 
 /// Options of [`follow`].
@@ -160,12 +163,14 @@ pub fn follow<C: Controlled>(
     // bisection trial ran out of iterations (a jump under way).
     let mut attempt = |x: &[f64],
                        trial: &mut Vec<f64>,
+                       from: f64,
                        at: f64,
                        bisecting: bool,
                        stats: &mut PathStats|
      -> Result<Option<(NewtonReport, bool, bool)>> {
         trial.clear();
         trial.extend_from_slice(x);
+        model.prepare_start(from, at, trial);
         let e = model.at(at);
         stats.minimisations += 1;
         let newton = if bisecting { &trial_opts } else { &opts.newton };
@@ -186,7 +191,7 @@ pub fn follow<C: Controlled>(
     for (k, &target) in targets.iter().enumerate() {
         loop {
             let refine = opts.refine_to.filter(|&tol| (target - lambda).abs() > tol);
-            let first = attempt(x, &mut trial, target, refine.is_some(), &mut stats)?;
+            let first = attempt(x, &mut trial, lambda, target, refine.is_some(), &mut stats)?;
             if let Some((rep, jumped, stable)) = first
                 && (!jumped || refine.is_none())
             {
@@ -204,7 +209,7 @@ pub fn follow<C: Controlled>(
             let mut hi = target;
             while (hi - lambda).abs() > tol {
                 let mid = 0.5 * (lambda + hi);
-                match attempt(x, &mut trial, mid, true, &mut stats)? {
+                match attempt(x, &mut trial, lambda, mid, true, &mut stats)? {
                     Some((rep, false, stable)) => {
                         let mut current = Current {
                             x,
@@ -224,7 +229,7 @@ pub fn follow<C: Controlled>(
             let mut at = hi;
             let (rep, jumped, stable) = loop {
                 let full = (at - target).abs() <= f64::EPSILON * target.abs().max(1.0);
-                match attempt(x, &mut trial, at, !full, &mut stats)? {
+                match attempt(x, &mut trial, lambda, at, !full, &mut stats)? {
                     Some(found) => break found,
                     None => {
                         let further = lambda + 2.0 * (at - lambda);

@@ -520,6 +520,23 @@ impl Controlled for Tip {
         self.energy_at(lambda)
     }
 
+    /// Where pressing from `from` to `to` would close a gap to less than half its value (a
+    /// step larger than the gap at the repulsive wall, outside the energy's domain when it
+    /// closes it altogether), the ring starts moved with the tip by the difference.
+    fn prepare_start(&self, from: f64, to: f64, u: &mut [f64]) {
+        let closing = from - to;
+        if closing <= 0.0 {
+            return;
+        }
+        for (i, ui) in u.iter_mut().enumerate() {
+            let g = from + self.profile[i] - *ui;
+            let short = 0.5 * g - (g - closing);
+            if short > 0.0 {
+                *ui -= short;
+            }
+        }
+    }
+
     /// The largest change of a ring displacement in units of half the interaction range.
     fn jump_measure(&self, before: &[f64], after: &[f64]) -> f64 {
         before
