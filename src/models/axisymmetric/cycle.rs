@@ -167,10 +167,12 @@ pub fn run_cycle(
         trial_iterations: 40,
         unstable_start_is_jump: false,
     };
-    let mut solver = StableNewton::new(&tip.energy_at(approach(opts.h_start)))?;
+    let start = approach(opts.h_start);
+    let start_energy = tip.energy_at(start);
+    let mut solver = StableNewton::new(&start_energy)?;
     let mut u = vec![0.0; tip.len()];
     // Relax at the start depth.
-    solver.minimize(&tip.energy_at(approach(opts.h_start)), &mut u, &newton)?;
+    solver.minimize(&start_energy, &mut u, &newton)?;
     let state = |delta: f64, u: &[f64], stable: bool, keep: bool| TipState {
         depth: tip.depth(delta),
         force: tip.force(delta, u),
@@ -178,17 +180,15 @@ pub fn run_cycle(
         stable,
         displacement: if keep { u.to_vec() } else { Vec::new() },
     };
+    let start_stable = solver.is_stable(&start_energy, &u)?;
     let mut cycle = TipCycle::default();
-    cycle.loading.push(state(
-        approach(opts.h_start),
-        &u,
-        solver.is_stable(&tip.energy_at(approach(opts.h_start)), &u)?,
-        opts.keep_profiles,
-    ));
+    cycle.stats.all_stable = start_stable;
+    cycle
+        .loading
+        .push(state(start, &u, start_stable, opts.keep_profiles));
     let total = (loading.len() + unloading.len()) as f64;
     let mut done = 0usize;
-    let start_delta = approach(opts.h_start);
-    let mut last_delta = start_delta;
+    let mut last_delta = start;
     for (phase, targets) in [(true, &loading), (false, &unloading)] {
         let stats = follow(tip, &mut solver, &mut u, last_delta, targets, &path, |v| {
             let s = state(
@@ -217,11 +217,7 @@ pub fn run_cycle(
         cycle.stats.minimisations += stats.minimisations;
         cycle.stats.newton_iterations += stats.newton_iterations;
         cycle.stats.jumps += stats.jumps;
-        cycle.stats.all_stable = if phase {
-            stats.all_stable
-        } else {
-            cycle.stats.all_stable && stats.all_stable
-        };
+        cycle.stats.all_stable &= stats.all_stable;
     }
     Ok(cycle)
 }
