@@ -51,7 +51,7 @@
 
 use faer::Side;
 use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use faer::sparse::linalg::solvers::SymbolicLlt;
 use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
 
 use std::sync::Arc;
@@ -175,7 +175,7 @@ impl NewtonReport {
 }
 
 /// A numeric Cholesky factorisation, shared between the cache and its users.
-type Factor = Arc<Llt<usize, f64>>;
+type Factor = Arc<direct::Cholesky>;
 
 /// The sparse Hessian of an [`Energy`] with its symbolic Cholesky factorisation.
 pub struct StableNewton {
@@ -183,6 +183,9 @@ pub struct StableNewton {
     symbolic: SymbolicSparseColMat<usize>,
     argsort: faer::sparse::Argsort<usize>,
     llt: SymbolicLlt<usize>,
+    /// For a mostly full pattern: each value's column-major position in a dense n × n matrix
+    /// (the direct path then factorises densely, see `newton/direct.rs`).
+    dense: Option<Vec<usize>>,
     /// Index in the values of each diagonal entry (for the shift).
     diagonal: Vec<usize>,
     /// Values in pattern order, then the diagonal shift slots appended.
@@ -250,11 +253,13 @@ impl StableNewton {
             .map_err(|e| fail(format!("sparsity pattern: {e:?}")))?;
         let llt = SymbolicLlt::try_new(symbolic.as_ref(), Side::Lower)
             .map_err(|e| fail(format!("symbolic factorisation: {e:?}")))?;
+        let dense = direct::dense_layout(n, &pattern, n_pattern);
         Ok(Self {
             n,
             symbolic,
             argsort,
             llt,
+            dense,
             diagonal: (n_pattern..n_pattern + n).collect(),
             values: vec![0.0; n_pattern + n],
             last_shift: 0.0,
@@ -286,6 +291,28 @@ impl StableNewton {
             return Ok(definite);
         }
         Ok(self.factor(0.0)?.is_some())
+    }
+
+    /// Solve `H(x) y = rhs` in place (the Hessian of `energy` at `x`) with the direct path's
+    /// factorisation, when the direct path serves this system and `H(x)` is positive definite;
+    /// otherwise `false` and `rhs` unchanged. At a state just certified by [`Self::is_stable`]
+    /// the factorisation is the cached one: the solve costs no factorisation.
+    ///
+    /// # Errors
+    /// Assembly failures (not expected).
+    pub fn solve_at(&mut self, energy: &impl Energy, x: &[f64], rhs: &mut [f64]) -> Result<bool> {
+        if self.n >= ITERATIVE_MIN_UNKNOWNS {
+            return Ok(false);
+        }
+        let n_pattern = self.values.len() - self.n;
+        energy.hessian_values(x, &mut self.values[..n_pattern]);
+        match self.factor(0.0)? {
+            Some(l) => {
+                l.solve(rhs);
+                Ok(true)
+            }
+            None => Ok(false),
+        }
     }
 
     /// Minimise `energy` from `x` (updated in place) to a stable equilibrium: small gradient

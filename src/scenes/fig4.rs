@@ -84,9 +84,8 @@ fn material(
     Ok((lj, youngs_modulus / (1.0 - poisson_ratio * poisson_ratio)))
 }
 
-/// The surface model of a smooth or wavy tip built from scene parameters, with the radius of
-/// the fine zone chosen from the deepest depth: 1.15 times the JKR contact radius there plus
-/// 10 b (the interaction zone beyond the edge).
+/// The surface model of a smooth or wavy tip built from scene parameters, with the fine zone
+/// that covers the deepest depth ([`TipParams::fine_radius_for_depth`]).
 ///
 /// # Errors
 /// [`Error::InvalidParameter`] naming the parameter.
@@ -102,23 +101,7 @@ fn tip_for(
     quadrature_points: usize,
 ) -> Result<Tip> {
     let p = lj.params();
-    let w = lj.work_of_adhesion();
-    // JKR contact radius at depth |h_min|: a²/R − √(2πwa/E*) = |h_min| (bisection on a).
-    let depth = |a: f64| a * a / radius - (2.0 * PI * w * a / modulus).sqrt();
-    let (mut lo, mut hi) = (
-        0.0,
-        (radius * h_min.abs()).sqrt() + (4.0 * PI * w * radius * radius / modulus).cbrt(),
-    );
-    for _ in 0..100 {
-        let mid = 0.5 * (lo + hi);
-        if depth(mid) < h_min.abs() {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    let b = lj.zeta0() * lj.zeta0() * modulus / w;
-    Tip::new(&TipParams {
+    let mut params = TipParams {
         radius,
         modulus,
         c6: p.c6,
@@ -128,11 +111,13 @@ fn tip_for(
         amplitude,
         wavelength,
         ring_width,
-        fine_radius: 1.15 * hi + 10.0 * b,
+        fine_radius: 0.0,
         growth: 1.1,
         quadrature_points,
         reach: 30.0,
-    })
+    };
+    params.fine_radius = params.fine_radius_for_depth(h_min)?;
+    Tip::new(&params)
 }
 
 /// Draw a measured cycle into a P-h panel (h/R, P/(2E*R²)): loading and unloading solid,

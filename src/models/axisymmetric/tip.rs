@@ -42,6 +42,7 @@ use crate::models::axisymmetric::kernel::RingGrid;
 use crate::models::lennard_jones::{LennardJones, LennardJonesParams};
 use crate::numerics::loading::Controlled;
 use crate::numerics::newton::Energy;
+use crate::numerics::pcg::dot_lanes;
 
 /// Largest number of rings a tip may have: the dense Hessian has N² entries (N = 3000 is
 /// 72 MB and a factorisation of about 9 Gflop).
@@ -81,6 +82,40 @@ pub struct TipParams {
     /// Undeformed gap up to which the rings extend [in units of ζ0]: beyond it the traction is
     /// below (ζ0/g)³ of its scale and is neglected.
     pub reach: f64,
+}
+
+impl TipParams {
+    /// A fine zone that covers cycles to the depth `h_min` (negative: pressed): 1.15 times the
+    /// JKR contact radius at |h_min| plus 10 b (the interaction zone beyond the contact edge),
+    /// with the JKR radius from a²/R − √(2πwa/E*) = |h_min| (bisection on a) [m].
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming an interaction parameter.
+    pub fn fine_radius_for_depth(&self, h_min: f64) -> Result<f64> {
+        let lj = LennardJones::new(&LennardJonesParams {
+            c6: self.c6,
+            c12: self.c12,
+            sigma: self.sigma,
+            hamaker: self.hamaker,
+        })?;
+        let (radius, modulus) = (self.radius, self.modulus);
+        let w = lj.work_of_adhesion();
+        let depth = |a: f64| a * a / radius - (2.0 * PI * w * a / modulus).sqrt();
+        let (mut lo, mut hi) = (
+            0.0,
+            (radius * h_min.abs()).sqrt() + (4.0 * PI * w * radius * radius / modulus).cbrt(),
+        );
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if depth(mid) < h_min.abs() {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        let b = lj.zeta0() * lj.zeta0() * modulus / w;
+        Ok(1.15 * hi + 10.0 * b)
+    }
 }
 
 impl Default for TipParams {
@@ -460,7 +495,7 @@ impl Energy for TipEnergy<'_> {
         let mut elastic = 0.0;
         for i in 0..n {
             let row = &t.stiffness[i * n..(i + 1) * n];
-            elastic += u[i] * row.iter().zip(u).map(|(k, x)| k * x).sum::<f64>();
+            elastic += u[i] * dot_lanes(row, u);
         }
         let mut adhesive = 0.0;
         for q in &t.points {
@@ -477,7 +512,7 @@ impl Energy for TipEnergy<'_> {
         let t = self.tip;
         let n = t.len();
         for (gi, row) in g.iter_mut().zip(t.stiffness.chunks_exact(n)) {
-            *gi = row.iter().zip(u).map(|(k, x)| k * x).sum();
+            *gi = dot_lanes(row, u);
         }
         for q in &t.points {
             let f = q.weight * t.phi_prime(t.point_gap(self.delta, u, q));
@@ -535,6 +570,18 @@ impl Controlled for Tip {
                 *ui -= short;
             }
         }
+    }
+
+    /// ∂g/∂δ: the gap g = δ + f − u grows with δ, so the gradient's adhesive part changes at
+    /// −Σ_q w_q φ''(g_q) N_i(q) (the elastic part does not depend on δ).
+    fn gradient_rate(&self, delta: f64, u: &[f64], out: &mut [f64]) -> bool {
+        out.iter_mut().for_each(|v| *v = 0.0);
+        for q in &self.points {
+            let c = q.weight * self.phi_second(self.point_gap(delta, u, q));
+            out[q.a] -= c * q.shape_a;
+            out[q.b] -= c * q.shape_b;
+        }
+        true
     }
 
     /// The largest change of a ring displacement in units of half the interaction range.

@@ -8,12 +8,21 @@
 //! by inverse iteration. The iterative path hands over to this one wherever its certificate is
 //! not found.
 //!
+//!
+//! Hessians that are mostly full (a boundary-element kernel couples every unknown to every
+//! other) are factorised as dense matrices, sequentially: the sparse supernodal factorisation
+//! of a full matrix of a few hundred unknowns spends about a third of its time synchronising
+//! threads, and a sweep already runs its points in parallel.
+//!
 //! [`LinearSolver::Direct`]: super::LinearSolver::Direct
 
-use faer::Side;
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt::factor::{LltParams, LltRegularization, cholesky_in_place};
+use faer::linalg::cholesky::llt::solve::solve_in_place_with_conj;
 use faer::linalg::solvers::Solve;
 use faer::sparse::SparseColMat;
 use faer::sparse::linalg::solvers::Llt;
+use faer::{Conj, Par, Side, Spec};
 use std::sync::Arc;
 
 use super::{Energy, Factor, NewtonOptions, NewtonReport, StableNewton, backtrack};
@@ -24,7 +33,72 @@ use crate::numerics::pcg::{dot, inf_norm};
 /// gradient component by at least this factor; otherwise the Hessian is factorised again.
 const CHORD_CONTRACTION: f64 = 0.25;
 
+/// A numeric Cholesky factor `L` of `H = L Lᵀ`: sparse (faer's supernodal factorisation with
+/// the fill-reducing ordering of the symbolic analysis) or dense (lower triangle of a full
+/// matrix, factorised in place).
+pub(in crate::numerics) enum Cholesky {
+    Sparse(Llt<usize, f64>),
+    /// Column-major n × n, L in the lower triangle.
+    Dense(Vec<f64>),
+}
+
+impl Cholesky {
+    /// Overwrite `rhs` with `H⁻¹ rhs`.
+    pub(super) fn solve(&self, rhs: &mut [f64]) {
+        let n = rhs.len();
+        let m = faer::MatMut::from_column_major_slice_mut(rhs, n, 1);
+        match self {
+            Self::Sparse(l) => l.solve_in_place(m),
+            Self::Dense(l) => {
+                let l = faer::MatRef::from_column_major_slice(l, n, n);
+                let mut buf = MemBuffer::new(faer::dyn_stack::StackReq::EMPTY);
+                solve_in_place_with_conj(l, Conj::No, m, Par::Seq, MemStack::new(&mut buf));
+            }
+        }
+    }
+}
+
+/// Where a pattern is this full (stored lower-triangle entries over n(n+1)/2), the Hessian is
+/// factorised as a dense matrix.
+const DENSE_FILL: f64 = 0.5;
+/// Dense factorisation only up to this many unknowns (8 bytes × n² of storage per factor).
+const DENSE_MAX_UNKNOWNS: usize = 4000;
+
+/// Column-major positions in an n × n matrix of the pattern entries (shift slots included),
+/// when the pattern is full enough to be factorised densely.
+pub(super) fn dense_layout(n: usize, pattern: &[(usize, usize)], n_pattern: usize) -> Option<Vec<usize>> {
+    let lower = (n * (n + 1) / 2) as f64;
+    if n > DENSE_MAX_UNKNOWNS || (n_pattern as f64) < DENSE_FILL * lower {
+        return None;
+    }
+    Some(pattern.iter().map(|&(r, c)| r + c * n).collect())
+}
+
 impl StableNewton {
+    /// Dense Cholesky factorisation of the values (pattern entries summed into the lower
+    /// triangle); `None` if not positive definite.
+    fn factor_dense(&self, layout: &[usize]) -> Option<Cholesky> {
+        let n = self.n;
+        let mut a = vec![0.0; n * n];
+        for (&k, &v) in layout.iter().zip(&self.values) {
+            a[k] += v;
+        }
+        let par = Par::Seq;
+        let params: Spec<LltParams, f64> = Default::default();
+        let mut buf = MemBuffer::new(faer::linalg::cholesky::llt::factor::cholesky_in_place_scratch::<
+            f64,
+        >(n, par, params));
+        cholesky_in_place(
+            faer::MatMut::from_column_major_slice_mut(&mut a, n, n),
+            LltRegularization::default(),
+            par,
+            MemStack::new(&mut buf),
+            params,
+        )
+        .ok()
+        .map(|_| Cholesky::Dense(a))
+    }
+
     /// Factorise H + λI (values already in `self.values[..n_pattern]`); `None` if not
     /// positive definite. An unshifted factorisation of the same values as the last one is
     /// reused.
@@ -40,14 +114,18 @@ impl StableNewton {
         for &k in &self.diagonal {
             self.values[k] = shift;
         }
-        let mat = SparseColMat::new_from_argsort(self.symbolic.clone(), &self.argsort, &self.values)
-            .map_err(|e| Error::Unresolvable {
-                model: "stable Newton",
-                reason: format!("assembling the Hessian: {e:?}"),
-            })?;
-        let l = Llt::try_new_with_symbolic(self.llt.clone(), mat.as_ref(), Side::Lower)
-            .ok()
-            .map(Arc::new);
+        let l = if let Some(layout) = &self.dense {
+            self.factor_dense(layout).map(Arc::new)
+        } else {
+            let mat = SparseColMat::new_from_argsort(self.symbolic.clone(), &self.argsort, &self.values)
+                .map_err(|e| Error::Unresolvable {
+                    model: "stable Newton",
+                    reason: format!("assembling the Hessian: {e:?}"),
+                })?;
+            Llt::try_new_with_symbolic(self.llt.clone(), mat.as_ref(), Side::Lower)
+                .ok()
+                .map(|l| Arc::new(Cholesky::Sparse(l)))
+        };
         if shift == 0.0 {
             let mut v = self.cache.take().map(|c| c.0).unwrap_or_default();
             v.clear();
@@ -55,12 +133,6 @@ impl StableNewton {
             self.cache = Some((v, l.clone()));
         }
         Ok(l)
-    }
-
-    fn solve(llt: &Llt<usize, f64>, rhs: &mut [f64]) {
-        let n = rhs.len();
-        let m = faer::MatMut::from_column_major_slice_mut(rhs, n, 1);
-        llt.solve_in_place(m);
     }
 
     pub(super) fn minimize_inner(
@@ -91,7 +163,7 @@ impl StableNewton {
                 for (pi, gi) in p.iter_mut().zip(&g) {
                     *pi = -gi;
                 }
-                Self::solve(f, &mut p);
+                f.solve(&mut p);
                 let accepted = match backtrack(energy, x, &p, e0, dot(&g, &p), &mut trial) {
                     Some(e1) => {
                         e0 = e1;
@@ -140,7 +212,7 @@ impl StableNewton {
             for (pi, gi) in p.iter_mut().zip(&g) {
                 *pi = -gi;
             }
-            Self::solve(&llt, &mut p);
+            llt.solve(&mut p);
             // A small gradient alone does not make an equilibrium: just past a fold none
             // exists, yet the gradient there is as small as the distance past the fold times
             // the stiffness, while the Hessian is still (barely) positive definite. The Newton
@@ -199,13 +271,13 @@ impl StableNewton {
 
     /// A direction of most negative curvature of H, by inverse iteration with the shifted
     /// factor (H + λI)⁻¹, whose dominant eigenvector is H's lowest. Written into `v`.
-    fn negative_curvature_direction(llt: &Llt<usize, f64>, v: &mut [f64]) -> Result<()> {
+    fn negative_curvature_direction(llt: &Cholesky, v: &mut [f64]) -> Result<()> {
         // Deterministic start with components in every direction.
         for (i, vi) in v.iter_mut().enumerate() {
             *vi = 1.0 + 0.5 * ((i as f64) * 0.618_033_988_75).fract();
         }
         for _ in 0..30 {
-            Self::solve(llt, v);
+            llt.solve(v);
             let norm = dot(v, v).sqrt();
             if !(norm > 0.0 && norm.is_finite()) {
                 return Err(Error::Unresolvable {
@@ -222,7 +294,8 @@ impl StableNewton {
 #[cfg(test)]
 mod tests {
     use crate::numerics::newton::wells::Wells;
-    use crate::numerics::newton::{NewtonOptions, StableNewton};
+    use crate::numerics::newton::{Energy, NewtonOptions, StableNewton};
+    use crate::numerics::pcg::inf_norm;
 
     #[test]
     fn a_stationary_saddle_is_left_along_negative_curvature() {
@@ -258,5 +331,100 @@ mod tests {
         let other = s.minimize(&e, &mut y, &opts).unwrap();
         assert!(other.factorizations >= 1);
         assert!(y.iter().zip(&x).all(|(a, b)| (a - b).abs() < 1e-8));
+    }
+
+    /// A quartic well with a full coupling matrix: E = Σ (x_i⁴/4 − s x_i²/2) + ½ c (Σ x_i)² −
+    /// Σ b_i x_i. Its Hessian diag(3x_i² − s) + c 11ᵀ is full, so the dense path serves it.
+    struct Full {
+        n: usize,
+        s: f64,
+        c: f64,
+    }
+
+    impl Energy for Full {
+        fn dim(&self) -> usize {
+            self.n
+        }
+        fn energy(&self, x: &[f64]) -> f64 {
+            let sum: f64 = x.iter().sum();
+            x.iter()
+                .enumerate()
+                .map(|(i, v)| v.powi(4) / 4.0 - self.s * v * v / 2.0 - 0.01 * i as f64 * v)
+                .sum::<f64>()
+                + 0.5 * self.c * sum * sum
+        }
+        fn gradient(&self, x: &[f64], g: &mut [f64]) {
+            let sum: f64 = x.iter().sum();
+            for (i, (gi, v)) in g.iter_mut().zip(x).enumerate() {
+                *gi = v.powi(3) - self.s * v - 0.01 * i as f64 + self.c * sum;
+            }
+        }
+        fn hessian_pattern(&self) -> Vec<(usize, usize)> {
+            (0..self.n).flat_map(|i| (0..=i).map(move |j| (i, j))).collect()
+        }
+        fn hessian_values(&self, x: &[f64], v: &mut [f64]) {
+            let mut k = 0;
+            for (i, xi) in x.iter().enumerate() {
+                for j in 0..=i {
+                    v[k] = self.c + if i == j { 3.0 * xi * xi - self.s } else { 0.0 };
+                    k += 1;
+                }
+            }
+        }
+    }
+
+    // A full Hessian is factorised densely: the minimiser converges to a stable state with a
+    // small gradient, and the stability test rejects the unstable stationary point x = 0 of
+    // the symmetric double wells (Hessian c 11ᵀ − s I, indefinite).
+    #[test]
+    fn a_full_hessian_takes_the_dense_factorisation() {
+        let e = Full {
+            n: 40,
+            s: 1.0,
+            c: 0.05,
+        };
+        let mut s = StableNewton::new(&e).unwrap();
+        assert!(s.dense.is_some(), "a full pattern is factorised densely");
+        assert!(
+            !s.is_stable(
+                &Full {
+                    n: 40,
+                    s: 1.0,
+                    c: 0.05
+                },
+                &[0.0; 40]
+            )
+            .unwrap()
+        );
+        let mut x: Vec<f64> = (0..40).map(|i| 0.1 * (i as f64 - 20.0)).collect();
+        let rep = s.minimize(&e, &mut x, &NewtonOptions::default()).unwrap();
+        assert!(s.is_stable(&e, &x).unwrap());
+        let mut g = vec![0.0; 40];
+        e.gradient(&x, &mut g);
+        assert!(inf_norm(&g) <= 1e-9, "{rep:?}");
+        // The same minimum as the sparse factorisation of the same matrix reaches.
+        let mut sparse = StableNewton::new(&e).unwrap();
+        sparse.dense = None;
+        let mut y: Vec<f64> = (0..40).map(|i| 0.1 * (i as f64 - 20.0)).collect();
+        sparse.minimize(&e, &mut y, &NewtonOptions::default()).unwrap();
+        assert!(x.iter().zip(&y).all(|(a, b)| (a - b).abs() < 1e-9));
+        // A solve with the dense factor of a positive-definite Hessian inverts it.
+        let mut rhs: Vec<f64> = (0..40).map(|i| (i as f64).sin()).collect();
+        let b = rhs.clone();
+        assert!(s.solve_at(&e, &x, &mut rhs).unwrap());
+        let mut hv = vec![0.0; 40 * 41 / 2];
+        e.hessian_values(&x, &mut hv);
+        for i in 0..40 {
+            let row: f64 = (0..40)
+                .map(|j| {
+                    hv[if j <= i {
+                        i * (i + 1) / 2 + j
+                    } else {
+                        j * (j + 1) / 2 + i
+                    }] * rhs[j]
+                })
+                .sum();
+            assert!((row - b[i]).abs() < 1e-10, "row {i}: {row} vs {}", b[i]);
+        }
     }
 }
