@@ -8,6 +8,10 @@
 //! the jumps between them are dashed; the unstable equilibria of the surface model are not
 //! traced (the Maugis-Dugdale reference shows where its unstable branch lies).
 
+mod accuracy;
+mod criterion;
+mod roughness;
+
 use std::f64::consts::PI;
 
 use super::fig3::draw_md;
