@@ -65,11 +65,16 @@ impl Figure {
         self.notes.push(text.into());
     }
 
-    /// Number of data points over all panels (series, markers), a cheap size measure.
+    /// Number of data points over all panels (series, markers, field cells), a cheap size
+    /// measure.
     pub fn n_points(&self) -> usize {
         self.panels
             .iter()
-            .map(|p| p.series.iter().map(|s| s.points.len()).sum::<usize>() + p.markers.len())
+            .map(|p| {
+                p.series.iter().map(|s| s.points.len()).sum::<usize>()
+                    + p.markers.len()
+                    + p.field.as_ref().map_or(0, |f| f.values.len())
+            })
             .sum()
     }
 }
@@ -342,6 +347,10 @@ pub struct Field {
     pub kind: FieldKind,
     /// Levels drawn as emphasised, labelled contour lines (e.g. a measured value).
     pub highlight: Vec<(f64, String)>,
+    /// A fixed range of the colour map (values outside are drawn at its ends); `None`: the
+    /// values' own range.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub color_range: Option<(f64, f64)>,
 }
 
 impl Field {
@@ -365,6 +374,7 @@ impl Field {
             values,
             kind: FieldKind::Heat,
             highlight: Vec::new(),
+            color_range: None,
         }
     }
 
@@ -373,8 +383,12 @@ impl Field {
         self.values[j * self.x.len() + i]
     }
 
-    /// Smallest and largest finite value.
+    /// The range of the colour map: the fixed one where set, otherwise the smallest and
+    /// largest finite value.
     pub fn value_range(&self) -> Option<(f64, f64)> {
+        if let Some(r) = self.color_range {
+            return Some(r);
+        }
         let mut it = self.values.iter().copied().filter(|v| v.is_finite());
         let first = it.next()?;
         Some(it.fold((first, first), |(lo, hi), v| (lo.min(v), hi.max(v))))

@@ -147,6 +147,10 @@ pub fn power_of_ten(k: i64) -> String {
 /// scientific form for very large or small values.
 pub fn format_ticks(values: &[f64], step: f64) -> Vec<String> {
     let max = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    // A degenerate step (a constant field's colour bar): each value on its own.
+    if !(step > 0.0 && step.is_finite()) {
+        return values.iter().map(|&v| format_number(v)).collect();
+    }
     if max >= 1e5 || (max > 0.0 && max < 1e-3) {
         let decimals = ((max.log10().floor() - step.log10().floor()).max(0.0) as usize).min(6);
         return values
@@ -160,7 +164,7 @@ pub fn format_ticks(values: &[f64], step: f64) -> Vec<String> {
             })
             .collect();
     }
-    let decimals = (-step.log10().floor()).max(0.0) as usize;
+    let decimals = (-step.log10().floor()).clamp(0.0, 12.0) as usize;
     values
         .iter()
         .map(|&v| {
@@ -204,5 +208,13 @@ mod tests {
     fn log_ticks_are_decades() {
         let t = ticks(0.009, 1100.0, Scale::Log, 6);
         assert_eq!(t.labels, vec!["10⁻²", "10⁻¹", "1", "10", "10²", "10³"]);
+    }
+
+    // A constant field's colour bar has a zero tick step: labels, not a formatting panic.
+    #[test]
+    fn a_degenerate_step_still_gives_labels() {
+        assert_eq!(format_ticks(&[4.5, 4.5], 0.0), vec![format_number(4.5); 2]);
+        assert_eq!(format_ticks(&[2.0], f64::NAN), vec![format_number(2.0)]);
+        assert_eq!(format_ticks(&[1.0], 1e-300), vec!["1.000000000000"]);
     }
 }

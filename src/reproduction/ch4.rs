@@ -1,12 +1,16 @@
 //! The printed numbers of chapter 4 that the analytic models compute: the coefficients and the
 //! critical point of the instability criterion (4.23) (Sec. 4.3), ℓ and χ of the captions of
 //! Figures 4.5 and 4.7 from the LJ parameters (4.6), (4.7b), (4.25), and the geometry of the
-//! wavy tip of Sec. 4.5.1. The finite-element results of the chapter are not here.
+//! wavy tip of Sec. 4.5.1; and the adhesive forces and losses of Fig. 4.9a (Sec. 4.5.2) with
+//! the axisymmetric surface model (scene fig4.9a, run once for all its claims).
 
 use std::f64::consts::PI;
+use std::sync::OnceLock;
 
 use super::{Claim, Expect, Precision};
-use crate::error::Result;
+use crate::error::{Error, Result};
+use crate::figure::Figure;
+use crate::job::Job;
 use crate::models::lennard_jones::{InstabilityCriterion, LennardJones, LennardJonesParams, TractionLaw};
 
 /// Poisson's ratio of every chapter 4 simulation.
@@ -48,6 +52,27 @@ fn asperity_radius_ratio() -> f64 {
 fn criterion() -> Result<InstabilityCriterion> {
     InstabilityCriterion::new(&interaction(2e-21)?, TractionLaw::AsPrinted)
 }
+
+/// A result of scene fig4.9a at its defaults (the cycles are run once for every claim).
+fn fig4_9a(name: &str) -> Result<f64> {
+    static FIG: OnceLock<std::result::Result<Figure, String>> = OnceLock::new();
+    let fig = FIG.get_or_init(|| {
+        let s = crate::scenes::find("fig4.9a").map_err(|e| e.to_string())?;
+        s.run(&s.defaults(), &Job::quiet()).map_err(|e| e.to_string())
+    });
+    let fail = |reason: String| Error::Unresolvable {
+        model: "scene fig4.9a",
+        reason,
+    };
+    let fig = fig.as_ref().map_err(|e| fail(e.clone()))?;
+    fig.result_value(name)
+        .ok_or_else(|| fail(format!("no result {name}")))
+}
+
+/// Why the rough-tip values of Fig. 4.9a differ.
+const FIG4_9_ROUGH: &str = "surface model at E = 1.1 MPa (converged in ring width, scene fig4.5-accuracy); the \
+    dissertation's FE body-force model, its mesh and its tip size are not given; the trend (a rise at A/lambda = \
+    0.0075, a fall at 0.02) is reproduced";
 
 /// The claims of chapter 4.
 pub fn claims() -> Vec<Claim> {
@@ -197,6 +222,68 @@ pub fn claims() -> Vec<Claim> {
             expect: Expect::Differs(
                 "the ratio of the contact radii is (R_a/R)^(1/3) = 0.316; the text prints R_a/R (ERRATA Sec. 4.5.1)",
             ),
+        },
+        Claim {
+            id: "ch4.fig4_9_p_adh_smooth",
+            source: "Sec. 4.5.2, Fig. 4.9a",
+            quantity: "P_adh/(2E*R^2) of the smooth tip (A = 0, sigma = 1.5 nm, |h_min|/R = 6e-4) at E = 1.1 MPa (ERRATA Fig. 4.9)",
+            printed: "1.54e-5",
+            precision: Precision::Printed,
+            code: "scenes::fig4::roughness::Fig4_9a",
+            compute: || fig4_9a("p_adh_1_b_norm"),
+            expect: Expect::Reproduced,
+        },
+        Claim {
+            id: "ch4.fig4_9_p_adh_0075",
+            source: "Sec. 4.5.2, Fig. 4.9a",
+            quantity: "P_adh/(2E*R^2) at A/lambda = 0.0075 at E = 1.1 MPa",
+            printed: "3.06e-5",
+            precision: Precision::Printed,
+            code: "scenes::fig4::roughness::Fig4_9a",
+            compute: || fig4_9a("p_adh_2_b_norm"),
+            expect: Expect::Differs(FIG4_9_ROUGH),
+        },
+        Claim {
+            id: "ch4.fig4_9_p_adh_02",
+            source: "Sec. 4.5.2, Fig. 4.9a",
+            quantity: "P_adh/(2E*R^2) at A/lambda = 0.02 at E = 1.1 MPa",
+            printed: "1.93e-5",
+            precision: Precision::Printed,
+            code: "scenes::fig4::roughness::Fig4_9a",
+            compute: || fig4_9a("p_adh_3_b_norm"),
+            expect: Expect::Differs(FIG4_9_ROUGH),
+        },
+        Claim {
+            id: "ch4.fig4_9_hysteresis_smooth",
+            source: "Sec. 4.5.2, Fig. 4.9a",
+            quantity: "H/(2E*R^3) of the smooth tip at E = 1.1 MPa",
+            printed: "2.93e-9",
+            precision: Precision::Printed,
+            code: "scenes::fig4::roughness::Fig4_9a",
+            compute: || fig4_9a("hysteresis_1_b_norm"),
+            expect: Expect::Differs(
+                "the loss of the smooth tip is the loop area between the pull-in and pull-off branches, 3.20e-9 with the surface model (9% above the print) while its P_adh reproduces 1.54e-5; the FE model's mesh and tip size are not given",
+            ),
+        },
+        Claim {
+            id: "ch4.fig4_9_hysteresis_0075",
+            source: "Sec. 4.5.2, Fig. 4.9a",
+            quantity: "H/(2E*R^3) at A/lambda = 0.0075 at E = 1.1 MPa",
+            printed: "12.43e-9",
+            precision: Precision::Printed,
+            code: "scenes::fig4::roughness::Fig4_9a",
+            compute: || fig4_9a("hysteresis_2_b_norm"),
+            expect: Expect::Differs(FIG4_9_ROUGH),
+        },
+        Claim {
+            id: "ch4.fig4_9_hysteresis_02",
+            source: "Sec. 4.5.2, Fig. 4.9a",
+            quantity: "H/(2E*R^3) at A/lambda = 0.02 at E = 1.1 MPa",
+            printed: "7.7e-9",
+            precision: Precision::Printed,
+            code: "scenes::fig4::roughness::Fig4_9a",
+            compute: || fig4_9a("hysteresis_3_b_norm"),
+            expect: Expect::Differs(FIG4_9_ROUGH),
         },
     ]
 }

@@ -31,6 +31,9 @@ pub const SCENES: &[&dyn SceneDyn] = &[
     &Registered::<Fig4_5>::NEW,
     &Registered::<Fig4_7>::NEW,
     &Registered::<Fig4_8>::NEW,
+    &Registered::<roughness::Fig4_9a>::NEW,
+    &Registered::<roughness::Fig4_11>::NEW,
+    &Registered::<roughness::Fig4_12>::NEW,
 ];
 
 crate::scene_params! {

@@ -1,1 +1,621 @@
-//! Chapter 4 scenes (placeholder module, filled by the scene's commit).
+//! Section 4.5.2: the effect of roughness (the amplitude A of the waviness (4.10)) on adhesion
+//! at a fixed maximum depth |h_min|/R = 6e-4 and σ = 1.5 nm: the P-h cycles of Fig. 4.9a, the
+//! contact configurations at the adhesive force of Fig. 4.11 and the consecutive pull-off
+//! configurations of Fig. 4.12, all with the axisymmetric surface model.
+//!
+//! The modulus: the caption of Fig. 4.9 gives the parameters of Fig. 4.7a (E = 2.2 MPa), at
+//! which the printed smooth-tip adhesive force 1.54e-5 · 2E*R² exceeds the DMT bound 2πwR;
+//! ERRATA reads E = 1.1 MPa as more likely. Fig. 4.9a draws both; Fig. 4.11 (whose caption
+//! refers to Fig. 4.7a) uses 2.2 MPa, Fig. 4.12 (whose caption refers to Fig. 4.9a) 1.1 MPa.
+
+use rayon::prelude::*;
+
+use super::{draw_cycle, material, tip_for};
+use crate::error::{Error, Result};
+use crate::figure::{Axis, Field, Figure, Panel};
+use crate::job::Job;
+use crate::models::axisymmetric::cycle::{CycleOptions, TipCycle, TipJump, TipState, run_cycle};
+use crate::models::axisymmetric::tip::Tip;
+use crate::models::lennard_jones::LennardJones;
+use crate::params::Range;
+use crate::scenes::Scene;
+
+/// The parameters shared by the roughness scenes (those of Fig. 4.7a with σ = 1.5 nm and
+/// |h_min|/R = 6e-4), with the scene's own amplitudes and extra fields appended.
+macro_rules! rough_tip_params {
+    ($(#[$meta:meta])* $name:ident, youngs_modulus = $e:expr, { $($extra:tt)* }) => {
+        crate::scene_params! {
+            $(#[$meta])*
+            pub struct $name {
+                /// Radius of curvature R of the tip [m].
+                radius: f64 = 10.0e-6, unit = "m", range = Range::between(1.0e-8, 1.0e-3);
+                /// Young's modulus E of the tip [Pa] (see ERRATA on Fig. 4.9).
+                youngs_modulus: f64 = $e, unit = "Pa", range = Range::between(1.0e3, 1.0e12);
+                /// Poisson's ratio ν of the tip.
+                poisson_ratio: f64 = 0.25, unit = "", range = Range::between(0.0, 0.49);
+                /// C6 of the potential (4.1).
+                c6: f64 = 3.0, unit = "", range = Range::between(0.1, 100.0);
+                /// C12 of the potential (4.1).
+                c12: f64 = 1.0, unit = "", range = Range::between(0.01, 100.0);
+                /// Characteristic distance σ of the potential (4.1) [m].
+                sigma: f64 = 1.5e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
+                /// Hamaker constant A_H [J].
+                hamaker: f64 = 1.0e-21, unit = "J", range = Range::between(1.0e-23, 1.0e-17);
+                /// Wavelength λ of the waviness (4.10) [m].
+                wavelength: f64 = 1.25e-7, unit = "m", range = Range::between(1.0e-9, 1.0e-4);
+                /// Maximum depth of the cycles |h_min|/R.
+                depth_over_radius: f64 = 6.0e-4, unit = "", range = Range::between(1.0e-6, 1.0e-2);
+                /// Start (and end) of the cycles in units of ζ0; beyond every pull-off.
+                h_start_over_zeta0: f64 = 25.0, unit = "", range = Range::between(1.0, 200.0);
+                /// Depth step in units of ζ0.
+                step_over_zeta0: f64 = 0.25, unit = "", range = Range::between(1.0e-3, 1.0);
+                /// Ring width in units of b = ζ0²E*/w.
+                ring_width: f64 = 0.25, unit = "", range = Range::between(0.02, 2.0);
+                /// Gauss points per interval of the interaction energy.
+                quadrature_points: usize = 4, unit = "", range = Range::between(1.0, 16.0);
+                /// Contact threshold of the gap (section 4.2.2: σ) [m].
+                contact_gap: f64 = 1.5e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
+                $($extra)*
+            }
+        }
+
+        impl $name {
+            /// The material and cycle set-up at Young's modulus `youngs_modulus`.
+            fn setup(&self, youngs_modulus: f64) -> Result<Setup> {
+                let (lj, modulus) = material(
+                    self.c6,
+                    self.c12,
+                    self.sigma,
+                    self.hamaker,
+                    youngs_modulus,
+                    self.poisson_ratio,
+                )?;
+                Ok(Setup {
+                    lj,
+                    modulus,
+                    radius: self.radius,
+                    wavelength: self.wavelength,
+                    depth: self.depth_over_radius * self.radius,
+                    h_start_over_zeta0: self.h_start_over_zeta0,
+                    step_over_zeta0: self.step_over_zeta0,
+                    ring_width: self.ring_width,
+                    quadrature_points: self.quadrature_points,
+                    contact_gap: self.contact_gap,
+                })
+            }
+        }
+    };
+}
+
+rough_tip_params! {
+    /// Parameters of scene fig4.9a (section 4.5.2, the caption of Fig. 4.9: those of Fig. 4.7a
+    /// with σ = 1.5 nm, |h_min|/R = 6e-4, A = 0, 0.9375 and 2.5 nm).
+    Fig4_9aParams, youngs_modulus = 2.2e6, {
+        /// Amplitude of the first cycle [m] (A/λ = 0).
+        amplitude_1: f64 = 0.0, unit = "m", range = Range::between(0.0, 1.0e-6);
+        /// Amplitude of the second cycle [m] (A/λ = 0.0075).
+        amplitude_2: f64 = 0.9375e-9, unit = "m", range = Range::between(0.0, 1.0e-6);
+        /// Amplitude of the third cycle [m] (A/λ = 0.02).
+        amplitude_3: f64 = 2.5e-9, unit = "m", range = Range::between(0.0, 1.0e-6);
+        /// Young's modulus of panel (b) [Pa] (ERRATA's reading of Fig. 4.9).
+        youngs_modulus_b: f64 = 1.1e6, unit = "Pa", range = Range::between(1.0e3, 1.0e12);
+    }
+}
+
+rough_tip_params! {
+    /// Parameters of scene fig4.11 (the caption of Fig. 4.11: those of Fig. 4.7a with
+    /// σ = 1.5 nm and A = 0, 1.25, 2.5, 3.75 nm; the depth of Fig. 4.9a).
+    Fig4_11Params, youngs_modulus = 2.2e6, {
+        /// Amplitude of configuration (a) [m].
+        amplitude_1: f64 = 0.0, unit = "m", range = Range::between(0.0, 1.0e-6);
+        /// Amplitude of configuration (b) [m].
+        amplitude_2: f64 = 1.25e-9, unit = "m", range = Range::between(0.0, 1.0e-6);
+        /// Amplitude of configuration (c) [m].
+        amplitude_3: f64 = 2.5e-9, unit = "m", range = Range::between(0.0, 1.0e-6);
+        /// Amplitude of configuration (d) [m].
+        amplitude_4: f64 = 3.75e-9, unit = "m", range = Range::between(0.0, 1.0e-6);
+        /// Grid points per side of the top views.
+        map_points: usize = 121, unit = "", range = Range::between(11.0, 801.0);
+    }
+}
+
+rough_tip_params! {
+    /// Parameters of scene fig4.12 (the caption of Fig. 4.12: those of Fig. 4.9a with
+    /// A = 1.25 nm and 3.125 nm, at ERRATA's E = 1.1 MPa for Fig. 4.9).
+    Fig4_12Params, youngs_modulus = 1.1e6, {
+        /// Amplitude of the small-roughness tip, configurations (a)-(c) [m].
+        amplitude_1: f64 = 1.25e-9, unit = "m", range = Range::between(0.0, 1.0e-6);
+        /// Amplitude of the large-roughness tip, configurations (d)-(f) [m].
+        amplitude_2: f64 = 3.125e-9, unit = "m", range = Range::between(0.0, 1.0e-6);
+        /// Grid points per side of the top views.
+        map_points: usize = 121, unit = "", range = Range::between(11.0, 801.0);
+    }
+}
+
+/// Material and cycle settings of one modulus.
+struct Setup {
+    lj: LennardJones,
+    modulus: f64,
+    radius: f64,
+    wavelength: f64,
+    depth: f64,
+    h_start_over_zeta0: f64,
+    step_over_zeta0: f64,
+    ring_width: f64,
+    quadrature_points: usize,
+    contact_gap: f64,
+}
+
+impl Setup {
+    /// (P, h) scales of the figures: (R, 2E*R²).
+    fn scale(&self) -> (f64, f64) {
+        (self.radius, 2.0 * self.modulus * self.radius * self.radius)
+    }
+
+    /// One cycle of the tip with amplitude `amplitude`, to the set depth.
+    fn cycle(&self, amplitude: f64, keep_profiles: bool, job: &Job) -> Result<(Tip, TipCycle)> {
+        let zeta0 = self.lj.zeta0();
+        let tip = tip_for(
+            &self.lj,
+            self.radius,
+            self.modulus,
+            amplitude,
+            self.wavelength,
+            -self.depth,
+            self.ring_width,
+            self.quadrature_points,
+        )?;
+        let opts = CycleOptions {
+            h_start: self.h_start_over_zeta0 * zeta0,
+            h_min: -self.depth,
+            step: self.step_over_zeta0 * zeta0,
+            refine_to: 1e-3 * zeta0,
+            contact_gap: self.contact_gap,
+            keep_profiles,
+            unload_to: None,
+        };
+        let cycle = run_cycle(&tip, &opts, |_| job.check())?;
+        Ok((tip, cycle))
+    }
+
+    /// Cycles of several amplitudes in parallel, in the order given.
+    fn cycles(
+        &self,
+        amplitudes: &[f64],
+        keep_profiles: bool,
+        job: &Job,
+        what: &str,
+    ) -> Result<Vec<(Tip, TipCycle)>> {
+        let done = std::sync::atomic::AtomicUsize::new(0);
+        amplitudes
+            .par_iter()
+            .map(|&a| {
+                let out = self.cycle(a, keep_profiles, job);
+                let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+                job.progress(k as f64 / amplitudes.len() as f64, what);
+                out
+            })
+            .collect()
+    }
+}
+
+/// A top view of the gap between a deformed tip and the substrate [nm], clipped at `clip`
+/// (the contact region reads as the low plateau), with the contact threshold as the
+/// highlighted contour: the axisymmetric contact set (a disc, or a disc and annuli) as the
+/// dissertation's configuration snapshots show it.
+fn top_view(
+    tip: &Tip,
+    state: &TipState,
+    half_width: f64,
+    points: usize,
+    contact_gap: f64,
+    clip: f64,
+) -> Field {
+    let zeta0 = tip.scales().length;
+    let radii = tip.radii();
+    let gaps: Vec<f64> = tip
+        .gaps(tip.approach(state.depth), &state.displacement)
+        .iter()
+        .map(|g| g * zeta0 * 1e9)
+        .collect();
+    // Linear interpolation in r between ring mid-radii (flat inside the first).
+    let gap_at = |r: f64| -> f64 {
+        let k = radii.partition_point(|&ri| ri < r);
+        if k == 0 {
+            return gaps[0];
+        }
+        if k >= radii.len() {
+            return gaps[radii.len() - 1];
+        }
+        let t = (r - radii[k - 1]) / (radii[k] - radii[k - 1]);
+        gaps[k - 1] + t * (gaps[k] - gaps[k - 1])
+    };
+    let coords: Vec<f64> = (0..points)
+        .map(|i| (-1.0 + 2.0 * i as f64 / (points - 1) as f64) * half_width * 1e9)
+        .collect();
+    let mut values = Vec::with_capacity(points * points);
+    for y in &coords {
+        for x in &coords {
+            values.push(gap_at(x.hypot(*y) * 1e-9).min(clip));
+        }
+    }
+    let mut field = Field::heat("Gap g", "nm", coords.clone(), coords, values);
+    // One colour scale for every configuration (a state out of contact included).
+    field.color_range = Some((0.0, clip));
+    field.highlight.push((contact_gap * 1e9, "contact edge".into()));
+    field
+}
+
+/// The state of largest tension on a cycle (where the adhesive force is measured).
+fn at_adhesive_force(cycle: &TipCycle) -> Option<&TipState> {
+    cycle
+        .loading
+        .iter()
+        .chain(&cycle.unloading)
+        .min_by(|a, b| a.force.total_cmp(&b.force))
+}
+
+/// Fig. 4.9a: P-h cycles of three amplitudes at the caption's modulus and at ERRATA's reading.
+pub struct Fig4_9a;
+
+impl Scene for Fig4_9a {
+    type Params = Fig4_9aParams;
+    const ID: &'static str = "fig4.9a";
+    const CHAPTER: &'static str = "4";
+    const TITLE: &'static str = "Roughness and adhesion: P-h cycles of three amplitudes";
+    const CAPTION: &'static str = "Force against depth of a wavy tip (surface model) cycled to |h_min|/R = 6e-4 for \
+        A/lambda = 0, 0.0075 and 0.02 (A = 0, 0.9375, 2.5 nm; sigma = 1.5 nm, the other parameters of Fig. 4.7a). \
+        (a) at the caption's E = 2.2 MPa, (b) at E = 1.1 MPa (ERRATA: the printed smooth-tip force exceeds the DMT \
+        bound at 2.2 MPa). The dissertation: P_adh/(2E*R^2) = 1.54e-5, 3.06e-5, 1.93e-5 and H/(2E*R^3) = 2.93e-9, \
+        12.43e-9, 7.7e-9: a small roughness raises both, a larger one lowers them again.";
+    const RESULTS: &'static [(&'static str, &'static str)] = &[
+        ("p_adh_1_norm", "P_adh/(2E*R^2), amplitude 1, panel (a)"),
+        ("p_adh_2_norm", "P_adh/(2E*R^2), amplitude 2, panel (a)"),
+        ("p_adh_3_norm", "P_adh/(2E*R^2), amplitude 3, panel (a)"),
+        ("hysteresis_1_norm", "H/(2E*R^3), amplitude 1, panel (a)"),
+        ("hysteresis_2_norm", "H/(2E*R^3), amplitude 2, panel (a)"),
+        ("hysteresis_3_norm", "H/(2E*R^3), amplitude 3, panel (a)"),
+        ("jumps_1_count", "jumps of cycle 1, panel (a)"),
+        ("jumps_2_count", "jumps of cycle 2, panel (a)"),
+        ("jumps_3_count", "jumps of cycle 3, panel (a)"),
+        ("p_adh_1_b_norm", "P_adh/(2E*R^2), amplitude 1, panel (b)"),
+        ("p_adh_2_b_norm", "P_adh/(2E*R^2), amplitude 2, panel (b)"),
+        ("p_adh_3_b_norm", "P_adh/(2E*R^2), amplitude 3, panel (b)"),
+        ("hysteresis_1_b_norm", "H/(2E*R^3), amplitude 1, panel (b)"),
+        ("hysteresis_2_b_norm", "H/(2E*R^3), amplitude 2, panel (b)"),
+        ("hysteresis_3_b_norm", "H/(2E*R^3), amplitude 3, panel (b)"),
+        (
+            "dmt_bound_norm",
+            "DMT bound pi w/(E*R) on P_adh/(2E*R^2), panel (a)",
+        ),
+    ];
+
+    /// A shallow cycle (the loop and its jumps, not the caption's depth) with coarser steps.
+    fn quick(p: &mut Self::Params) {
+        p.depth_over_radius = p.depth_over_radius.min(1.0e-4);
+        p.step_over_zeta0 = p.step_over_zeta0.max(0.5);
+        p.h_start_over_zeta0 = p.h_start_over_zeta0.min(12.0);
+    }
+
+    fn validate(p: &Self::Params) -> Result<()> {
+        p.setup(p.youngs_modulus)?;
+        p.setup(p.youngs_modulus_b).map(|_| ())
+    }
+
+    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        let amplitudes = [p.amplitude_1, p.amplitude_2, p.amplitude_3];
+        let setups = [p.setup(p.youngs_modulus)?, p.setup(p.youngs_modulus_b)?];
+        let mut fig = Figure::new(Self::ID, Self::TITLE);
+        let printed = [(1.54e-5, 2.93e-9), (3.06e-5, 12.43e-9), (1.93e-5, 7.7e-9)];
+        for (k, setup) in setups.iter().enumerate() {
+            let cycles = setup.cycles(
+                &amplitudes,
+                false,
+                job,
+                if k == 0 { "panel (a)" } else { "panel (b)" },
+            )?;
+            let (label, e) = if k == 0 {
+                ("(a)", p.youngs_modulus)
+            } else {
+                ("(b)", p.youngs_modulus_b)
+            };
+            // Depths from the deepest point to a quarter beyond the last pull-off (the flat
+            // approach from h_start carries no information).
+            let last_off = cycles
+                .iter()
+                .flat_map(|(_, c)| c.jumps.iter().map(|j| j.before.depth))
+                .fold(0.0, f64::max);
+            let (x_lo, x_hi) = (-1.05 * setup.depth / setup.radius, 1.25 * last_off / setup.radius);
+            let x_axis = Axis::linear("Indentation depth h/R", "");
+            let mut panel = Panel::new(
+                if x_hi > 0.0 {
+                    x_axis.with_range(x_lo, x_hi)
+                } else {
+                    x_axis
+                },
+                Axis::linear("Force P/(2E*R²)", ""),
+            )
+            .titled(label, format!("E = {:.2} MPa", e * 1e-6));
+            let scale = setup.scale();
+            let suffix = if k == 0 { "" } else { "_b" };
+            let mut summary = Vec::new();
+            for (i, ((_, cycle), a)) in cycles.iter().zip(amplitudes).enumerate() {
+                let name = format!("A/λ = {:.4}", a / p.wavelength);
+                draw_cycle(&mut panel, cycle, &name, [0, 3, 2][i], scale);
+                let padh = -cycle.adhesive_force() / scale.1;
+                let h = cycle.hysteresis() / (scale.1 * setup.radius);
+                fig.result(format!("p_adh_{}{suffix}_norm", i + 1), padh);
+                fig.result(format!("hysteresis_{}{suffix}_norm", i + 1), h);
+                if k == 0 {
+                    fig.result(format!("jumps_{}_count", i + 1), cycle.jumps.len() as f64);
+                }
+                summary.push(format!(
+                    "{name}: P_adh/(2E*R²) = {padh:.3e} (printed {:.2e}), H/(2E*R³) = {h:.3e} (printed {:.2e}), {} jumps",
+                    printed[i].0,
+                    printed[i].1,
+                    cycle.jumps.len()
+                ));
+            }
+            let w = setup.lj.work_of_adhesion();
+            let dmt = std::f64::consts::PI * w / (setup.modulus * setup.radius);
+            if k == 0 {
+                fig.result("dmt_bound_norm", dmt);
+            }
+            fig.note(format!(
+                "{label} E = {:.2} MPa (DMT bound on P_adh/(2E*R²): {dmt:.3e}): {}.",
+                e * 1e-6,
+                summary.join("; ")
+            ));
+            fig.panels.push(panel);
+        }
+        Ok(fig)
+    }
+}
+
+/// Fig. 4.11: contact configurations at the adhesive force for four amplitudes.
+pub struct Fig4_11;
+
+impl Scene for Fig4_11 {
+    type Params = Fig4_11Params;
+    const ID: &'static str = "fig4.11";
+    const CHAPTER: &'static str = "4";
+    const TITLE: &'static str = "Roughness and the topology of the contact at the adhesive force";
+    const CAPTION: &'static str = "Top views of the gap (nm, clipped at 3 sigma) between the deformed wavy tip and the \
+        substrate at the state of the adhesive force P_adh of a cycle to |h_min|/R = 6e-4 (surface model), for \
+        A = 0, 1.25, 2.5, 3.75 nm (sigma = 1.5 nm, the other parameters of Fig. 4.7a); the highlighted line is the \
+        contact edge (gap = sigma). The dissertation: P_adh is largest at A/lambda = 0.01, where the contact is \
+        still simply connected; beyond, the contact becomes multiply connected and the real contact area falls.";
+    const RESULTS: &'static [(&'static str, &'static str)] = &[
+        ("p_adh_1_norm", "P_adh/(2E*R^2), configuration (a)"),
+        ("p_adh_2_norm", "P_adh/(2E*R^2), configuration (b)"),
+        ("p_adh_3_norm", "P_adh/(2E*R^2), configuration (c)"),
+        ("p_adh_4_norm", "P_adh/(2E*R^2), configuration (d)"),
+        ("area_1_m2", "real contact area at P_adh, (a)"),
+        ("area_2_m2", "real contact area at P_adh, (b)"),
+        ("area_3_m2", "real contact area at P_adh, (c)"),
+        ("area_4_m2", "real contact area at P_adh, (d)"),
+        ("parts_1_count", "contact regions (disc + annuli) at P_adh, (a)"),
+        ("parts_2_count", "contact regions (disc + annuli) at P_adh, (b)"),
+        ("parts_3_count", "contact regions (disc + annuli) at P_adh, (c)"),
+        ("parts_4_count", "contact regions (disc + annuli) at P_adh, (d)"),
+    ];
+
+    /// The cycles are cheap at σ = 1.5 nm (a coarse ring grid): quick only coarsens the maps.
+    fn quick(p: &mut Self::Params) {
+        p.map_points = p.map_points.min(21);
+    }
+
+    fn validate(p: &Self::Params) -> Result<()> {
+        p.setup(p.youngs_modulus).map(|_| ())
+    }
+
+    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        let amplitudes = [p.amplitude_1, p.amplitude_2, p.amplitude_3, p.amplitude_4];
+        let setup = p.setup(p.youngs_modulus)?;
+        let cycles = setup.cycles(&amplitudes, true, job, "cycles")?;
+        let states: Vec<&TipState> = cycles
+            .iter()
+            .map(|(_, c)| at_adhesive_force(c).ok_or_else(|| no_states(Self::ID)))
+            .collect::<Result<_>>()?;
+        let half = 1.2
+            * states
+                .iter()
+                .map(|s| s.contact.radius())
+                .fold(p.wavelength, f64::max);
+        let scale = setup.scale();
+        let mut fig = Figure::new(Self::ID, Self::TITLE);
+        for (i, (((tip, cycle), state), a)) in cycles.iter().zip(&states).zip(amplitudes).enumerate() {
+            let padh = -cycle.adhesive_force() / scale.1;
+            let area = state.contact.area();
+            let parts = state.contact.intervals.len();
+            let mut panel = Panel::new(Axis::linear("x", "nm"), Axis::linear("y", "nm")).titled(
+                ["(a)", "(b)", "(c)", "(d)"][i],
+                format!("A/λ = {:.3}: P_adh/(2E*R²) = {padh:.2e}", a / p.wavelength),
+            );
+            panel.field = Some(top_view(
+                tip,
+                state,
+                half,
+                p.map_points,
+                p.contact_gap,
+                3.0 * p.sigma * 1e9,
+            ));
+            fig.panels.push(panel);
+            fig.result(format!("p_adh_{}_norm", i + 1), padh);
+            fig.result(format!("area_{}_m2", i + 1), area);
+            fig.result(format!("parts_{}_count", i + 1), parts as f64);
+        }
+        let summary: Vec<String> = states
+            .iter()
+            .zip(amplitudes)
+            .map(|(s, a)| {
+                format!(
+                    "A/λ = {:.3}: {} ({} region{}), area {:.4} µm²",
+                    a / p.wavelength,
+                    if s.contact.is_multiply_connected() {
+                        "multiply connected"
+                    } else {
+                        "simply connected"
+                    },
+                    s.contact.intervals.len(),
+                    if s.contact.intervals.len() == 1 { "" } else { "s" },
+                    s.contact.area() * 1e12
+                )
+            })
+            .collect();
+        fig.note(format!("At P_adh: {}.", summary.join("; ")));
+        Ok(fig)
+    }
+}
+
+/// The error of a cycle without states (not expected: a cycle has at least its start).
+fn no_states(id: &'static str) -> Error {
+    Error::Unresolvable {
+        model: id,
+        reason: "the cycle has no states".into(),
+    }
+}
+
+/// Fig. 4.12: consecutive pull-off configurations of a small and a large roughness.
+pub struct Fig4_12;
+
+/// The pull-off jumps of the unloading phase (the contact area drops), the final one
+/// included.
+fn pull_offs(cycle: &TipCycle) -> Vec<&TipJump> {
+    cycle
+        .jumps
+        .iter()
+        .filter(|j| !j.loading && j.before.contact.area() > j.after.contact.area())
+        .collect()
+}
+
+/// Asperity rings (wavelengths) a pull-off jump detaches: the drop of the contact radius in
+/// wavelengths for a simply connected contact, or the number of contact regions lost,
+/// whichever is larger (a jump that detaches two neighbours at once counts 2: a cascade).
+fn rings_detached(jump: &TipJump, wavelength: f64) -> f64 {
+    let (before, after) = (&jump.before.contact, &jump.after.contact);
+    let by_radius = ((before.radius() - after.radius()) / wavelength).round();
+    let by_parts = before.intervals.len() as f64 - after.intervals.len() as f64;
+    by_radius.max(by_parts)
+}
+
+impl Scene for Fig4_12 {
+    type Params = Fig4_12Params;
+    const ID: &'static str = "fig4.12";
+    const CHAPTER: &'static str = "4";
+    const TITLE: &'static str = "Consecutive pull-off instabilities: cascade and one-by-one detachment";
+    const CAPTION: &'static str = "Top views of the gap (nm, clipped at 3 sigma) at the last two pull-off \
+        instabilities on unloading (surface model, parameters of Fig. 4.9a at E = 1.1 MPa): (a)-(c) A = 1.25 nm, \
+        (d)-(f) A = 3.125 nm; before the first of the two jumps, before the second, after the second. The \
+        dissertation: at small roughness the detachment of an asperity triggers its neighbour at once (strong \
+        coupling); at large roughness the asperities detach one by one (crack arrest and reinitiation).";
+    const RESULTS: &'static [(&'static str, &'static str)] = &[
+        (
+            "pull_offs_1_count",
+            "pull-off jumps on unloading, small roughness",
+        ),
+        (
+            "pull_offs_2_count",
+            "pull-off jumps on unloading, large roughness",
+        ),
+        (
+            "rings_per_jump_1_count",
+            "mean asperity rings detached per pull-off, small roughness",
+        ),
+        (
+            "rings_per_jump_2_count",
+            "mean asperity rings detached per pull-off, large roughness",
+        ),
+        (
+            "cascades_1_count",
+            "pull-offs detaching two or more rings at once, small roughness",
+        ),
+        (
+            "cascades_2_count",
+            "pull-offs detaching two or more rings at once, large roughness",
+        ),
+    ];
+
+    /// The cycles are cheap at σ = 1.5 nm (a coarse ring grid): quick only coarsens the maps.
+    fn quick(p: &mut Self::Params) {
+        p.map_points = p.map_points.min(21);
+    }
+
+    fn validate(p: &Self::Params) -> Result<()> {
+        p.setup(p.youngs_modulus).map(|_| ())
+    }
+
+    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        let amplitudes = [p.amplitude_1, p.amplitude_2];
+        let setup = p.setup(p.youngs_modulus)?;
+        let cycles = setup.cycles(&amplitudes, true, job, "cycles")?;
+        let mut fig = Figure::new(Self::ID, Self::TITLE);
+        let labels = [["(a)", "(b)", "(c)"], ["(d)", "(e)", "(f)"]];
+        let mut notes = Vec::new();
+        for (k, ((tip, cycle), a)) in cycles.iter().zip(amplitudes).enumerate() {
+            let offs = pull_offs(cycle);
+            let rings: Vec<f64> = offs.iter().map(|j| rings_detached(j, p.wavelength)).collect();
+            let mean = if rings.is_empty() {
+                0.0
+            } else {
+                rings.iter().sum::<f64>() / rings.len() as f64
+            };
+            let cascades = rings.iter().filter(|&&r| r >= 2.0).count();
+            fig.result(format!("pull_offs_{}_count", k + 1), offs.len() as f64);
+            fig.result(format!("rings_per_jump_{}_count", k + 1), mean);
+            fig.result(format!("cascades_{}_count", k + 1), cascades as f64);
+            let list: Vec<String> = offs
+                .iter()
+                .zip(&rings)
+                .map(|(j, r)| format!("{r:.0} at h/R = {:.2e}", j.before.depth / setup.radius))
+                .collect();
+            notes.push(format!(
+                "A = {:.3} nm: {} pull-offs detaching {} ring(s)",
+                a * 1e9,
+                offs.len(),
+                list.join(", ")
+            ));
+            if offs.len() < 2 {
+                continue;
+            }
+            let (first, second) = (offs[offs.len() - 2], offs[offs.len() - 1]);
+            let states = [&first.before, &second.before, &second.after];
+            let half = 1.2 * first.before.contact.radius().max(p.wavelength);
+            for (n, s) in states.iter().enumerate() {
+                let mut panel = Panel::new(Axis::linear("x", "nm"), Axis::linear("y", "nm")).titled(
+                    labels[k][n],
+                    format!(
+                        "A = {:.3} nm, h/R = {:.2e}, a = {:.0} nm",
+                        a * 1e9,
+                        s.depth / setup.radius,
+                        s.contact.radius() * 1e9
+                    ),
+                );
+                panel.field = Some(top_view(
+                    tip,
+                    s,
+                    half,
+                    p.map_points,
+                    p.contact_gap,
+                    3.0 * p.sigma * 1e9,
+                ));
+                fig.panels.push(panel);
+            }
+        }
+        fig.note(format!("Pull-offs on unloading: {}.", notes.join("; ")));
+        let r = |n: &str| fig.result_value(n).unwrap_or(0.0);
+        let (small, large) = (r("rings_per_jump_1_count"), r("rings_per_jump_2_count"));
+        fig.note(if small > large && r("pull_offs_2_count") > r("pull_offs_1_count") {
+            format!(
+                "As the text says: the small roughness detaches {small:.2} rings per pull-off (cascades), the large one \
+                 {large:.2} in more, smaller steps; the large roughness's final pull-off still takes the centre and the \
+                 last annulus together."
+            )
+        } else {
+            format!(
+                "Unlike the text: {small:.2} rings per pull-off at the small roughness, {large:.2} at the large one."
+            )
+        });
+        Ok(fig)
+    }
+}

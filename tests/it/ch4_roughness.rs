@@ -1,0 +1,84 @@
+//! Chapter 4, section 4.5.2: roughness (the amplitude of the waviness (4.10)) and adhesion at
+//! σ = 1.5 nm and |h_min|/R = 6e-4 with the axisymmetric surface model: the scenes fig4.9a,
+//! fig4.11 and fig4.12 at their defaults, checked against what the dissertation's text says.
+
+use adhesion::figure::Figure;
+use adhesion::job::Job;
+
+fn run(id: &str) -> Figure {
+    let s = adhesion::scenes::find(id).unwrap();
+    s.run(&s.defaults(), &Job::quiet()).unwrap()
+}
+
+// Fig. 4.9a: a small roughness (A/λ = 0.0075) raises the adhesive force and the loss, a larger
+// one (0.02) lowers them again, at both moduli. At E = 1.1 MPa (ERRATA's reading of the
+// caption) the smooth tip's P_adh/(2E*R²) is the printed 1.54e-5 to 1%; at the caption's
+// 2.2 MPa it is half of it, below the DMT bound the printed value exceeds. The rough tips
+// differ from the printed values (2.87e-5 vs 3.06e-5, 2.45e-5 vs 1.93e-5 at 1.1 MPa): the
+// dissertation's body-force FE model and its grid are not the surface model, and its other
+// parameters may differ too; recorded, not tuned.
+#[test]
+fn fig4_9a_small_roughness_raises_adhesion_and_large_roughness_lowers_it() {
+    let fig = run("fig4.9a");
+    let r = |n: &str| fig.result_value(n).unwrap();
+    for suffix in ["", "_b"] {
+        let p = |i: usize| r(&format!("p_adh_{i}{suffix}_norm"));
+        let h = |i: usize| r(&format!("hysteresis_{i}{suffix}_norm"));
+        assert!(
+            p(2) > p(1) && p(2) > p(3),
+            "P_adh{suffix}: {} {} {}",
+            p(1),
+            p(2),
+            p(3)
+        );
+        assert!(
+            h(2) > h(1) && h(2) > h(3),
+            "H{suffix}: {} {} {}",
+            h(1),
+            h(2),
+            h(3)
+        );
+    }
+    let smooth_b = r("p_adh_1_b_norm");
+    assert!((smooth_b / 1.54e-5 - 1.0).abs() < 0.01, "{smooth_b}");
+    assert!(r("p_adh_1_norm") < r("dmt_bound_norm") && 1.54e-5 > r("dmt_bound_norm"));
+    // More asperity-level instabilities on the rough tip than the smooth tip's two.
+    assert_eq!(r("jumps_1_count"), 2.0);
+    assert!(r("jumps_2_count") > 2.0);
+}
+
+// Fig. 4.11: P_adh is largest at A/λ = 0.01, where the contact at the adhesive force is still
+// simply connected and largest; at 0.02 and 0.03 it is multiply connected and the real contact
+// area has fallen.
+#[test]
+fn fig4_11_adhesion_peaks_where_the_contact_stops_being_simply_connected() {
+    let fig = run("fig4.11");
+    let r = |n: &str| fig.result_value(n).unwrap();
+    let p: Vec<f64> = (1..=4).map(|i| r(&format!("p_adh_{i}_norm"))).collect();
+    let area: Vec<f64> = (1..=4).map(|i| r(&format!("area_{i}_m2"))).collect();
+    let parts: Vec<f64> = (1..=4).map(|i| r(&format!("parts_{i}_count"))).collect();
+    assert!(p[1] > p[0] && p[1] > p[2] && p[2] > p[3], "{p:?}");
+    assert_eq!(&parts[..2], &[1.0, 1.0]);
+    assert!(parts[2] > 1.0 && parts[3] > 1.0, "{parts:?}");
+    assert!(
+        area[1] > area[0] && area[2] < area[1] && area[3] < area[1],
+        "{area:?}"
+    );
+}
+
+// Fig. 4.12: at the large roughness the contact detaches in more pull-off jumps, one ring per
+// jump before the last (crack arrest and reinitiation); at the small roughness the last jump
+// detaches two rings at once (a cascade). The final pull-off of the large roughness also takes
+// the central disc and the last annulus together: the workbench's finding, on the figure.
+#[test]
+fn fig4_12_large_roughness_detaches_in_more_steps() {
+    let fig = run("fig4.12");
+    let r = |n: &str| fig.result_value(n).unwrap();
+    assert!(r("pull_offs_2_count") > r("pull_offs_1_count"));
+    assert!(r("cascades_1_count") >= 1.0);
+    assert!(r("rings_per_jump_1_count") > r("rings_per_jump_2_count"));
+    // Before its final pull-off the large roughness loses one ring per jump.
+    let n2 = r("pull_offs_2_count");
+    let total2 = r("rings_per_jump_2_count") * n2;
+    assert!(total2 - (n2 - 1.0) <= 2.0 + 1e-9, "{total2} rings in {n2} jumps");
+}
