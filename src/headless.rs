@@ -84,7 +84,8 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
         let mut failed = 0;
         for scene in scenes::all() {
             let id = scene.info().id;
-            let outcome = resolve_values(scene, None, &[], cli.quick)
+            // Sweeps (minutes each at their defaults) run in their quick form here.
+            let outcome = resolve_values(scene, None, &[], cli.quick || scene.info().sweep)
                 .and_then(|values| export_scene(scene, &values, &cli.out, &formats, &progress_job(id)));
             match outcome {
                 Ok(paths) => {
@@ -152,6 +153,12 @@ pub fn describe(id: &str) -> Result<String> {
         "{} — {}\n\n{}\n\nParameters (SI units; set with --set NAME=VALUE):\n",
         info.id, info.title, info.caption
     );
+    if info.sweep {
+        out.push_str(
+            "A sweep of many independent cycles: `--all` runs it in its quick form; export it \
+             with --figure for the full grid.\n\n",
+        );
+    }
     out.push_str(&format!(
         "  {:<24} {:>14}  {:<8} {:<16} {}\n",
         "name", "default", "unit", "valid range", "meaning"

@@ -38,6 +38,9 @@ pub trait Scene: Send + Sync + 'static {
     const CAPTION: &'static str;
     /// Names of the scalar results (with unit suffix or `_norm`) and their meaning.
     const RESULTS: &'static [(&'static str, &'static str)];
+    /// Whether the scene is a sweep of many independent runs (minutes at its defaults):
+    /// `--all` runs it in its quick form, and `--describe` says so.
+    const SWEEP: bool = false;
 
     /// Checks across fields (ranges of single fields are checked by their specs).
     ///
@@ -70,6 +73,8 @@ pub struct SceneInfo {
     pub caption: &'static str,
     /// Result names and meanings.
     pub results: &'static [(&'static str, &'static str)],
+    /// A sweep of many runs ([`Scene::SWEEP`]).
+    pub sweep: bool,
 }
 
 /// Object-safe view of a [`Scene`], used by the front ends.
@@ -113,6 +118,7 @@ impl<S: Scene> SceneDyn for Registered<S> {
             title: S::TITLE,
             caption: S::CAPTION,
             results: S::RESULTS,
+            sweep: S::SWEEP,
         }
     }
 

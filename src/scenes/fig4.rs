@@ -11,6 +11,7 @@
 mod accuracy;
 mod criterion;
 mod roughness;
+mod sweeps;
 
 use std::f64::consts::PI;
 
@@ -32,6 +33,8 @@ pub const SCENES: &[&dyn SceneDyn] = &[
     &Registered::<Fig4_7>::NEW,
     &Registered::<Fig4_8>::NEW,
     &Registered::<roughness::Fig4_9a>::NEW,
+    &Registered::<sweeps::Fig4_9b>::NEW,
+    &Registered::<sweeps::Fig4_10>::NEW,
     &Registered::<roughness::Fig4_11>::NEW,
     &Registered::<roughness::Fig4_12>::NEW,
 ];

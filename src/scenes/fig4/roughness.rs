@@ -10,7 +10,7 @@
 
 use rayon::prelude::*;
 
-use super::{draw_cycle, material, tip_for};
+use super::{draw_cycle, tip_for};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Field, Figure, Panel};
 use crate::job::Job;
@@ -37,8 +37,6 @@ macro_rules! rough_tip_params {
                 c6: f64 = 3.0, unit = "", range = Range::between(0.1, 100.0);
                 /// C12 of the potential (4.1).
                 c12: f64 = 1.0, unit = "", range = Range::between(0.01, 100.0);
-                /// Characteristic distance σ of the potential (4.1) [m].
-                sigma: f64 = 1.5e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
                 /// Hamaker constant A_H [J].
                 hamaker: f64 = 1.0e-21, unit = "J", range = Range::between(1.0e-23, 1.0e-17);
                 /// Wavelength λ of the waviness (4.10) [m].
@@ -53,24 +51,28 @@ macro_rules! rough_tip_params {
                 ring_width: f64 = 0.25, unit = "", range = Range::between(0.02, 2.0);
                 /// Gauss points per interval of the interaction energy.
                 quadrature_points: usize = 4, unit = "", range = Range::between(1.0, 16.0);
-                /// Contact threshold of the gap (section 4.2.2: σ) [m].
-                contact_gap: f64 = 1.5e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
                 $($extra)*
             }
         }
 
         impl $name {
-            /// The material and cycle set-up at Young's modulus `youngs_modulus`.
-            fn setup(&self, youngs_modulus: f64) -> Result<Setup> {
-                let (lj, modulus) = material(
+            /// The material and cycle set-up at Young's modulus `youngs_modulus` [Pa], range
+            /// `sigma` [m] of the potential and contact threshold `contact_gap` [m].
+            fn setup(
+                &self,
+                youngs_modulus: f64,
+                sigma: f64,
+                contact_gap: f64,
+            ) -> crate::error::Result<crate::scenes::fig4::roughness::Setup> {
+                let (lj, modulus) = crate::scenes::fig4::material(
                     self.c6,
                     self.c12,
-                    self.sigma,
+                    sigma,
                     self.hamaker,
                     youngs_modulus,
                     self.poisson_ratio,
                 )?;
-                Ok(Setup {
+                Ok(crate::scenes::fig4::roughness::Setup {
                     lj,
                     modulus,
                     radius: self.radius,
@@ -80,17 +82,23 @@ macro_rules! rough_tip_params {
                     step_over_zeta0: self.step_over_zeta0,
                     ring_width: self.ring_width,
                     quadrature_points: self.quadrature_points,
-                    contact_gap: self.contact_gap,
+                    contact_gap,
                 })
             }
         }
     };
 }
 
+pub(super) use rough_tip_params;
+
 rough_tip_params! {
     /// Parameters of scene fig4.9a (section 4.5.2, the caption of Fig. 4.9: those of Fig. 4.7a
     /// with σ = 1.5 nm, |h_min|/R = 6e-4, A = 0, 0.9375 and 2.5 nm).
     Fig4_9aParams, youngs_modulus = 2.2e6, {
+        /// Characteristic distance σ of the potential (4.1) [m].
+        sigma: f64 = 1.5e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
+        /// Contact threshold of the gap (section 4.2.2: σ) [m].
+        contact_gap: f64 = 1.5e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
         /// Amplitude of the first cycle [m] (A/λ = 0).
         amplitude_1: f64 = 0.0, unit = "m", range = Range::between(0.0, 1.0e-6);
         /// Amplitude of the second cycle [m] (A/λ = 0.0075).
@@ -106,6 +114,10 @@ rough_tip_params! {
     /// Parameters of scene fig4.11 (the caption of Fig. 4.11: those of Fig. 4.7a with
     /// σ = 1.5 nm and A = 0, 1.25, 2.5, 3.75 nm; the depth of Fig. 4.9a).
     Fig4_11Params, youngs_modulus = 2.2e6, {
+        /// Characteristic distance σ of the potential (4.1) [m].
+        sigma: f64 = 1.5e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
+        /// Contact threshold of the gap (section 4.2.2: σ) [m].
+        contact_gap: f64 = 1.5e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
         /// Amplitude of configuration (a) [m].
         amplitude_1: f64 = 0.0, unit = "m", range = Range::between(0.0, 1.0e-6);
         /// Amplitude of configuration (b) [m].
@@ -123,6 +135,10 @@ rough_tip_params! {
     /// Parameters of scene fig4.12 (the caption of Fig. 4.12: those of Fig. 4.9a with
     /// A = 1.25 nm and 3.125 nm, at ERRATA's E = 1.1 MPa for Fig. 4.9).
     Fig4_12Params, youngs_modulus = 1.1e6, {
+        /// Characteristic distance σ of the potential (4.1) [m].
+        sigma: f64 = 1.5e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
+        /// Contact threshold of the gap (section 4.2.2: σ) [m].
+        contact_gap: f64 = 1.5e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
         /// Amplitude of the small-roughness tip, configurations (a)-(c) [m].
         amplitude_1: f64 = 1.25e-9, unit = "m", range = Range::between(0.0, 1.0e-6);
         /// Amplitude of the large-roughness tip, configurations (d)-(f) [m].
@@ -133,27 +149,27 @@ rough_tip_params! {
 }
 
 /// Material and cycle settings of one modulus.
-struct Setup {
-    lj: LennardJones,
-    modulus: f64,
-    radius: f64,
-    wavelength: f64,
-    depth: f64,
-    h_start_over_zeta0: f64,
-    step_over_zeta0: f64,
-    ring_width: f64,
-    quadrature_points: usize,
-    contact_gap: f64,
+pub(super) struct Setup {
+    pub(super) lj: LennardJones,
+    pub(super) modulus: f64,
+    pub(super) radius: f64,
+    pub(super) wavelength: f64,
+    pub(super) depth: f64,
+    pub(super) h_start_over_zeta0: f64,
+    pub(super) step_over_zeta0: f64,
+    pub(super) ring_width: f64,
+    pub(super) quadrature_points: usize,
+    pub(super) contact_gap: f64,
 }
 
 impl Setup {
     /// (P, h) scales of the figures: (R, 2E*R²).
-    fn scale(&self) -> (f64, f64) {
+    pub(super) fn scale(&self) -> (f64, f64) {
         (self.radius, 2.0 * self.modulus * self.radius * self.radius)
     }
 
     /// One cycle of the tip with amplitude `amplitude`, to the set depth.
-    fn cycle(&self, amplitude: f64, keep_profiles: bool, job: &Job) -> Result<(Tip, TipCycle)> {
+    pub(super) fn cycle(&self, amplitude: f64, keep_profiles: bool, job: &Job) -> Result<(Tip, TipCycle)> {
         let zeta0 = self.lj.zeta0();
         let tip = tip_for(
             &self.lj,
@@ -298,13 +314,16 @@ impl Scene for Fig4_9a {
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
-        p.setup(p.youngs_modulus)?;
-        p.setup(p.youngs_modulus_b).map(|_| ())
+        p.setup(p.youngs_modulus, p.sigma, p.contact_gap)?;
+        p.setup(p.youngs_modulus_b, p.sigma, p.contact_gap).map(|_| ())
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
         let amplitudes = [p.amplitude_1, p.amplitude_2, p.amplitude_3];
-        let setups = [p.setup(p.youngs_modulus)?, p.setup(p.youngs_modulus_b)?];
+        let setups = [
+            p.setup(p.youngs_modulus, p.sigma, p.contact_gap)?,
+            p.setup(p.youngs_modulus_b, p.sigma, p.contact_gap)?,
+        ];
         let mut fig = Figure::new(Self::ID, Self::TITLE);
         let printed = [(1.54e-5, 2.93e-9), (3.06e-5, 12.43e-9), (1.93e-5, 7.7e-9)];
         for (k, setup) in setups.iter().enumerate() {
@@ -406,12 +425,12 @@ impl Scene for Fig4_11 {
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
-        p.setup(p.youngs_modulus).map(|_| ())
+        p.setup(p.youngs_modulus, p.sigma, p.contact_gap).map(|_| ())
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
         let amplitudes = [p.amplitude_1, p.amplitude_2, p.amplitude_3, p.amplitude_4];
-        let setup = p.setup(p.youngs_modulus)?;
+        let setup = p.setup(p.youngs_modulus, p.sigma, p.contact_gap)?;
         let cycles = setup.cycles(&amplitudes, true, job, "cycles")?;
         let states: Vec<&TipState> = cycles
             .iter()
@@ -542,12 +561,12 @@ impl Scene for Fig4_12 {
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
-        p.setup(p.youngs_modulus).map(|_| ())
+        p.setup(p.youngs_modulus, p.sigma, p.contact_gap).map(|_| ())
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
         let amplitudes = [p.amplitude_1, p.amplitude_2];
-        let setup = p.setup(p.youngs_modulus)?;
+        let setup = p.setup(p.youngs_modulus, p.sigma, p.contact_gap)?;
         let cycles = setup.cycles(&amplitudes, true, job, "cycles")?;
         let mut fig = Figure::new(Self::ID, Self::TITLE);
         let labels = [["(a)", "(b)", "(c)"], ["(d)", "(e)", "(f)"]];
