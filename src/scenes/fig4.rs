@@ -30,6 +30,7 @@ use crate::params::Range;
 /// The scenes of this chapter, in figure order.
 pub const SCENES: &[&dyn SceneDyn] = &[
     &Registered::<Fig4_5>::NEW,
+    &Registered::<accuracy::Fig4_5Accuracy>::NEW,
     &Registered::<Fig4_7>::NEW,
     &Registered::<Fig4_8>::NEW,
     &Registered::<roughness::Fig4_9a>::NEW,

@@ -71,17 +71,35 @@ impl TipCycle {
     }
 
     /// Hysteresis H = −∮ P dh over the measured path [J]: the area between loading and
-    /// unloading (jumps are vertical in depth and add nothing beyond the trapezoids).
+    /// unloading, with every jump vertical at its fold.
+    ///
+    /// The state after a jump lies where the minimiser found the way out, which may be up to
+    /// one step past the fold (the energy just past a fold is flat and the way out slow). The
+    /// stretch from the fold to that state lies on the new branch, so it is integrated with
+    /// the force after the jump: an error of order (step)² · dP/dh. A trapezoid through the
+    /// jump would add half the force jump times that stretch, an error of first order in
+    /// the step (0.4 % of H between steps of 0.1 ζ0 and 0.05 ζ0 on the smooth tip of
+    /// Fig. 4.5).
     pub fn hysteresis(&self) -> f64 {
-        let load: Vec<(f64, f64)> = self.loading.iter().map(|s| (s.depth, s.force)).collect();
+        let path = |phase: bool, states: &mut dyn Iterator<Item = &TipState>| {
+            let jumps: Vec<&TipJump> = self.jumps.iter().filter(|j| j.loading == phase).collect();
+            let mut next = jumps.iter().peekable();
+            let mut pts: Vec<(f64, f64)> = Vec::new();
+            for s in states {
+                if let Some(j) = next.peek()
+                    && j.after.depth == s.depth
+                    && j.after.force == s.force
+                {
+                    pts.push((j.before.depth, s.force));
+                    next.next();
+                }
+                pts.push((s.depth, s.force));
+            }
+            pts
+        };
+        let load = path(true, &mut self.loading.iter());
         // Unloading starts where loading turned.
-        let unload: Vec<(f64, f64)> = self
-            .loading
-            .last()
-            .into_iter()
-            .chain(&self.unloading)
-            .map(|s| (s.depth, s.force))
-            .collect();
+        let unload = path(false, &mut self.loading.last().into_iter().chain(&self.unloading));
         // Loading runs to decreasing depth: ∫ P dh there is negative of the area under it.
         -(trapezoid(&load) + trapezoid(&unload))
     }
@@ -220,4 +238,58 @@ pub fn run_cycle(
         cycle.stats.all_stable &= stats.all_stable;
     }
     Ok(cycle)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn state(depth: f64, force: f64) -> TipState {
+        TipState {
+            depth,
+            force,
+            contact: ContactSet::default(),
+            stable: true,
+            displacement: Vec::new(),
+        }
+    }
+
+    /// A loop with a free branch (P = 0) and a contact branch (P = −1): pull-in at the fold
+    /// h = 1, pull-off at the fold h = 1.5, and each state after a jump found one step past its
+    /// fold (h = 0 and h = 2). With vertical jumps the loop spans 1 ≤ h ≤ 1.5 between the
+    /// branches: H = 0.5 exactly (a trapezoid through the jumps gives 0.75).
+    #[test]
+    fn jumps_are_vertical_at_their_folds_in_the_loop_area() {
+        let loading = vec![
+            state(2.0, 0.0),
+            state(1.0, 0.0),
+            state(0.0, -1.0),
+            state(-1.0, -1.0),
+        ];
+        let unloading = vec![
+            state(0.0, -1.0),
+            state(1.0, -1.0),
+            state(1.5, -1.0),
+            state(2.0, 0.0),
+        ];
+        let jumps = vec![
+            TipJump {
+                loading: true,
+                before: loading[1].clone(),
+                after: loading[2].clone(),
+            },
+            TipJump {
+                loading: false,
+                before: unloading[2].clone(),
+                after: unloading[3].clone(),
+            },
+        ];
+        let cycle = TipCycle {
+            loading,
+            unloading,
+            jumps,
+            stats: PathStats::default(),
+        };
+        assert!((cycle.hysteresis() - 0.5).abs() < 1e-15, "{}", cycle.hysteresis());
+    }
 }
