@@ -9,7 +9,7 @@
 //! traced (the Maugis-Dugdale reference shows where its unstable branch lies).
 
 mod accuracy;
-mod criterion;
+pub mod criterion;
 mod roughness;
 
 use std::f64::consts::PI;
@@ -28,6 +28,7 @@ use crate::params::Range;
 
 /// The scenes of this chapter, in figure order.
 pub const SCENES: &[&dyn SceneDyn] = &[
+    &Registered::<criterion::Fig4_3>::NEW,
     &Registered::<Fig4_5>::NEW,
     &Registered::<Fig4_7>::NEW,
     &Registered::<Fig4_8>::NEW,
