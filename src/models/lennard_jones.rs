@@ -240,6 +240,34 @@ impl LennardJones {
         (radius * self.work.powi(2) / (modulus.powi(2) * self.zeta0.powi(3))).cbrt()
     }
 
+    /// Effective modulus E* [Pa] at which a tip of radius `radius` R [m] has the Tabor
+    /// parameter `mu_t`: the inverse of [`Self::tabor_parameter`].
+    ///
+    /// Implements Eq. (1.8) solved for E*:
+    /// ```text
+    /// E* = ( R w² / (μ_T³ ζ₀³) )^(1/2)
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming `mu_t` unless it is positive and finite, `radius`
+    /// unless positive and finite, and `c6` when C₆ = 0 (no attraction: μ_T = 0 for every E*).
+    pub fn modulus_for_tabor(&self, radius: f64, mu_t: f64) -> Result<f64> {
+        if !(mu_t.is_finite() && mu_t > 0.0) {
+            return Err(Error::invalid("mu_t", mu_t, "must be positive and finite"));
+        }
+        if !(radius.is_finite() && radius > 0.0) {
+            return Err(Error::invalid("radius", radius, "must be positive and finite"));
+        }
+        if self.work <= 0.0 {
+            return Err(Error::invalid(
+                "c6",
+                self.params.c6,
+                "a Tabor parameter needs an attraction, C6 > 0",
+            ));
+        }
+        Ok((radius * self.work.powi(2) / (mu_t.powi(3) * self.zeta0.powi(3))).sqrt())
+    }
+
     /// Ratio of adhesive to elastic length χ = w/(E* δ₀) for `modulus` E* [Pa].
     ///
     /// Implements Eq. (4.25) (= (3.2) with Z₀ = δ₀ of [`Self::dugdale_range`]):
@@ -625,6 +653,36 @@ mod tests {
         assert!((lj.ell(radius, modulus) - 4.51e-5).abs() < 0.005e-5);
         assert!((lj.chi(modulus) - 0.124).abs() < 0.0005);
         assert!((lj.tabor_parameter(radius, modulus) - 5.0).abs() < 0.05);
+    }
+
+    #[test]
+    fn modulus_for_tabor_inverts_1_8() {
+        // Round trip through (1.8) at μ_T = 0.5, 5, 10 (closed forms: 1e-13 relative); the
+        // modulus of Fig. 4.5 (E = 4.4 MPa, ν = 0.25) is that of μ_T ≈ 5.
+        let lj = fig4_5();
+        for mu in [0.5, 5.0, 10.0] {
+            let e = lj.modulus_for_tabor(5e-6, mu).unwrap();
+            assert!((lj.tabor_parameter(5e-6, e) - mu).abs() < 1e-13 * mu, "{mu}");
+        }
+        let e5 = lj.modulus_for_tabor(5e-6, 5.0).unwrap();
+        assert!((e5 / (4.4e6 / 0.9375) - 1.0).abs() < 0.02);
+        assert!(
+            lj.modulus_for_tabor(5e-6, 0.0)
+                .unwrap_err()
+                .to_string()
+                .contains("`mu_t`")
+        );
+        let none = LennardJones::new(&LennardJonesParams {
+            c6: 0.0,
+            ..LennardJonesParams::default()
+        })
+        .unwrap();
+        assert!(
+            none.modulus_for_tabor(5e-6, 1.0)
+                .unwrap_err()
+                .to_string()
+                .contains("`c6`")
+        );
     }
 
     #[test]

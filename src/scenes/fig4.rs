@@ -9,7 +9,7 @@
 //! traced (the Maugis-Dugdale reference shows where its unstable branch lies).
 
 mod accuracy;
-mod criterion;
+pub mod criterion;
 mod roughness;
 mod sweeps;
 
@@ -29,6 +29,7 @@ use crate::params::Range;
 
 /// The scenes of this chapter, in figure order.
 pub const SCENES: &[&dyn SceneDyn] = &[
+    &Registered::<criterion::Fig4_3>::NEW,
     &Registered::<Fig4_5>::NEW,
     &Registered::<accuracy::Fig4_5Accuracy>::NEW,
     &Registered::<Fig4_7>::NEW,

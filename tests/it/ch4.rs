@@ -8,9 +8,13 @@
 
 use std::f64::consts::PI;
 
+use adhesion::figure::Figure;
+use adhesion::job::Job;
 use adhesion::models::axisymmetric::cycle::{CycleOptions, TipCycle, run_cycle};
 use adhesion::models::axisymmetric::tip::{Tip, TipParams};
 use adhesion::numerics::newton::{Energy, NewtonOptions, StableNewton, plain_newton};
+use adhesion::scenes::Scene;
+use adhesion::scenes::fig4::criterion::{Fig4_3, Fig4_3Params, parabola_error_before_pull_in};
 
 /// Fig. 4.5: R = 5 µm, E = 4.4 MPa, ν = 0.25, C6 = 3, C12 = 1, σ = 1 nm, A_H = 2e-21 J; a
 /// grid of ring width 0.25 b (b = ζ0²E*/w ≈ 4.9 nm) over 250 nm, 4 Gauss points per interval.
@@ -313,4 +317,101 @@ fn coarse_rings_hop_and_the_default_rings_do_not() {
     );
     // Between the JKR (1.5) and DMT (2) limits, near JKR at μ_T ≈ 5 (sec. 4.4).
     assert!((1.5..1.6).contains(&r("reference_adhesive_force_norm")));
+}
+
+/// Scene fig4.3 at the default grid with the Tabor parameters `mus` and `bisections` cycles of
+/// onset bisection.
+fn fig4_3(mus: &[f64], bisections: usize) -> Figure {
+    let p = Fig4_3Params {
+        tabor_parameters: mus.to_vec(),
+        onset_bisections: bisections,
+        ..Fig4_3Params::default()
+    };
+    Fig4_3::run(&p, &Job::quiet()).expect("fig4.3")
+}
+
+/// The (μ_T, z_c/ζ0) markers named `name` in panel (a).
+fn onset_markers(fig: &Figure, name: &str) -> Vec<(f64, f64)> {
+    fig.panels[0]
+        .markers
+        .iter()
+        .filter(|m| m.name == name)
+        .map(|m| (m.x, m.y))
+        .collect()
+}
+
+// Sec. 4.3, Fig. 4.3a: the critical separations of the surface model against (4.23) (the
+// tip of Fig. 4.5, μ_T = 1, 3, 5 set through E*). (4.23) is an estimate (parabolic profile,
+// Boussinesq point load; ERRATA), so the test states how far the model lies from it rather than
+// asserting agreement: the pull-in separation grows with μ_T like (4.23)'s, close to
+// μ_T^(3/7) (fitted exponent 0.44 measured; (4.23) 0.43), and lies below the root of (4.23) by
+// a factor 0.67-0.69 with the printed traction and 0.84-0.85 with the consistent one
+// (measured; bounds 0.6-0.8 and 0.75-0.95 cover the grid and the 1e-4 ζ0 jump tolerance,
+// which move them by about 1 %). The pull-off separation is the gap of a contact that is
+// about to let go: 1.005-1.06 ζ0 (the text: "≈ 1"; bound 0.98-1.15).
+#[test]
+fn surface_model_onsets_follow_4_23_below_it_and_pull_off_stays_near_zeta0() {
+    let fig = fig4_3(&[1.0, 3.0, 5.0], 0);
+    let r = |n: &str| fig.result_value(n).expect(n);
+    let pull_in = onset_markers(&fig, "surface model, pull-in");
+    let pull_off = onset_markers(&fig, "surface model, pull-off");
+    assert_eq!(
+        (pull_in.len(), pull_off.len()),
+        (3, 3),
+        "{pull_in:?} {pull_off:?}"
+    );
+    assert!(pull_in.windows(2).all(|w| w[1].1 > w[0].1), "{pull_in:?}");
+    assert!((r("pull_in_exponent_norm") - 3.0 / 7.0).abs() < 0.05);
+    for (lo, hi, name) in [
+        (0.6, 0.8, "pull_in_ratio"),
+        (0.75, 0.95, "pull_in_consistent_ratio"),
+    ] {
+        let (a, b) = (r(&format!("{name}_min_norm")), r(&format!("{name}_max_norm")));
+        assert!(lo < a && b < hi, "{name}: {a}-{b}");
+    }
+    assert!(
+        pull_off.iter().all(|q| (0.98..1.15).contains(&q.1)),
+        "{pull_off:?}"
+    );
+    assert_eq!(r("all_states_stable_count"), 1.0);
+    // (4.23)'s own numbers, unrounded (ERRATA): μ_T* = 0.201584, z̄* = 1.082713.
+    assert!((r("critical_tabor_norm") - 0.201_584).abs() < 5e-7);
+    assert!((r("double_root_norm") - 1.082_713).abs() < 5e-7);
+}
+
+// Sec. 4.3: "there is no instability for μ_T < μ_T*". The surface model's first jump comes at
+// a larger μ_T than (4.23) predicts with either traction (ERRATA: a full LJ solution jumps
+// later): measured between 0.766 and 0.781, above μ_T* = 0.2016 (printed traction) and 0.5036
+// (consistent traction); no jump at μ_T = 0.5, one pull-in and one pull-off at 1. Three
+// bisections of [0.5, 1] bracket it to 1/16.
+#[test]
+fn surface_model_jumps_only_above_both_critical_tabor_parameters() {
+    let fig = fig4_3(&[0.5, 1.0], 3);
+    let r = |n: &str| fig.result_value(n).expect(n);
+    let (lo, hi) = (r("onset_tabor_low_norm"), r("onset_tabor_high_norm"));
+    assert!((hi - lo - 0.5 / 8.0).abs() < 1e-12, "{lo}-{hi}");
+    assert!(lo > r("critical_tabor_consistent_norm") && lo > r("critical_tabor_norm"));
+    assert!((0.7..0.85).contains(&lo) && hi < 0.9, "{lo}-{hi}");
+    assert_eq!(r("cycles_with_jumps_count"), 2.0); // μ_T = 1 and the μ_T = 5 of panel (b)
+}
+
+// Sec. 4.3, Fig. 4.3b and (4.24): the text finds the parabola through the apex within 5 % of
+// the deformed profile just before pull-in at μ_T = 5, largest at the centre. With z0 the
+// deformed apex gap, err(0) = 0 by construction; the workbench finds the largest error 14.6 %
+// at 0.81 √(2Rz_c) (115 nm), and the apex displaced by 0.56 z_c. Bounds: 10-20 % and
+// 0.6-1.0 √(2Rz_c) (rings of 0.5 b give 14.3 % at 0.81), and 0.45-0.65 for u(0)/z_c.
+#[test]
+fn parabola_error_before_pull_in_exceeds_the_printed_5_percent_away_from_the_centre() {
+    let p = Fig4_3Params::default();
+    let e = parabola_error_before_pull_in(&p)
+        .expect("cycle")
+        .expect("a pull-in at μ_T = 5");
+    assert!(e.error[0] < 1e-12, "err at the first ring {}", e.error[0]);
+    let (err, at) = e.max();
+    assert!((0.10..0.20).contains(&err), "largest err {err}");
+    assert!((0.6..1.0).contains(&(at / e.zone)), "at {} nm", at * 1e9);
+    assert!((0.45..0.65).contains(&(e.apex_displacement / e.central_gap)));
+    // The other reading (z0 the undeformed apex gap) puts the maximum at the centre.
+    let centre = e.error_undeformed[0];
+    assert!(e.error_undeformed.iter().all(|&v| v <= centre));
 }
