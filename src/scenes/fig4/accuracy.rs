@@ -441,6 +441,7 @@ impl Scene for Fig4_5Accuracy {
     const ID: &'static str = "fig4.5-accuracy";
     const CHAPTER: &'static str = "4";
     const TITLE: &'static str = "Smooth tip: accuracy against speed of the surface model";
+    const SWEEP: bool = true;
     const CAPTION: &'static str = "The displacement-controlled cycle of the smooth tip of Fig. 4.5 (R = 5 um, E = 4.4 MPa, \
         nu = 0.25, C6 = 3, C12 = 1, sigma = 1 nm, A_H = 2e-21 J; from 12 zeta0 apart to 3 zeta0 deep) with the \
         axisymmetric surface model over its discretisation: ring width h in units of b = zeta0^2 E*/w, depth step, \

@@ -359,6 +359,7 @@ impl Scene for Fig4_3 {
     const ID: &'static str = "fig4.3";
     const CHAPTER: &'static str = "4";
     const TITLE: &'static str = "Critical separation of the instabilities against the Tabor parameter";
+    const SWEEP: bool = true;
     const CAPTION: &'static str = "(a) Dimensionless critical separation z_c/zeta0 against the Tabor parameter mu_T: \
         the roots of (4.23) (parabolic tip, Boussinesq point load; pull-in red, pull-off blue; solid with the \
         printed traction (4.19), dotted with the consistent one) and, as circles, the gap at the apex of the last \
