@@ -345,25 +345,8 @@ mod tests {
     #[test]
     fn the_tangent_predictor_follows_the_same_path_in_fewer_iterations() {
         let (states, jumps, stats) = walk(Some(1e-9));
-        let mut solver = StableNewton::new(&WellAt(0.0)).expect("1x1 pattern");
-        let mut x = vec![-1.0];
-        let opts = PathOptions {
-            newton: NewtonOptions::default(),
-            refine_to: Some(1e-9),
-            trial_iterations: 50,
-            unstable_start_is_jump: true,
-        };
-        let targets: Vec<f64> = (0..=10).map(|i| -0.1 + 0.06 * i as f64).collect();
-        let mut with = Vec::new();
-        let mut jumps_with = Vec::new();
-        let stats_with = follow(&WellWithRate, &mut solver, &mut x, -0.2, &targets, &opts, |v| {
-            with.push((v.lambda, v.x[0]));
-            if let Some((l0, x0)) = v.jumped_from {
-                jumps_with.push((l0, v.lambda, x0[0]));
-            }
-            Ok(())
-        })
-        .expect("walk");
+        let targets = targets();
+        let (with, jumps_with, stats_with) = walk_model(&WellWithRate, Some(1e-9));
         assert_eq!(jumps_with.len(), 1);
         assert!((jumps_with[0].0 - jumps[0].0).abs() < 1e-9);
         let at = |s: &[(f64, f64)], l: f64| s.iter().find(|p| p.0 == l).map(|p| p.1);
@@ -382,7 +365,16 @@ mod tests {
     /// (λ, x) of every state, (λ before, λ after, x before) of every jump, the statistics.
     type Walk = (Vec<(f64, f64)>, Vec<(f64, f64, f64)>, PathStats);
 
+    /// The control values of the walks: λ = −0.1 ... 0.5.
+    fn targets() -> Vec<f64> {
+        (0..=10).map(|i| -0.1 + 0.06 * i as f64).collect()
+    }
+
     fn walk(refine: Option<f64>) -> Walk {
+        walk_model(&Well, refine)
+    }
+
+    fn walk_model<C: Controlled>(model: &C, refine: Option<f64>) -> Walk {
         let mut solver = StableNewton::new(&WellAt(0.0)).expect("1x1 pattern");
         // Start in the left well at λ = -0.1 and tilt to the right until it vanishes.
         let mut x = vec![-1.0];
@@ -392,10 +384,10 @@ mod tests {
             trial_iterations: 50,
             unstable_start_is_jump: true,
         };
-        let targets: Vec<f64> = (0..=10).map(|i| -0.1 + 0.06 * i as f64).collect();
+        let targets = targets();
         let mut states = Vec::new();
         let mut jumps = Vec::new();
-        let stats = follow(&Well, &mut solver, &mut x, -0.2, &targets, &opts, |v| {
+        let stats = follow(model, &mut solver, &mut x, -0.2, &targets, &opts, |v| {
             states.push((v.lambda, v.x[0]));
             if let Some((l0, x0)) = v.jumped_from {
                 jumps.push((l0, v.lambda, x0[0]));
