@@ -25,9 +25,11 @@
 //! branch, `x + Δλ dx/dλ` with `H dx/dλ = −∂g/∂λ` solved with the factorisation that certified
 //! the state (no extra factorisation): on a branch that moves (a contact pressed against a stiff
 //! repulsive wall) Newton then converges in a few iterations instead of a line-searched descent
-//! from the old state. The tangent only chooses the start: it is used when it moves the state
-//! by less than a quarter of a jump (it diverges at a fold) and lowers the energy at the new
-//! control value below that of the plain start; the minimiser and the jump test are unchanged.
+//! from the old state. The tangent is used when its step measures at most two jumps (it
+//! diverges at a fold) and lowers the energy at the new control value below that of the plain
+//! start. A step that started from the tangent is a jump when the minimum lies a jump away from
+//! the prediction: a fast but smooth branch (a receding contact edge) follows its tangent and is
+//! not bisected as a false alarm, while a jump leaves it.
 //!
 //! The driver stores nothing but the current state: every accepted state is handed to a
 //! visitor, which records what its model needs (a force, a contact set, a profile), reports
@@ -60,7 +62,7 @@ pub trait Controlled {
 
 /// A tangent predictor moves no unknown by more than this, in units of
 /// [`Controlled::jump_measure`]; a larger tangent (near a fold, where it diverges) is not used.
-const PREDICTOR_MAX_MEASURE: f64 = 1.0;
+const PREDICTOR_MAX_MEASURE: f64 = 2.0;
 
 /// Options of [`follow`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -193,6 +195,7 @@ pub fn follow<C: Controlled>(
         trial.extend_from_slice(x);
         model.prepare_start(from, at, trial);
         let e = model.at(at);
+        let mut on_tangent = false;
         if model.gradient_rate(from, x, &mut rate[..])
             && solver.solve_at(&model.at(from), x, &mut rate[..])?
         {
@@ -203,6 +206,9 @@ pub fn follow<C: Controlled>(
                 && e.energy(&predicted[..]) < e.energy(trial)
             {
                 std::mem::swap(trial, &mut predicted);
+                predicted.clear();
+                predicted.extend_from_slice(trial);
+                on_tangent = true;
             }
         }
         stats.minimisations += 1;
@@ -216,8 +222,12 @@ pub fn follow<C: Controlled>(
             Err(e) => return Err(e),
         };
         stats.newton_iterations += rep.iterations;
-        let jumped =
-            (opts.unstable_start_is_jump && rep.left_unstable_state()) || model.jump_measure(x, trial) >= 1.0;
+        // A jump leaves the branch: measured from the tangent's prediction where it was used
+        // (a fast but smooth branch, a receding contact edge, is not a jump), else from the
+        // previous state.
+        let origin: &[f64] = if on_tangent { &predicted } else { x };
+        let jumped = (opts.unstable_start_is_jump && rep.left_unstable_state())
+            || model.jump_measure(origin, trial) >= 1.0;
         let stable = solver.is_stable(&e, trial)?;
         Ok(Some((rep, jumped, stable)))
     };
