@@ -204,7 +204,7 @@ fn wavy_tip_loss_grows_with_depth_and_the_smooth_tip_loss_does_not() {
 // Sec. 4.4, Fig. 4.4: without attraction (C6 = 0, only the repulsive wall of (4.4)) the tip
 // follows Hertz, P = (4/3) E* √R d^(3/2), up to the position of the wall: d = h0 − h with one
 // offset h0 of the order of σ, fitted here. R = 10 µm, E = 1.1 MPa, ν = 0.25, σ = 1 nm,
-// A_H = 2e-21 J; loading only, no jump, every state stable.
+// A_H = 2e-21 J; loading to 300 σ (a/R ≈ 0.17), no jump, every state stable.
 #[test]
 fn adhesionless_tip_follows_hertz() {
     let nu: f64 = 0.25;
@@ -216,26 +216,26 @@ fn adhesionless_tip_follows_hertz() {
         c6: 0.0,
         // b = σE*/p_ref is 0.66 µm without attraction: rings of 13 nm.
         ring_width: 0.02,
-        fine_radius: 1.2e-6,
+        fine_radius: 2.1e-6,
         ..TipParams::default()
     };
     let tip = Tip::new(&p).expect("tip");
     let s = tip.scales().length;
     let opts = CycleOptions {
         h_start: 5.0 * s,
-        h_min: -100.0 * s,
-        step: 2.0 * s,
+        h_min: -300.0 * s,
+        step: 4.0 * s,
         refine_to: 1e-3 * s,
         contact_gap: 1e-9,
         keep_profiles: false,
-        unload_to: Some(-99.0 * s),
+        unload_to: Some(-299.0 * s),
     };
     let c = run_cycle(&tip, &opts, |_| Ok(())).expect("cycle");
     let hertz = |d: f64| 4.0 / 3.0 * modulus * radius.sqrt() * d.max(0.0).powf(1.5);
     let pts: Vec<(f64, f64)> = c
         .loading
         .iter()
-        .filter(|st| st.depth < -30.0 * s)
+        .filter(|st| st.depth < -100.0 * s)
         .map(|st| (st.depth, st.force))
         .collect();
     // Offset h0 from the deepest state, then the error over the deep half of the loading.
@@ -247,10 +247,11 @@ fn adhesionless_tip_follows_hertz() {
         .fold(0.0, f64::max);
     assert!(c.jumps.is_empty() && c.stats.all_stable);
     assert!(h0.abs() < s, "wall offset {} sigma", h0 / s);
-    // Measured: 3.2e-3 at rings of 0.02 b and of 0.01 b alike, so not a discretisation error:
-    // the wall's gap shrinks with the pressure (g ∝ p^(-1/9)), an offset that grows slowly along
-    // the curve. The 1e-3 is not reached for that reason.
-    assert!(err < 5e-3, "largest relative deviation from Hertz {err}");
+    // The soft repulsive wall differs from Hertz's hard contact by terms of order σ/d (its gap
+    // shrinks with the pressure, g ∝ p^(-1/9)); with one fitted offset the deviation over
+    // d = 30-100 σ was 3.2e-3 (the same at rings of 0.02 b and 0.01 b, so not the grid); over
+    // d = 100-300 σ, measured 8.2e-4.
+    assert!(err < 1e-3, "largest relative deviation from Hertz {err}");
 }
 
 /// Run scene `id` with `sets` (NAME=VALUE) on top of its defaults.
