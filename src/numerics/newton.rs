@@ -186,6 +186,8 @@ pub struct StableNewton {
     /// For a mostly full pattern: each value's column-major position in a dense n × n matrix
     /// (the direct path then factorises densely, see `newton/direct.rs`).
     dense: Option<Vec<usize>>,
+    /// Storage of a dense factor no longer in use, for the next one.
+    spare: Option<Vec<f64>>,
     /// Index in the values of each diagonal entry (for the shift).
     diagonal: Vec<usize>,
     /// Values in pattern order, then the diagonal shift slots appended.
@@ -260,6 +262,7 @@ impl StableNewton {
             argsort,
             llt,
             dense,
+            spare: None,
             diagonal: (n_pattern..n_pattern + n).collect(),
             values: vec![0.0; n_pattern + n],
             last_shift: 0.0,

@@ -77,9 +77,12 @@ pub(super) fn dense_layout(n: usize, pattern: &[(usize, usize)], n_pattern: usiz
 impl StableNewton {
     /// Dense Cholesky factorisation of the values (pattern entries summed into the lower
     /// triangle); `None` if not positive definite.
-    fn factor_dense(&self, layout: &[usize]) -> Option<Cholesky> {
+    fn factor_dense(&mut self, layout: &[usize]) -> Option<Cholesky> {
         let n = self.n;
-        let mut a = vec![0.0; n * n];
+        // The storage of a factor no longer in use, or fresh.
+        let mut a = self.spare.take().unwrap_or_default();
+        a.clear();
+        a.resize(n * n, 0.0);
         for (&k, &v) in layout.iter().zip(&self.values) {
             a[k] += v;
         }
@@ -88,15 +91,19 @@ impl StableNewton {
         let mut buf = MemBuffer::new(faer::linalg::cholesky::llt::factor::cholesky_in_place_scratch::<
             f64,
         >(n, par, params));
-        cholesky_in_place(
+        let ok = cholesky_in_place(
             faer::MatMut::from_column_major_slice_mut(&mut a, n, n),
             LltRegularization::default(),
             par,
             MemStack::new(&mut buf),
             params,
         )
-        .ok()
-        .map(|_| Cholesky::Dense(a))
+        .is_ok();
+        if !ok {
+            self.spare = Some(a);
+            return None;
+        }
+        Some(Cholesky::Dense(a))
     }
 
     /// Factorise H + λI (values already in `self.values[..n_pattern]`); `None` if not
@@ -114,8 +121,10 @@ impl StableNewton {
         for &k in &self.diagonal {
             self.values[k] = shift;
         }
-        let l = if let Some(layout) = &self.dense {
-            self.factor_dense(layout).map(Arc::new)
+        let l = if let Some(layout) = self.dense.take() {
+            let l = self.factor_dense(&layout).map(Arc::new);
+            self.dense = Some(layout);
+            l
         } else {
             let mat = SparseColMat::new_from_argsort(self.symbolic.clone(), &self.argsort, &self.values)
                 .map_err(|e| Error::Unresolvable {
@@ -127,7 +136,12 @@ impl StableNewton {
                 .map(|l| Arc::new(Cholesky::Sparse(l)))
         };
         if shift == 0.0 {
-            let mut v = self.cache.take().map(|c| c.0).unwrap_or_default();
+            let (mut v, old) = self.cache.take().unwrap_or_default();
+            // The replaced factor's storage serves the next dense factorisation when nothing
+            // else holds it.
+            if let Some(Ok(Cholesky::Dense(a))) = old.map(Arc::try_unwrap) {
+                self.spare = Some(a);
+            }
             v.clear();
             v.extend_from_slice(&self.values[..n_pattern]);
             self.cache = Some((v, l.clone()));
@@ -180,12 +194,12 @@ impl StableNewton {
             }
             chord = None;
             energy.hessian_values(x, &mut self.values[..n_pattern]);
-            // Scale for the shift: the largest diagonal magnitude.
-            let scale = inf_norm(&self.values[..n_pattern]).max(1e-300);
             let plain = self.factor(0.0)?;
             let (llt, definite) = match plain {
                 Some(l) => (l, true),
                 None => {
+                    // Scale for the shift: the largest Hessian entry's magnitude.
+                    let scale = inf_norm(&self.values[..n_pattern]).max(1e-300);
                     rep.indefinite_iterations += 1;
                     let mut shift = if self.last_shift > 0.0 {
                         0.25 * self.last_shift
