@@ -113,6 +113,30 @@ impl Job {
         }
     }
 
+    /// Map `f` over `items` in parallel (rayon), in order, reporting the fraction of items done
+    /// with `message` as each finishes; the first error is returned.
+    ///
+    /// # Errors
+    /// The first error of `f`.
+    pub fn map_parallel<T: Sync, R: Send>(
+        &self,
+        items: &[T],
+        message: &str,
+        f: impl Fn(&T) -> Result<R> + Sync + Send,
+    ) -> Result<Vec<R>> {
+        use rayon::prelude::*;
+        let done = std::sync::atomic::AtomicUsize::new(0);
+        items
+            .par_iter()
+            .map(|item| {
+                let out = f(item);
+                let n = done.fetch_add(1, Ordering::Relaxed) + 1;
+                self.progress(n as f64 / items.len() as f64, message);
+                out
+            })
+            .collect()
+    }
+
     /// Whether anyone listens for previews; build a partial figure only if so.
     pub fn wants_preview(&self) -> bool {
         self.sink.is_some()

@@ -12,10 +12,7 @@
 //! and against the run time, and so shows where hopping starts and what the defaults cost.
 
 use std::f64::consts::PI;
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
-
-use rayon::prelude::*;
 
 use super::{material, tip_for};
 use crate::error::{Error, Result};
@@ -569,17 +566,8 @@ impl Scene for Fig4_5Accuracy {
         let (lj, modulus) = material(p.c6, p.c12, p.sigma, p.hamaker, p.youngs_modulus, p.poisson_ratio)?;
         let mut sweep = Sweep::new(p);
         let grids = sweep.grids();
-        let done = AtomicUsize::new(0);
         job.progress(0.0, "cycles");
-        sweep.runs = grids
-            .par_iter()
-            .map(|&grid| {
-                let run = run_grid(p, &lj, modulus, grid, job)?;
-                let n = done.fetch_add(1, Ordering::Relaxed) + 1;
-                job.progress(n as f64 / grids.len() as f64, "cycles");
-                Ok(run)
-            })
-            .collect::<Result<_>>()?;
+        sweep.runs = job.map_parallel(&grids, "cycles", |&grid| run_grid(p, &lj, modulus, grid, job))?;
 
         let (a, b) = width_panels(&sweep);
         let (c, e) = step_panels(&sweep);

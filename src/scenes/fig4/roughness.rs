@@ -8,8 +8,6 @@
 //! ERRATA reads E = 1.1 MPa as more likely. Fig. 4.9a draws both; Fig. 4.11 (whose caption
 //! refers to Fig. 4.7a) uses 2.2 MPa, Fig. 4.12 (whose caption refers to Fig. 4.9a) 1.1 MPa.
 
-use rayon::prelude::*;
-
 use super::{draw_cycle, tip_for};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Field, Figure, Panel};
@@ -202,16 +200,7 @@ impl Setup {
         job: &Job,
         what: &str,
     ) -> Result<Vec<(Tip, TipCycle)>> {
-        let done = std::sync::atomic::AtomicUsize::new(0);
-        amplitudes
-            .par_iter()
-            .map(|&a| {
-                let out = self.cycle(a, keep_profiles, job);
-                let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-                job.progress(k as f64 / amplitudes.len() as f64, what);
-                out
-            })
-            .collect()
+        job.map_parallel(amplitudes, what, |&a| self.cycle(a, keep_profiles, job))
     }
 }
 

@@ -4,8 +4,6 @@
 //! axisymmetric surface model, the points in parallel (rayon). The contact threshold of each
 //! point is its σ (section 4.2.2); P_adh and H do not depend on it.
 
-use rayon::prelude::*;
-
 use super::roughness::{Setup, rough_tip_params};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Field, Figure, Marker, MarkerShape, Panel, Series, Style};
@@ -21,25 +19,6 @@ fn adhesion_of(setup: &Setup, amplitude: f64, job: &Job) -> Result<(f64, f64)> {
         -cycle.adhesive_force() / scale.1,
         cycle.hysteresis() / (scale.1 * setup.radius),
     ))
-}
-
-/// Run `points` independent cycles in parallel with progress.
-fn sweep<T: Send>(
-    points: usize,
-    job: &Job,
-    what: &str,
-    f: impl Fn(usize) -> Result<T> + Sync,
-) -> Result<Vec<T>> {
-    let done = std::sync::atomic::AtomicUsize::new(0);
-    (0..points)
-        .into_par_iter()
-        .map(|k| {
-            let out = f(k);
-            let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-            job.progress(n as f64 / points as f64, what);
-            out
-        })
-        .collect()
 }
 
 /// `n` values from `lo` to `hi`, geometric.
@@ -121,7 +100,8 @@ impl Scene for Fig4_9b {
         let sigmas = geometric(p.sigma_min, p.sigma_max, p.sigma_points);
         let ratios = [p.amplitude_ratio_1, p.amplitude_ratio_2, p.amplitude_ratio_3];
         let n = sigmas.len();
-        let values = sweep(3 * n, job, "cycles", |k| {
+        let points: Vec<usize> = (0..3 * n).collect();
+        let values = job.map_parallel(&points, "cycles", |&k| {
             let (curve, i) = (k / n, k % n);
             let setup = p.setup(p.youngs_modulus, sigmas[i], sigmas[i])?;
             adhesion_of(&setup, ratios[curve] * p.wavelength, job)
@@ -303,7 +283,8 @@ impl Scene for Fig4_10 {
             .collect();
         let betas = geometric(p.beta_min, p.beta_max, p.beta_points);
         let (na, nb) = (alphas.len(), betas.len());
-        let values = sweep(na * nb, job, "cycles", |k| {
+        let points: Vec<usize> = (0..na * nb).collect();
+        let values = job.map_parallel(&points, "cycles", |&k| {
             let (ia, ib) = (k % na, k / na);
             let (sigma, amplitude) = p.point(alphas[ia], betas[ib])?;
             let setup = p.setup(p.youngs_modulus, sigma, sigma)?;
