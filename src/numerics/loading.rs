@@ -205,9 +205,7 @@ pub fn follow<C: Controlled>(
             if model.jump_measure(x, &predicted[..]) <= PREDICTOR_MAX_MEASURE
                 && e.energy(&predicted[..]) < e.energy(trial)
             {
-                std::mem::swap(trial, &mut predicted);
-                predicted.clear();
-                predicted.extend_from_slice(trial);
+                trial.copy_from_slice(&predicted);
                 on_tangent = true;
             }
         }
