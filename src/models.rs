@@ -2,6 +2,7 @@
 //! front-end types. Every public function names the equation it implements.
 
 pub mod axisymmetric;
+pub mod body_force_fe;
 pub mod classical;
 pub mod ddh;
 pub mod fibril;

@@ -289,6 +289,27 @@ pub fn polygon_area(points: &[(f64, f64)]) -> f64 {
         .sum::<f64>()
 }
 
+/// Radon's 7-point rule on a triangle, exact for polynomials of degree 5: barycentric
+/// coordinates (λ₁, λ₂, λ₃) of each point and its weight as a fraction of the triangle's area
+/// (the weights sum to one).
+pub fn triangle_rule_7() -> [([f64; 3], f64); 7] {
+    let s15 = 15f64.sqrt();
+    let a = (6.0 - s15) / 21.0;
+    let b = (6.0 + s15) / 21.0;
+    let wa = (155.0 - s15) / 1200.0;
+    let wb = (155.0 + s15) / 1200.0;
+    let third = 1.0 / 3.0;
+    [
+        ([third, third, third], 9.0 / 40.0),
+        ([a, a, 1.0 - 2.0 * a], wa),
+        ([a, 1.0 - 2.0 * a, a], wa),
+        ([1.0 - 2.0 * a, a, a], wa),
+        ([b, b, 1.0 - 2.0 * b], wb),
+        ([b, 1.0 - 2.0 * b, b], wb),
+        ([1.0 - 2.0 * b, b, b], wb),
+    ]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -330,5 +351,22 @@ mod tests {
     fn shoelace_of_unit_square() {
         let sq = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)];
         assert!((polygon_area(&sq) - 1.0).abs() < 1e-15);
+    }
+
+    /// The 7-point rule integrates every monomial x^i y^j of degree ≤ 5 over the unit triangle
+    /// exactly: ∫ x^i y^j = i! j!/(i + j + 2)!.
+    #[test]
+    fn triangle_rule_is_exact_to_degree_five() {
+        let fact = |n: usize| (1..=n).map(|k| k as f64).product::<f64>();
+        for i in 0..=5 {
+            for j in 0..=(5 - i) {
+                let exact = fact(i) * fact(j) / fact(i + j + 2);
+                let quad: f64 = triangle_rule_7()
+                    .iter()
+                    .map(|(l, w)| 0.5 * w * l[1].powi(i as i32) * l[2].powi(j as i32))
+                    .sum();
+                assert!((quad - exact).abs() < 1e-15, "x^{i} y^{j}: {quad} vs {exact}");
+            }
+        }
     }
 }

@@ -10,6 +10,7 @@
 
 mod accuracy;
 pub mod criterion;
+pub mod fe;
 mod roughness;
 mod sweeps;
 
@@ -30,8 +31,11 @@ use crate::params::Range;
 /// The scenes of this chapter, in figure order.
 pub const SCENES: &[&dyn SceneDyn] = &[
     &Registered::<criterion::Fig4_3>::NEW,
+    &Registered::<fe::Fig4_4>::NEW,
     &Registered::<Fig4_5>::NEW,
     &Registered::<accuracy::Fig4_5Accuracy>::NEW,
+    &Registered::<fe::Fig4_5Models>::NEW,
+    &Registered::<fe::Fig4_6>::NEW,
     &Registered::<Fig4_7>::NEW,
     &Registered::<Fig4_8>::NEW,
     &Registered::<roughness::Fig4_9a>::NEW,

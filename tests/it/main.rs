@@ -5,6 +5,7 @@
 mod ch2;
 mod ch3;
 mod ch4;
+mod ch4_fe;
 mod ch4_roughness;
 mod ch5;
 mod ch6;

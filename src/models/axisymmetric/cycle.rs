@@ -10,8 +10,8 @@
 
 use crate::error::{Error, Result};
 use crate::models::axisymmetric::tip::{ContactSet, Tip};
-use crate::numerics::loading::{PathOptions, PathStats, follow};
-use crate::numerics::newton::{NewtonOptions, StableNewton};
+use crate::numerics::loading::{Controlled, PathOptions, PathStats, follow};
+use crate::numerics::newton::{LinearSolver, NewtonOptions, StableNewton};
 use crate::numerics::quadrature::trapezoid;
 
 /// One accepted state of a cycle.
@@ -132,14 +132,57 @@ pub struct CycleOptions {
     pub unload_to: Option<f64>,
 }
 
+/// A model of a tip that a cycle can drive: the surface model [`Tip`] and the finite-element
+/// model [`crate::models::body_force_fe::tip::FeTip`]. The control value is the approach δ of
+/// the undeformed apex in the model's normal length unit.
+pub trait CycleModel: Controlled {
+    /// Number of unknowns.
+    fn unknowns(&self) -> usize;
+    /// The normal length unit [m].
+    fn length_unit(&self) -> f64;
+    /// Indentation depth h [m] of approach `delta`.
+    fn depth(&self, delta: f64) -> f64;
+    /// Approach of depth `h` [m], the inverse of [`CycleModel::depth`].
+    fn approach(&self, h: f64) -> f64;
+    /// Force on the tip, compressive positive [N].
+    fn force(&self, delta: f64, u: &[f64]) -> f64;
+    /// The contact set with the gap threshold `threshold` [m].
+    fn contact(&self, delta: f64, u: &[f64], threshold: f64) -> ContactSet;
+    /// How the minimiser solves its linear systems.
+    fn linear_solver(&self) -> LinearSolver {
+        LinearSolver::Auto
+    }
+}
+
+impl CycleModel for Tip {
+    fn unknowns(&self) -> usize {
+        self.len()
+    }
+    fn length_unit(&self) -> f64 {
+        self.scales().length
+    }
+    fn depth(&self, delta: f64) -> f64 {
+        Tip::depth(self, delta)
+    }
+    fn approach(&self, h: f64) -> f64 {
+        Tip::approach(self, h)
+    }
+    fn force(&self, delta: f64, u: &[f64]) -> f64 {
+        Tip::force(self, delta, u)
+    }
+    fn contact(&self, delta: f64, u: &[f64], threshold: f64) -> ContactSet {
+        Tip::contact(self, delta, u, threshold)
+    }
+}
+
 /// Run one cycle. `progress(fraction)` is called after every accepted state and may return
 /// an error to stop (cancellation).
 ///
 /// # Errors
 /// [`Error::InvalidParameter`] for an empty or reversed depth range or a non-positive step;
 /// minimiser failures; errors of `progress`.
-pub fn run_cycle(
-    tip: &Tip,
+pub fn run_cycle<M: CycleModel>(
+    tip: &M,
     opts: &CycleOptions,
     mut progress: impl FnMut(f64) -> Result<()>,
 ) -> Result<TipCycle> {
@@ -177,18 +220,19 @@ pub fn run_cycle(
         gradient_tol: 1e-7,
         step_tol: 1e-6,
         max_iterations: 1000,
-        ..NewtonOptions::default()
+        linear: tip.linear_solver(),
     };
     let path = PathOptions {
         newton,
-        refine_to: Some(opts.refine_to / tip.scales().length),
+        refine_to: Some(opts.refine_to / tip.length_unit()),
         trial_iterations: 40,
         unstable_start_is_jump: false,
     };
     let start = approach(opts.h_start);
-    let start_energy = tip.energy_at(start);
+    let start_energy = tip.at(start);
     let mut solver = StableNewton::new(&start_energy)?;
-    let mut u = vec![0.0; tip.len()];
+    solver.set_linear(newton.linear);
+    let mut u = vec![0.0; tip.unknowns()];
     // Relax at the start depth.
     solver.minimize(&start_energy, &mut u, &newton)?;
     let state = |delta: f64, u: &[f64], stable: bool, keep: bool| TipState {

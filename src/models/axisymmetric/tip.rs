@@ -155,6 +155,35 @@ pub struct TipScales {
 }
 
 impl TipScales {
+    /// The scales of an interaction `law` and a plane-strain modulus E* [Pa].
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming `modulus` where the scales are not finite.
+    pub fn new(law: &LennardJones, modulus: f64) -> Result<Self> {
+        let p = law.params();
+        let w = law.work_of_adhesion();
+        let (length, traction) = if p.c6 > 0.0 {
+            (law.zeta0(), w / law.zeta0())
+        } else {
+            // The repulsive term's own scale, C12 A_H/(360πσ³).
+            (p.sigma, law.energy_scale() * p.c12 / (360.0 * p.sigma))
+        };
+        let radial = length * modulus / traction;
+        if !(radial.is_finite() && radial > 0.0 && traction.is_finite()) {
+            return Err(Error::invalid(
+                "modulus",
+                modulus,
+                "gives a non-finite length scale with these interaction parameters",
+            ));
+        }
+        Ok(Self {
+            length,
+            traction,
+            radial,
+            work_of_adhesion: w,
+        })
+    }
+
     /// Force unit p_ref b² [N].
     pub fn force(&self) -> f64 {
         self.traction * self.radial * self.radial
@@ -217,27 +246,8 @@ impl Tip {
             sigma: p.sigma,
             hamaker: p.hamaker,
         })?;
-        let w = law.work_of_adhesion();
-        let (length, traction) = if p.c6 > 0.0 {
-            (law.zeta0(), w / law.zeta0())
-        } else {
-            // The repulsive term's own scale, C12 A_H/(360πσ³).
-            (p.sigma, law.energy_scale() * p.c12 / (360.0 * p.sigma))
-        };
-        let radial = length * p.modulus / traction;
-        let scales = TipScales {
-            length,
-            traction,
-            radial,
-            work_of_adhesion: w,
-        };
-        if !(radial.is_finite() && radial > 0.0 && traction.is_finite()) {
-            return Err(Error::invalid(
-                "modulus",
-                p.modulus,
-                "gives a non-finite length scale with these interaction parameters",
-            ));
-        }
+        let scales = TipScales::new(&law, p.modulus)?;
+        let (length, radial) = (scales.length, scales.radial);
         // The rings reach to where the undeformed gap is `reach` normal units.
         let r_reach = (2.0 * p.radius * p.reach * length).sqrt();
         let r_max = r_reach.max(p.fine_radius * 1.5);
@@ -371,31 +381,11 @@ impl Tip {
     /// definition of section 4.2.2 with threshold σ), with edges interpolated linearly between
     /// ring mid-radii. Several intervals mean a multiply connected (annular) contact.
     pub fn contact(&self, delta: f64, u: &[f64], threshold: f64) -> ContactSet {
-        let t = threshold / self.scales.length;
-        let r = self.radii();
-        let g = self.gaps(delta, u);
-        let mut intervals = Vec::new();
-        let mut start: Option<f64> = None;
-        for i in 0..g.len() {
-            let inside = g[i] < t;
-            let edge = |k: usize| {
-                // Linear crossing between nodes k-1 and k.
-                let (g0, g1) = (g[k - 1], g[k]);
-                r[k - 1] + (t - g0) / (g1 - g0) * (r[k] - r[k - 1])
-            };
-            match (inside, start) {
-                (true, None) => start = Some(if i == 0 { 0.0 } else { edge(i) }),
-                (false, Some(s)) => {
-                    intervals.push((s, edge(i)));
-                    start = None;
-                }
-                _ => {}
-            }
-        }
-        if let Some(s) = start {
-            intervals.push((s, *r.last().unwrap_or(&s)));
-        }
-        ContactSet { intervals }
+        ContactSet::from_gaps(
+            &self.radii(),
+            &self.gaps(delta, u),
+            threshold / self.scales.length,
+        )
     }
 
     /// The energy at approach `delta` (normal units), as an [`Energy`] of the ring
@@ -461,6 +451,34 @@ pub struct ContactSet {
 }
 
 impl ContactSet {
+    /// The intervals where the gap `g` (at increasing radii `r` [m]) is below `threshold` (in
+    /// the unit of `g`), with edges interpolated linearly between the radii (section 4.2.2).
+    pub fn from_gaps(r: &[f64], g: &[f64], threshold: f64) -> Self {
+        let t = threshold;
+        let mut intervals = Vec::new();
+        let mut start: Option<f64> = None;
+        for i in 0..g.len() {
+            let inside = g[i] < t;
+            let edge = |k: usize| {
+                // Linear crossing between nodes k-1 and k.
+                let (g0, g1) = (g[k - 1], g[k]);
+                r[k - 1] + (t - g0) / (g1 - g0) * (r[k] - r[k - 1])
+            };
+            match (inside, start) {
+                (true, None) => start = Some(if i == 0 { 0.0 } else { edge(i) }),
+                (false, Some(s)) => {
+                    intervals.push((s, edge(i)));
+                    start = None;
+                }
+                _ => {}
+            }
+        }
+        if let Some(s) = start {
+            intervals.push((s, *r.last().unwrap_or(&s)));
+        }
+        Self { intervals }
+    }
+
     /// Contact radius a: the outer edge of the outermost interval [m] (0 out of contact).
     pub fn radius(&self) -> f64 {
         self.intervals.last().map_or(0.0, |i| i.1)

@@ -19,9 +19,8 @@
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::{LltParams, LltRegularization, cholesky_in_place};
 use faer::linalg::cholesky::llt::solve::solve_in_place_with_conj;
-use faer::linalg::solvers::Solve;
 use faer::sparse::SparseColMat;
-use faer::sparse::linalg::solvers::Llt;
+use faer::sparse::linalg::cholesky::{LltRef, SymbolicCholesky};
 use faer::{Conj, Par, Side, Spec};
 use std::sync::Arc;
 
@@ -33,11 +32,12 @@ use crate::numerics::pcg::{dot, inf_norm};
 /// gradient component by at least this factor; otherwise the Hessian is factorised again.
 const CHORD_CONTRACTION: f64 = 0.25;
 
-/// A numeric Cholesky factor `L` of `H = L Lᵀ`: sparse (faer's supernodal factorisation with
-/// the fill-reducing ordering of the symbolic analysis) or dense (lower triangle of a full
+/// A numeric Cholesky factor `L` of `H = L Lᵀ`: sparse (faer's simplicial or supernodal
+/// factorisation with the fill-reducing ordering of the symbolic analysis) or dense (lower triangle of a full
 /// matrix, factorised in place).
 pub(in crate::numerics) enum Cholesky {
-    Sparse(Llt<usize, f64>),
+    /// The factor's values in the layout of the symbolic analysis.
+    Sparse(Arc<SymbolicCholesky<usize>>, Vec<f64>),
     /// Column-major n × n, L in the lower triangle.
     Dense(Vec<f64>),
 }
@@ -48,7 +48,15 @@ impl Cholesky {
         let n = rhs.len();
         let m = faer::MatMut::from_column_major_slice_mut(rhs, n, 1);
         match self {
-            Self::Sparse(l) => l.solve_in_place(m),
+            Self::Sparse(symbolic, values) => {
+                let mut buf = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
+                LltRef::new(symbolic, values).solve_in_place_with_conj(
+                    Conj::No,
+                    m,
+                    Par::Seq,
+                    MemStack::new(&mut buf),
+                );
+            }
             Self::Dense(l) => {
                 let l = faer::MatRef::from_column_major_slice(l, n, n);
                 let mut buf = MemBuffer::new(faer::dyn_stack::StackReq::EMPTY);
@@ -131,15 +139,39 @@ impl StableNewton {
                     model: "stable Newton",
                     reason: format!("assembling the Hessian: {e:?}"),
                 })?;
-            Llt::try_new_with_symbolic(self.llt.clone(), mat.as_ref(), Side::Lower)
-                .ok()
-                .map(|l| Arc::new(Cholesky::Sparse(l)))
+            let symbolic = &self.llt;
+            let mut values = match self.spare.take() {
+                Some(mut v) if v.capacity() >= symbolic.len_val() => {
+                    v.resize(symbolic.len_val(), 0.0);
+                    v
+                }
+                _ => vec![0.0; symbolic.len_val()],
+            };
+            let params: Spec<LltParams, f64> = Default::default();
+            let mut buf = MemBuffer::new(symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, params));
+            let ok = symbolic
+                .factorize_numeric_llt(
+                    &mut values,
+                    mat.as_ref(),
+                    Side::Lower,
+                    LltRegularization::default(),
+                    Par::Seq,
+                    MemStack::new(&mut buf),
+                    params,
+                )
+                .is_ok();
+            if ok {
+                Some(Arc::new(Cholesky::Sparse(symbolic.clone(), values)))
+            } else {
+                self.spare = Some(values);
+                None
+            }
         };
         if shift == 0.0 {
             let (mut v, old) = self.cache.take().unwrap_or_default();
             // The replaced factor's storage serves the next dense factorisation when nothing
             // else holds it.
-            if let Some(Ok(Cholesky::Dense(a))) = old.map(Arc::try_unwrap) {
+            if let Some(Ok(Cholesky::Dense(a) | Cholesky::Sparse(_, a))) = old.map(Arc::try_unwrap) {
                 self.spare = Some(a);
             }
             v.clear();

@@ -1,0 +1,146 @@
+//! Finite-element speed (chapter 4): assembly, factorisation and solve of a 199 712-triangle
+//! axisymmetric elasticity problem (the size of `benches/fe_skfem.py`, run there with
+//! scikit-fem for comparison), the set-up of the finite-element tip of Fig. 4.5, and one
+//! finite-element cycle of Fig. 4.5's smooth tip to 15 ζ0 (timed over 3 runs, median: a cycle
+//! takes minutes, too long for criterion's ten samples).
+
+use std::f64::consts::PI;
+use std::hint::black_box;
+use std::time::Instant;
+
+use adhesion::models::axisymmetric::cycle::{CycleOptions, run_cycle};
+use adhesion::models::axisymmetric::tip::TipParams;
+use adhesion::models::body_force_fe::assembly::{FIXED, assemble, held_top_dofs};
+use adhesion::models::body_force_fe::element::elasticity_matrix;
+use adhesion::models::body_force_fe::mesh::Mesh;
+use adhesion::models::body_force_fe::tip::{FeTip, FeTipParams};
+use criterion::Criterion;
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::sparse::linalg::SupernodalThreshold;
+use faer::sparse::linalg::cholesky::{
+    CholeskySymbolicParams, SymmetricOrdering, factorize_symbolic_cholesky,
+};
+use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
+use faer::{Conj, Par, Side};
+
+/// Assemble the held cylinder r ≤ 1, 0 ≤ z ≤ 1 of `n` × `n` squares (2n² triangles), load its
+/// bottom with a unit pressure, factorise (supernodal LLᵀ) and solve; the apex displacement.
+fn elasticity(n: usize) -> f64 {
+    let mesh = Mesh::uniform(1.0, 1.0, n, n);
+    let (dofs, unknowns) = held_top_dofs(&mesh);
+    let k = assemble(&mesh, &dofs, unknowns, &elasticity_matrix(1.0, 0.25));
+    let mut rhs = vec![0.0; unknowns];
+    for w in mesh.surface.windows(2) {
+        let (a, b) = (mesh.nodes[w[0]][0], mesh.nodes[w[1]][0]);
+        // ∫ 2πr N dr over the edge for each end node.
+        let (fa, fb) = (
+            PI * (b - a) * (2.0 * a + b) / 3.0,
+            PI * (b - a) * (a + 2.0 * b) / 3.0,
+        );
+        for (node, f) in [(w[0], fa), (w[1], fb)] {
+            if dofs[node][1] != FIXED {
+                rhs[dofs[node][1]] += f;
+            }
+        }
+    }
+    let pairs: Vec<Pair<usize, usize>> = k.pattern.iter().map(|&(r, c)| Pair::new(r, c)).collect();
+    let (symbolic, argsort) =
+        SymbolicSparseColMat::try_new_from_indices(unknowns, unknowns, &pairs).expect("pattern");
+    let matrix = SparseColMat::new_from_argsort(symbolic.clone(), &argsort, &k.values).expect("matrix");
+    let llt = factorize_symbolic_cholesky(
+        symbolic.as_ref(),
+        Side::Lower,
+        SymmetricOrdering::Amd,
+        CholeskySymbolicParams {
+            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+            ..Default::default()
+        },
+    )
+    .expect("symbolic");
+    let par = Par::rayon(0);
+    let mut values = vec![0.0; llt.len_val()];
+    let mut buf = MemBuffer::new(
+        llt.factorize_numeric_llt_scratch::<f64>(par, Default::default())
+            .or(llt.solve_in_place_scratch::<f64>(1, par)),
+    );
+    let l = llt
+        .factorize_numeric_llt(
+            &mut values,
+            matrix.as_ref(),
+            Side::Lower,
+            Default::default(),
+            par,
+            MemStack::new(&mut buf),
+            Default::default(),
+        )
+        .expect("positive definite");
+    let m = faer::MatMut::from_column_major_slice_mut(&mut rhs, unknowns, 1);
+    l.solve_in_place_with_conj(Conj::No, m, par, MemStack::new(&mut buf));
+    rhs[dofs[mesh.surface[0]][1]]
+}
+
+fn fig4_5_fe() -> FeTipParams {
+    let surface = TipParams::default();
+    FeTipParams {
+        fine_radius: surface
+            .fine_radius_for_depth(-15.0 * 0.5946e-9)
+            .expect("fine zone"),
+        grading: 0.15,
+        r0: 1e-4,
+        h0: 1e-4,
+        ..FeTipParams::default()
+    }
+}
+
+fn main() {
+    let mut c = Criterion::default().configure_from_args().sample_size(10);
+    {
+        let mut group = c.benchmark_group("fe");
+        group.bench_function("assemble + factorise + solve, 199712 triangles", |b| {
+            b.iter(|| black_box(elasticity(316)))
+        });
+        let params = fig4_5_fe();
+        let tip = FeTip::new(&params).expect("tip");
+        group.bench_function(
+            format!(
+                "fig4.5 tip set-up ({} triangles, {} unknowns)",
+                tip.elements(),
+                tip.len()
+            ),
+            |b| b.iter(|| black_box(FeTip::new(&params).expect("tip"))),
+        );
+        group.finish();
+    }
+    c.final_summary();
+    if std::env::args().any(|a| a == "--skip-cycle") {
+        return;
+    }
+    let tip = FeTip::new(&fig4_5_fe()).expect("tip");
+    let z = tip.scales().length;
+    let opts = CycleOptions {
+        h_start: 12.0 * z,
+        h_min: -15.0 * z,
+        step: 0.2 * z,
+        refine_to: 1e-3 * z,
+        contact_gap: 1e-9,
+        keep_profiles: false,
+        unload_to: None,
+    };
+    let mut times: Vec<f64> = (0..3)
+        .map(|_| {
+            let t = Instant::now();
+            let cycle = run_cycle(&tip, &opts, |_| Ok(())).expect("cycle");
+            black_box(cycle);
+            t.elapsed().as_secs_f64()
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    println!(
+        "fe/fig4.5 cycle to 15 zeta0 ({} unknowns): median {:.2} s of 3 ({:.2}, {:.2}, {:.2})",
+        tip.len(),
+        times[1],
+        times[0],
+        times[1],
+        times[2]
+    );
+}

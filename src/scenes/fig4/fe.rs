@@ -1,0 +1,804 @@
+//! The finite-element scenes of chapter 4 (sections 4.2.2-4.4): the dissertation's own model,
+//! an axisymmetric tip with the Lennard-Jones body force (4.15)
+//! ([`crate::models::body_force_fe`]). Fig. 4.4 checks it against Hertz without attraction;
+//! fig4.5-models charts it against the surface model that draws the other chapter 4 figures:
+//! the same cycle in both, the differences in P_adh, H and the jumps, the run time of each, and
+//! how the finite-element result moves with the mesh and the tip's size.
+
+use std::time::Instant;
+
+use super::{draw_cycle, material, tip_for};
+use crate::error::{Error, Result};
+use crate::figure::{Axis, Figure, Marker, MarkerShape, Panel, Series, Style};
+use crate::job::Job;
+use crate::models::axisymmetric::cycle::{CycleModel, CycleOptions, TipCycle, run_cycle};
+use crate::models::body_force_fe::tip::{FeGeometry, FeTip, FeTipParams};
+use crate::models::lennard_jones::LennardJones;
+use crate::params::Range;
+use crate::scenes::Scene;
+
+/// The finite-element tip of a scene: its material, interaction and mesh.
+#[allow(clippy::too_many_arguments)]
+fn fe_tip(
+    lj: &LennardJones,
+    radius: f64,
+    youngs_modulus: f64,
+    poisson_ratio: f64,
+    fine_radius: f64,
+    element_width: f64,
+    grading: f64,
+    size_over_radius: f64,
+) -> Result<FeTip> {
+    let p = lj.params();
+    FeTip::new(&FeTipParams {
+        radius,
+        youngs_modulus,
+        poisson_ratio,
+        c6: p.c6,
+        c12: p.c12,
+        sigma: p.sigma,
+        hamaker: p.hamaker,
+        amplitude: 0.0,
+        wavelength: 1.0,
+        element_width,
+        fine_radius,
+        first_layer: 0.1,
+        layer_growth: 1.3,
+        grading,
+        r0: size_over_radius * radius,
+        h0: size_over_radius * radius,
+        quadrature_points: 4,
+        geometry: FeGeometry::HalfSpace,
+    })
+}
+
+crate::scene_params! {
+    /// Parameters of scene fig4.4 (section 4.4, the caption of Fig. 4.4: adhesionless contact,
+    /// C6 = 0).
+    pub struct Fig4_4Params {
+        /// Radius of curvature R of the tip [m].
+        radius: f64 = 10.0e-6, unit = "m", range = Range::between(1.0e-7, 1.0e-3);
+        /// Young's modulus E of the tip [Pa].
+        youngs_modulus: f64 = 1.1e6, unit = "Pa", range = Range::between(1.0e4, 1.0e11);
+        /// Poisson's ratio ν of the tip.
+        poisson_ratio: f64 = 0.25, unit = "", range = Range::between(0.0, 0.49);
+        /// C12 of the potential (4.1) (C6 = 0: no attraction).
+        c12: f64 = 1.0, unit = "", range = Range::between(0.01, 100.0);
+        /// Characteristic distance σ of the potential (4.1) [m].
+        sigma: f64 = 1.0e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
+        /// Hamaker constant A_H [J].
+        hamaker: f64 = 2.0e-21, unit = "J", range = Range::between(1.0e-23, 1.0e-17);
+        /// Deepest penetration in units of σ.
+        depth_over_sigma: f64 = 300.0, unit = "", range = Range::between(20.0, 2000.0);
+        /// Depth step in units of σ.
+        step_over_sigma: f64 = 4.0, unit = "", range = Range::between(0.5, 50.0);
+        /// Width of the surface elements over the contact zone [m].
+        element_width: f64 = 3.3e-9, unit = "m", range = Range::between(1.0e-10, 1.0e-7);
+        /// Growth of the element size with the distance from the contact zone.
+        grading: f64 = 0.15, unit = "", range = Range::between(0.05, 1.0);
+        /// Radius and height of the tip in units of R.
+        size_over_radius: f64 = 16.0, unit = "", range = Range::between(2.0, 100.0);
+    }
+}
+
+/// Fig. 4.4: the finite-element tip without attraction against Hertz.
+pub struct Fig4_4;
+
+impl Scene for Fig4_4 {
+    type Params = Fig4_4Params;
+    const ID: &'static str = "fig4.4";
+    const CHAPTER: &'static str = "4";
+    const TITLE: &'static str = "Adhesionless finite-element contact against Hertz";
+    const CAPTION: &'static str = "Finite-element model of the tip (axisymmetric linear triangles, the repulsive \
+        body force of (4.15) with C6 = 0; R = 10 um, E = 1.1 MPa, nu = 0.25, C12 = 1, sigma = 1 nm, A_H = 2e-21 J) \
+        pressed against the rigid flat, against Hertz (3.3 with ell = chi = 0): (a) force against penetration, \
+        (b) force against contact radius (gap below sigma, section 4.2.2). The soft repulsive wall has no sharp \
+        surface: Hertz is drawn from one wall position fitted at the deepest state. No jump occurs.";
+    const RESULTS: &'static [(&'static str, &'static str)] = &[
+        (
+            "hertz_deviation_norm",
+            "largest |P - P_Hertz|/P over the deeper two thirds of the path",
+        ),
+        (
+            "wall_offset_norm",
+            "fitted wall position / sigma (depth where Hertz starts)",
+        ),
+        (
+            "radius_deviation_norm",
+            "largest |a - sqrt(R d)|/sqrt(R d) over the same states",
+        ),
+        ("unknowns_count", "displacement unknowns of the mesh"),
+        ("triangles_count", "triangles of the mesh"),
+        ("jumps_count", "jumps on the path (0: no instability)"),
+        (
+            "all_states_stable_count",
+            "1 when every state was certified stable",
+        ),
+        ("run_time_s", "wall-clock time of the loading path"),
+    ];
+
+    fn quick(p: &mut Self::Params) {
+        p.depth_over_sigma = p.depth_over_sigma.min(60.0);
+        p.step_over_sigma = p.step_over_sigma.max(6.0);
+        p.grading = p.grading.max(0.4);
+        p.size_over_radius = p.size_over_radius.min(6.0);
+        p.element_width = p.element_width.max(8e-9);
+    }
+
+    fn validate(p: &Self::Params) -> Result<()> {
+        if p.step_over_sigma >= p.depth_over_sigma {
+            return Err(Error::invalid(
+                "step_over_sigma",
+                p.step_over_sigma,
+                "must be below depth_over_sigma",
+            ));
+        }
+        Ok(())
+    }
+
+    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        let (lj, modulus) = material(0.0, p.c12, p.sigma, p.hamaker, p.youngs_modulus, p.poisson_ratio)?;
+        let s = p.sigma;
+        let fine = 1.3 * (p.radius * p.depth_over_sigma * s).sqrt() + 20.0 * p.element_width;
+        // The element width in the model's radial unit b.
+        let probe = fe_tip(
+            &lj,
+            p.radius,
+            p.youngs_modulus,
+            p.poisson_ratio,
+            fine,
+            1.0,
+            1.0,
+            4.0,
+        )?;
+        let b = probe.scales().radial;
+        let tip = fe_tip(
+            &lj,
+            p.radius,
+            p.youngs_modulus,
+            p.poisson_ratio,
+            fine,
+            p.element_width / b,
+            p.grading,
+            p.size_over_radius,
+        )?;
+        let l = tip.length_unit();
+        let opts = CycleOptions {
+            h_start: 5.0 * l,
+            h_min: -p.depth_over_sigma * s,
+            step: p.step_over_sigma * s,
+            refine_to: 1e-3 * l,
+            contact_gap: s,
+            keep_profiles: false,
+            unload_to: Some(-(p.depth_over_sigma - 0.5 * p.step_over_sigma) * s),
+        };
+        let start = Instant::now();
+        let cycle = run_cycle(&tip, &opts, |f| {
+            job.progress(f, "finite-element loading");
+            job.check()
+        })?;
+        let run_time = start.elapsed().as_secs_f64();
+        let k = 4.0 / 3.0 * modulus * p.radius.sqrt();
+        let deepest = cycle.loading.last().ok_or_else(|| Error::Unresolvable {
+            model: "fig4.4",
+            reason: "the loading path is empty".into(),
+        })?;
+        let wall = deepest.depth + (deepest.force.max(0.0) / k).powf(2.0 / 3.0);
+        let deep: Vec<_> = cycle
+            .loading
+            .iter()
+            .filter(|st| -st.depth > p.depth_over_sigma * s / 3.0)
+            .collect();
+        let (mut dev_p, mut dev_a) = (0.0f64, 0.0f64);
+        for st in &deep {
+            let d = wall - st.depth;
+            dev_p = dev_p.max((st.force - k * d.powf(1.5)).abs() / st.force);
+            let a_h = (p.radius * d).sqrt();
+            dev_a = dev_a.max((st.contact.radius() - a_h).abs() / a_h);
+        }
+
+        let mut fig = Figure::new(Self::ID, Self::TITLE);
+        let mut ph = Panel::new(
+            Axis::linear("Penetration −h", "nm"),
+            Axis::linear("Contact force P", "µN"),
+        )
+        .titled("(a)", format!("{} unknowns", tip.len()));
+        let d_max = p.depth_over_sigma * s;
+        let hertz: Vec<(f64, f64)> = (0..=200)
+            .map(|i| {
+                let h = -(wall - 0.05 * d_max) - (d_max * 1.05 + wall) * i as f64 / 200.0;
+                (-h * 1e9, k * (wall - h).max(0.0).powf(1.5) * 1e6)
+            })
+            .collect();
+        ph.add(Series::new("Hertz (3.3), ℓ = χ = 0", Style::Reference, hertz).with_color(7));
+        ph.add(
+            Series::new(
+                "finite elements",
+                Style::Scatter,
+                cycle
+                    .loading
+                    .iter()
+                    .map(|st| (-st.depth * 1e9, st.force * 1e6))
+                    .collect(),
+            )
+            .with_color(0),
+        );
+        fig.panels.push(ph);
+        let mut pa = Panel::new(
+            Axis::linear("Contact radius a", "µm"),
+            Axis::linear("Contact force P", "µN"),
+        )
+        .titled("(b)", "a: gap below σ");
+        let a_max = deep.iter().map(|st| st.contact.radius()).fold(0.0, f64::max) * 1.05;
+        let hertz_a: Vec<(f64, f64)> = (0..=200)
+            .map(|i| {
+                let a = a_max * i as f64 / 200.0;
+                (a * 1e6, k * (a * a / p.radius).powf(1.5) * 1e6)
+            })
+            .collect();
+        pa.add(Series::new("Hertz, a² = R d", Style::Reference, hertz_a).with_color(7));
+        pa.add(
+            Series::new(
+                "finite elements",
+                Style::Scatter,
+                cycle
+                    .loading
+                    .iter()
+                    .filter(|st| st.contact.radius() > 0.0)
+                    .map(|st| (st.contact.radius() * 1e6, st.force * 1e6))
+                    .collect(),
+            )
+            .with_color(0),
+        );
+        fig.panels.push(pa);
+        fig.result("hertz_deviation_norm", dev_p);
+        fig.result("wall_offset_norm", wall / s);
+        fig.result("radius_deviation_norm", dev_a);
+        fig.result("unknowns_count", tip.len() as f64);
+        fig.result("triangles_count", tip.elements() as f64);
+        fig.result("jumps_count", cycle.jumps.len() as f64);
+        fig.result(
+            "all_states_stable_count",
+            f64::from(u8::from(cycle.stats.all_stable)),
+        );
+        fig.result("run_time_s", run_time);
+        fig.note(format!(
+            "Force within {:.2} % of Hertz over the deeper two thirds of the path; contact radius within {:.2} % (the gap criterion a: g < sigma sits inside Hertz's hard edge).",
+            100.0 * dev_p,
+            100.0 * dev_a
+        ));
+        Ok(fig)
+    }
+}
+
+crate::scene_params! {
+    /// Parameters of scene fig4.5-models (Fig. 4.5's smooth tip in both models).
+    pub struct Fig4_5ModelsParams {
+        /// Radius of curvature R of the tip [m].
+        radius: f64 = 5.0e-6, unit = "m", range = Range::between(1.0e-7, 1.0e-3);
+        /// Young's modulus E of the tip [Pa].
+        youngs_modulus: f64 = 4.4e6, unit = "Pa", range = Range::between(1.0e4, 1.0e11);
+        /// Poisson's ratio ν of the tip.
+        poisson_ratio: f64 = 0.25, unit = "", range = Range::between(0.0, 0.49);
+        /// C6 of the potential (4.1).
+        c6: f64 = 3.0, unit = "", range = Range::between(0.1, 100.0);
+        /// C12 of the potential (4.1).
+        c12: f64 = 1.0, unit = "", range = Range::between(0.01, 100.0);
+        /// Characteristic distance σ of the potential (4.1) [m].
+        sigma: f64 = 1.0e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
+        /// Hamaker constant A_H [J].
+        hamaker: f64 = 2.0e-21, unit = "J", range = Range::between(1.0e-23, 1.0e-17);
+        /// Deepest depth of the cycle in units of ζ0 (negative: pressed).
+        h_min_over_zeta0: f64 = -15.0, unit = "", range = Range::between(-100.0, 0.0);
+        /// Start (and end) of the cycle in units of ζ0.
+        h_start_over_zeta0: f64 = 12.0, unit = "", range = Range::between(1.0, 100.0);
+        /// Depth step in units of ζ0.
+        step_over_zeta0: f64 = 0.2, unit = "", range = Range::between(1.0e-2, 2.0);
+        /// Ring width of the surface model and element width of the finite-element model over the contact zone, in units of b = ζ0²E*/w.
+        width: f64 = 0.25, unit = "", range = Range::between(0.05, 2.0);
+        /// Growth of the element size with the distance from the contact zone.
+        grading: f64 = 0.15, unit = "", range = Range::between(0.05, 1.0);
+        /// Radius and height of the finite-element tip in units of R.
+        size_over_radius: f64 = 20.0, unit = "", range = Range::between(2.0, 100.0);
+        /// Gradings of the mesh-convergence runs (shallow cycles to h = 0).
+        convergence_gradings: Vec<f64> = vec![0.4, 0.3, 0.2, 0.15], unit = "", range = Range::between(0.05, 1.0);
+        /// Tip sizes (over R) of the domain-convergence runs (shallow cycles to h = 0).
+        convergence_sizes: Vec<f64> = vec![5.0, 10.0, 20.0, 40.0], unit = "", range = Range::between(2.0, 100.0);
+        /// Run the convergence studies of panel (b): 1 yes, 0 no.
+        convergence_study: usize = 1, unit = "", range = Range::between(0.0, 1.0);
+        /// Contact threshold of the gap (section 4.2.2: σ) [m].
+        contact_gap: f64 = 1.0e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
+    }
+}
+
+/// What one model gave on one cycle.
+struct ModelRun {
+    cycle: TipCycle,
+    seconds: f64,
+    unknowns: usize,
+}
+
+/// P_adh, H, and the depths of the first pull-in and the last pull-off of a cycle.
+fn summary(c: &TipCycle) -> (f64, f64, f64, f64) {
+    let pull_in = c
+        .jumps
+        .iter()
+        .find(|j| j.loading)
+        .map_or(f64::NAN, |j| j.before.depth);
+    let pull_off = c
+        .jumps
+        .iter()
+        .rfind(|j| !j.loading)
+        .map_or(f64::NAN, |j| j.before.depth);
+    (c.adhesive_force(), c.hysteresis(), pull_in, pull_off)
+}
+
+/// Fig. 4.5 in both models: the surface model against the finite-element model.
+pub struct Fig4_5Models;
+
+impl Scene for Fig4_5Models {
+    type Params = Fig4_5ModelsParams;
+    const ID: &'static str = "fig4.5-models";
+    const CHAPTER: &'static str = "4";
+    const TITLE: &'static str = "Smooth tip: finite-element model against the surface model";
+    const CAPTION: &'static str = "The cycle of Fig. 4.5 (R = 5 um, E = 4.4 MPa, nu = 0.25, C6 = 3, C12 = 1, sigma = 1 nm, \
+        A_H = 2e-21 J) computed with the dissertation's finite-element model (an axisymmetric tip with the body \
+        force (4.15)) and with the surface model that draws the other chapter 4 figures (the body force \
+        integrated through a column, the traction (4.19)). (a) P-h cycles of both; (b) the adhesive force of \
+        shallow finite-element cycles (to h = 0) against the number of unknowns as the bulk mesh is refined \
+        (grading) and as the tip grows (size r0 = h0), with the surface model's value for reference. The two \
+        models differ only through the strain of the surface layer (order p/E) and the finite tip.";
+    const RESULTS: &'static [(&'static str, &'static str)] = &[
+        ("fe_adhesive_force_norm", "P_adh/(pi w R), finite elements"),
+        ("surface_adhesive_force_norm", "P_adh/(pi w R), surface model"),
+        ("fe_hysteresis_norm", "H/(2E* R^3), finite elements"),
+        ("surface_hysteresis_norm", "H/(2E* R^3), surface model"),
+        ("fe_pull_in_depth_nm", "depth of the pull-in, finite elements"),
+        ("surface_pull_in_depth_nm", "depth of the pull-in, surface model"),
+        (
+            "fe_pull_off_depth_nm",
+            "depth of the last pull-off, finite elements",
+        ),
+        (
+            "surface_pull_off_depth_nm",
+            "depth of the last pull-off, surface model",
+        ),
+        ("fe_jumps_count", "jumps of the finite-element cycle"),
+        ("surface_jumps_count", "jumps of the surface-model cycle"),
+        ("fe_unknowns_count", "unknowns of the finite-element model"),
+        ("surface_unknowns_count", "rings of the surface model"),
+        ("fe_time_s", "run time of the finite-element cycle"),
+        ("surface_time_s", "run time of the surface-model cycle"),
+        (
+            "all_states_stable_count",
+            "1 when every state of both cycles was certified stable",
+        ),
+    ];
+
+    fn quick(p: &mut Self::Params) {
+        p.h_min_over_zeta0 = p.h_min_over_zeta0.max(0.0);
+        p.h_start_over_zeta0 = p.h_start_over_zeta0.min(9.0);
+        p.step_over_zeta0 = p.step_over_zeta0.max(0.5);
+        p.grading = p.grading.max(0.5);
+        p.size_over_radius = p.size_over_radius.min(4.0);
+        p.convergence_study = 0;
+    }
+
+    fn validate(p: &Self::Params) -> Result<()> {
+        if p.h_min_over_zeta0 >= p.h_start_over_zeta0 {
+            return Err(Error::invalid(
+                "h_min_over_zeta0",
+                p.h_min_over_zeta0,
+                "must be below h_start_over_zeta0",
+            ));
+        }
+        Ok(())
+    }
+
+    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        let (lj, modulus) = material(p.c6, p.c12, p.sigma, p.hamaker, p.youngs_modulus, p.poisson_ratio)?;
+        let (zeta0, w) = (lj.zeta0(), lj.work_of_adhesion());
+        let h_min = p.h_min_over_zeta0 * zeta0;
+        let surface = tip_for(&lj, p.radius, modulus, 0.0, 1.0, h_min, p.width, 4)?;
+        let fine = surface.params().fine_radius;
+        let fe_at = |grading: f64, size: f64| {
+            fe_tip(
+                &lj,
+                p.radius,
+                p.youngs_modulus,
+                p.poisson_ratio,
+                fine,
+                p.width,
+                grading,
+                size,
+            )
+        };
+        let opts = |h_min: f64| CycleOptions {
+            h_start: p.h_start_over_zeta0 * zeta0,
+            h_min,
+            step: p.step_over_zeta0 * zeta0,
+            refine_to: 1e-3 * zeta0,
+            contact_gap: p.contact_gap,
+            keep_profiles: false,
+            unload_to: None,
+        };
+        let fe_tip = fe_at(p.grading, p.size_over_radius)?;
+        let start = Instant::now();
+        let fe_cycle = run_cycle(&fe_tip, &opts(h_min), |f| {
+            job.progress(0.5 * f, "finite-element cycle");
+            job.check()
+        })?;
+        let fe = ModelRun {
+            cycle: fe_cycle,
+            seconds: start.elapsed().as_secs_f64(),
+            unknowns: fe_tip.len(),
+        };
+        let start = Instant::now();
+        let surface_cycle = run_cycle(&surface, &opts(h_min), |_| job.check())?;
+        let bem = ModelRun {
+            cycle: surface_cycle,
+            seconds: start.elapsed().as_secs_f64(),
+            unknowns: surface.len(),
+        };
+        // Convergence: shallow cycles (to h = 0) of the finite-element model.
+        let mut variants: Vec<(bool, f64)> = Vec::new();
+        if p.convergence_study == 1 {
+            variants.extend(p.convergence_gradings.iter().map(|&g| (true, g)));
+            variants.extend(p.convergence_sizes.iter().map(|&s| (false, s)));
+        }
+        let shallow = opts(0.0_f64.max(h_min));
+        let studies = job.map_parallel(&variants, "convergence", |&(by_grading, v)| {
+            let tip = if by_grading {
+                fe_at(v, p.size_over_radius)?
+            } else {
+                fe_at(p.grading, v)?
+            };
+            let c = run_cycle(&tip, &shallow, |_| job.check())?;
+            Ok((by_grading, v, tip.len(), c.adhesive_force()))
+        })?;
+        let reference_shallow = if variants.is_empty() {
+            None
+        } else {
+            Some(run_cycle(&surface, &shallow, |_| job.check())?.adhesive_force())
+        };
+
+        let force_scale = std::f64::consts::PI * w * p.radius;
+        let scale = (p.radius, 2.0 * modulus * p.radius * p.radius);
+        let mut fig = Figure::new(Self::ID, Self::TITLE);
+        let mut ph = Panel::new(
+            Axis::linear("Indentation depth h/R", ""),
+            Axis::linear("Contact force P/(2E*R²)", ""),
+        )
+        .titled("(a)", "same cycle, both models");
+        draw_cycle(&mut ph, &bem.cycle, "surface model", 7, scale);
+        draw_cycle(&mut ph, &fe.cycle, "finite elements", 0, scale);
+        fig.panels.push(ph);
+        if !studies.is_empty() {
+            let mut pc = Panel::new(
+                Axis::log("Unknowns of the finite-element model", ""),
+                Axis::linear("Adhesive force P_adh/(πwR), cycle to h = 0", ""),
+            )
+            .titled("(b)", "mesh and tip-size convergence");
+            for (by_grading, name, color) in [
+                (true, "bulk mesh refined (grading)", 0),
+                (false, "tip size r0 = h0 grown", 1),
+            ] {
+                let mut pts: Vec<(f64, f64)> = studies
+                    .iter()
+                    .filter(|s| s.0 == by_grading)
+                    .map(|s| (s.2 as f64, -s.3 / force_scale))
+                    .collect();
+                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+                if pts.len() > 1 {
+                    pc.add(Series::new(name, Style::Stable, pts.clone()).with_color(color));
+                }
+                for s in studies.iter().filter(|s| s.0 == by_grading) {
+                    let label = if by_grading {
+                        format!("{}", s.1)
+                    } else {
+                        format!("{}R", s.1)
+                    };
+                    pc.mark(
+                        Marker::new(label.clone(), MarkerShape::Point, s.2 as f64, -s.3 / force_scale)
+                            .with_color(color)
+                            .with_label(label),
+                    );
+                }
+            }
+            if let Some(f) = reference_shallow {
+                let xs: Vec<f64> = studies.iter().map(|s| s.2 as f64).collect();
+                let (lo, hi) = (
+                    xs.iter().copied().fold(f64::INFINITY, f64::min),
+                    xs.iter().copied().fold(0.0, f64::max),
+                );
+                pc.add(
+                    Series::new(
+                        "surface model",
+                        Style::Reference,
+                        vec![(lo, -f / force_scale), (hi, -f / force_scale)],
+                    )
+                    .with_color(7),
+                );
+            }
+            fig.panels.push(pc);
+        }
+        let (fa, fh, fi, fo) = summary(&fe.cycle);
+        let (sa, sh, si, so) = summary(&bem.cycle);
+        let loss_scale = scale.1 * p.radius;
+        fig.result("fe_adhesive_force_norm", -fa / force_scale);
+        fig.result("surface_adhesive_force_norm", -sa / force_scale);
+        fig.result("fe_hysteresis_norm", fh / loss_scale);
+        fig.result("surface_hysteresis_norm", sh / loss_scale);
+        for (name, v) in [
+            ("fe_pull_in_depth_nm", fi),
+            ("surface_pull_in_depth_nm", si),
+            ("fe_pull_off_depth_nm", fo),
+            ("surface_pull_off_depth_nm", so),
+        ] {
+            if v.is_finite() {
+                fig.result(name, v * 1e9);
+            }
+        }
+        fig.result("fe_jumps_count", fe.cycle.jumps.len() as f64);
+        fig.result("surface_jumps_count", bem.cycle.jumps.len() as f64);
+        fig.result("fe_unknowns_count", fe.unknowns as f64);
+        fig.result("surface_unknowns_count", bem.unknowns as f64);
+        fig.result("fe_time_s", fe.seconds);
+        fig.result("surface_time_s", bem.seconds);
+        fig.result(
+            "all_states_stable_count",
+            f64::from(u8::from(fe.cycle.stats.all_stable && bem.cycle.stats.all_stable)),
+        );
+        fig.note(format!(
+            "P_adh/(pi w R): finite elements {:.4}, surface model {:.4} ({:+.2} %); H: {:+.2} %; run time {:.1} s against {:.1} s.",
+            -fa / force_scale,
+            -sa / force_scale,
+            100.0 * (fa / sa - 1.0),
+            100.0 * (fh / sh - 1.0),
+            fe.seconds,
+            bem.seconds
+        ));
+        Ok(fig)
+    }
+}
+
+crate::scene_params! {
+    /// Parameters of scene fig4.6 (Fig. 4.5's smooth tip, the fields after the pull-in).
+    pub struct Fig4_6Params {
+        /// Radius of curvature R of the tip [m].
+        radius: f64 = 5.0e-6, unit = "m", range = Range::between(1.0e-7, 1.0e-3);
+        /// Young's modulus E of the tip [Pa].
+        youngs_modulus: f64 = 4.4e6, unit = "Pa", range = Range::between(1.0e4, 1.0e11);
+        /// Poisson's ratio ν of the tip.
+        poisson_ratio: f64 = 0.25, unit = "", range = Range::between(0.0, 0.49);
+        /// C6 of the potential (4.1).
+        c6: f64 = 3.0, unit = "", range = Range::between(0.1, 100.0);
+        /// C12 of the potential (4.1).
+        c12: f64 = 1.0, unit = "", range = Range::between(0.01, 100.0);
+        /// Characteristic distance σ of the potential (4.1) [m].
+        sigma: f64 = 1.0e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
+        /// Hamaker constant A_H [J].
+        hamaker: f64 = 2.0e-21, unit = "J", range = Range::between(1.0e-23, 1.0e-17);
+        /// Depth of the state shown, in units of ζ0 (after the pull-in, which happens near +4 ζ0 at the defaults).
+        depth_over_zeta0: f64 = 0.0, unit = "", range = Range::between(-20.0, 20.0);
+        /// Depth step of the loading in units of ζ0.
+        step_over_zeta0: f64 = 0.25, unit = "", range = Range::between(1.0e-2, 2.0);
+        /// Element width over the contact zone in units of b = ζ0²E*/w.
+        width: f64 = 0.25, unit = "", range = Range::between(0.05, 2.0);
+        /// Growth of the element size with the distance from the contact zone.
+        grading: f64 = 0.15, unit = "", range = Range::between(0.05, 1.0);
+        /// Radius and height of the tip in units of R.
+        size_over_radius: f64 = 20.0, unit = "", range = Range::between(2.0, 100.0);
+        /// Depth below the surface at which σ_zz is drawn, in units of ζ0 (below the interaction layer the column carries the whole traction).
+        stress_depth_over_zeta0: f64 = 3.0, unit = "", range = Range::between(0.1, 50.0);
+    }
+}
+
+/// Fig. 4.6: u_z in the tip and σ_zz along the interface after the pull-in.
+pub struct Fig4_6;
+
+impl Scene for Fig4_6 {
+    type Params = Fig4_6Params;
+    const ID: &'static str = "fig4.6";
+    const CHAPTER: &'static str = "4";
+    const TITLE: &'static str = "Fields in the tip after the pull-in (finite elements)";
+    const CAPTION: &'static str = "The smooth tip of Fig. 4.5 (finite-element model) loaded past its pull-in: (a) the \
+        vertical displacement u_z in the tip near the contact (the neck-like profile of the contact zone), \
+        (b) the normal stress sigma_zz along the interface, taken just above the interaction layer (the tip's \
+        bottom face is traction free; the body force builds sigma_zz up through the layer): compressive in the \
+        centre, tensile with a concentration at the contact edge, as in the classical adhesive contact.";
+    const RESULTS: &'static [(&'static str, &'static str)] = &[
+        ("contact_radius_m", "radius where the gap is below sigma"),
+        ("depth_m", "depth h of the state"),
+        ("force_N", "force P of the state (compressive positive)"),
+        (
+            "peak_tension_MPa",
+            "largest tensile sigma_zz on the line of panel (b)",
+        ),
+        ("peak_tension_radius_m", "its radius"),
+        ("centre_stress_MPa", "sigma_zz at the axis on that line"),
+        ("unknowns_count", "displacement unknowns of the mesh"),
+    ];
+
+    fn quick(p: &mut Self::Params) {
+        p.step_over_zeta0 = p.step_over_zeta0.max(0.5);
+        p.width = p.width.max(0.5);
+        p.grading = p.grading.max(0.4);
+        p.size_over_radius = p.size_over_radius.min(5.0);
+    }
+
+    fn validate(_: &Self::Params) -> Result<()> {
+        Ok(())
+    }
+
+    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        let (lj, modulus) = material(p.c6, p.c12, p.sigma, p.hamaker, p.youngs_modulus, p.poisson_ratio)?;
+        let zeta0 = lj.zeta0();
+        let h = p.depth_over_zeta0 * zeta0;
+        let surface = tip_for(&lj, p.radius, modulus, 0.0, 1.0, h.min(0.0), p.width, 4)?;
+        let tip = fe_tip(
+            &lj,
+            p.radius,
+            p.youngs_modulus,
+            p.poisson_ratio,
+            surface.params().fine_radius,
+            p.width,
+            p.grading,
+            p.size_over_radius,
+        )?;
+        let start = (h + 2.0 * zeta0).max(8.0 * zeta0);
+        let opts = CycleOptions {
+            h_start: start,
+            h_min: h,
+            step: p.step_over_zeta0 * zeta0,
+            refine_to: 1e-2 * zeta0,
+            contact_gap: p.sigma,
+            keep_profiles: true,
+            unload_to: Some(h + 0.5 * p.step_over_zeta0 * zeta0),
+        };
+        let cycle = run_cycle(&tip, &opts, |f| {
+            job.progress(f, "finite-element loading");
+            job.check()
+        })?;
+        let state = cycle.loading.last().ok_or_else(|| Error::Unresolvable {
+            model: "fig4.6",
+            reason: "the loading path is empty".into(),
+        })?;
+        let u = &state.displacement;
+        let l = tip.length_unit();
+        let a = state.contact.radius().max(10.0 * l);
+        let mesh = tip.mesh();
+
+        // (a) u_z on a grid of the window r ≤ 1.6 a, z ≤ 0.8 a (mesh units ℓ).
+        let (nx, ny) = (96usize, 48usize);
+        let (w_r, w_z) = (1.6 * a / l, 0.8 * a / l);
+        let xs: Vec<f64> = (0..nx).map(|i| w_r * i as f64 / (nx - 1) as f64).collect();
+        let ys: Vec<f64> = (0..ny).map(|j| w_z * j as f64 / (ny - 1) as f64).collect();
+        let mut values = vec![f64::NAN; nx * ny];
+        for tri in &mesh.triangles {
+            let pts = tri.map(|k| mesh.nodes[k]);
+            let (r_lo, r_hi) = (
+                pts.iter().map(|q| q[0]).fold(f64::INFINITY, f64::min),
+                pts.iter().map(|q| q[0]).fold(0.0, f64::max),
+            );
+            let (z_lo, z_hi) = (
+                pts.iter().map(|q| q[1]).fold(f64::INFINITY, f64::min),
+                pts.iter().map(|q| q[1]).fold(f64::NEG_INFINITY, f64::max),
+            );
+            if r_lo > w_r || z_lo > w_z {
+                continue;
+            }
+            let shape = crate::models::body_force_fe::element::Shape::new(pts);
+            let uz = tri.map(|k| tip.node_displacement(u, k)[1]);
+            let i0 = xs.partition_point(|&x| x < r_lo);
+            let j0 = ys.partition_point(|&y| y < z_lo);
+            for j in j0..ny {
+                if ys[j] > z_hi {
+                    break;
+                }
+                for i in i0..nx {
+                    if xs[i] > r_hi {
+                        break;
+                    }
+                    let n = shape.at(xs[i], ys[j]);
+                    if n.iter().all(|&v| v >= -1e-9) {
+                        values[j * nx + i] = (0..3).map(|k| n[k] * uz[k]).sum::<f64>() * l * 1e9;
+                    }
+                }
+            }
+        }
+        // Grid points outside the mesh (none in this window): the nearest value in the row.
+        for j in 0..ny {
+            for i in 0..nx {
+                if values[j * nx + i].is_nan() {
+                    values[j * nx + i] = (0..nx)
+                        .map(|k| values[j * nx + k])
+                        .find(|v| v.is_finite())
+                        .unwrap_or(0.0);
+                }
+            }
+        }
+        let mut fig = Figure::new(Self::ID, Self::TITLE);
+        let mut pf = Panel::new(
+            Axis::linear("Radius r", "nm"),
+            Axis::linear("Height z above the apex", "nm"),
+        )
+        .titled("(a)", format!("u_z at h = {:.2} nm", state.depth * 1e9));
+        pf.field = Some(crate::figure::Field::heat(
+            "u_z",
+            "nm",
+            xs.iter().map(|x| x * l * 1e9).collect(),
+            ys.iter().map(|y| y * l * 1e9).collect(),
+            values,
+        ));
+        fig.panels.push(pf);
+
+        // (b) σ_zz at the element centroids nearest to the chosen depth below the surface.
+        let stresses = tip.centroid_stresses(u);
+        let target = p.stress_depth_over_zeta0 * zeta0 / l;
+        let mut line: Vec<(f64, f64, f64)> = mesh
+            .triangles
+            .iter()
+            .zip(&stresses)
+            .filter_map(|(tri, s)| {
+                let r = tri.iter().map(|&k| mesh.nodes[k][0]).sum::<f64>() / 3.0;
+                let z = tri.iter().map(|&k| mesh.nodes[k][1]).sum::<f64>() / 3.0;
+                (r <= 2.0 * a / l).then_some((r, (z - target).abs(), s[1]))
+            })
+            .collect();
+        line.sort_by(|x, y| x.0.total_cmp(&y.0));
+        // One value per radius bin of two element widths: the mean over the elements whose
+        // centroid lies within one ζ0 of the target depth (the stress of a linear triangle is
+        // constant on it; the mean over a patch smooths the two orientations of the cut squares).
+        let bin = 2.0 * tip.mesh().width;
+        let band = zeta0 / l;
+        let mut pts: Vec<(f64, f64)> = Vec::new();
+        let mut k = 0;
+        while k < line.len() {
+            let r0 = line[k].0;
+            let group: Vec<&(f64, f64, f64)> = line[k..].iter().take_while(|q| q.0 < r0 + bin).collect();
+            let near: Vec<&&(f64, f64, f64)> = group.iter().filter(|q| q.1 <= band).collect();
+            if !near.is_empty() {
+                let r = near.iter().map(|q| q.0).sum::<f64>() / near.len() as f64;
+                let s = near.iter().map(|q| q.2).sum::<f64>() / near.len() as f64;
+                pts.push((r * l * 1e9, s * 1e-6));
+            }
+            k += group.len();
+        }
+        let (peak_r, peak) = pts
+            .iter()
+            .copied()
+            .fold((0.0, f64::NEG_INFINITY), |m, q| if q.1 > m.1 { q } else { m });
+        let centre = pts.first().map_or(0.0, |q| q.1);
+        let mut ps = Panel::new(
+            Axis::linear("Radius r", "nm"),
+            Axis::linear("Normal stress σ_zz", "MPa"),
+        )
+        .titled(
+            "(b)",
+            format!(
+                "{:.1} ζ0 above the surface; tension positive",
+                p.stress_depth_over_zeta0
+            ),
+        );
+        ps.add(Series::new("finite elements", Style::Stable, pts).with_color(0));
+        ps.mark(
+            Marker::new(
+                "contact edge",
+                MarkerShape::Cross,
+                state.contact.radius() * 1e9,
+                0.0,
+            )
+            .with_label("a"),
+        );
+        fig.panels.push(ps);
+        fig.result("contact_radius_m", state.contact.radius());
+        fig.result("depth_m", state.depth);
+        fig.result("force_N", state.force);
+        fig.result("peak_tension_MPa", peak);
+        fig.result("peak_tension_radius_m", peak_r * 1e-9);
+        fig.result("centre_stress_MPa", centre);
+        fig.result("unknowns_count", tip.len() as f64);
+        Ok(fig)
+    }
+}
