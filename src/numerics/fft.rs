@@ -120,11 +120,11 @@ pub fn signed_index(k: usize, n: usize) -> f64 {
     if k <= n / 2 { k as f64 } else { k as f64 - n as f64 }
 }
 
-/// Total length of the spectrum buffers kept between transforms, 2^24 values (256 MiB): enough
-/// for the half spectra of 4096² grids. A fresh buffer costs a page fault and a kernel zeroing per
-/// 4 KiB on every call, as much as the transform's arithmetic on a 1024² grid; larger buffers are
-/// freed after use.
-const POOL_MAX_LEN: usize = 1 << 24;
+/// Total length of the spectrum buffers kept between transforms: the two half spectra that
+/// generating a 4096² surface holds at once (268 MiB). A fresh buffer costs a page fault and a
+/// kernel zeroing per 4 KiB on every call, as much as the transform's arithmetic on a 1024² grid;
+/// larger buffers are freed after use.
+const POOL_MAX_LEN: usize = 2 * (4096 / 2 + 1) * 4096;
 
 /// Spectrum buffers kept for the next transform (see [`POOL_MAX_LEN`]).
 static POOL: Mutex<Vec<Vec<Complex64>>> = Mutex::new(Vec::new());
