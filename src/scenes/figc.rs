@@ -529,7 +529,7 @@ crate::scene_params! {
 }
 
 /// Median of `generate + radial PSD + moments` on 256² in `benches/surface.rs` [s].
-const BENCH_T256: f64 = 10.9e-3;
+const BENCH_T256: f64 = 1.9e-3;
 
 /// Fig. C.2, accuracy against cost: the error of the map estimates of m2, m4 against (C.1.3)
 /// over grid size and averaging, and against run time.

@@ -16,7 +16,7 @@ use rustfft::num_complex::Complex64;
 use super::generate::wavenumber;
 use super::height_map::HeightMap;
 use super::spectrum::Moments;
-use crate::numerics::fft::{Direction, fft2};
+use crate::numerics::fft::{Direction, RealFft2, fft2};
 
 /// The periodic Hann window w_i = sin²(πi/n), i = 0..n: its DFT has three bins, 1/2 at 0 and
 /// −1/4 at ±1, so it smears a Fourier bin over its two neighbours only; mean(w²) = 3/8.
@@ -35,33 +35,90 @@ pub fn hann(n: usize) -> Vec<f64> {
 /// where the window is large) without the leakage of the edge jump.
 pub fn periodogram(map: &HeightMap) -> Vec<f64> {
     let (nx, ny) = (map.nx, map.ny);
-    let mut data: Vec<Complex64>;
-    let mut norm = ((nx * ny) as f64).powi(2);
-    if map.periodic {
-        let mean = map.mean();
-        data = map.z.iter().map(|v| Complex64::new(v - mean, 0.0)).collect();
-    } else {
+    let rows = TransformRows::new(map);
+    let fft = RealFft2::new(nx, ny);
+    let half: Vec<f64> = fft
+        .forward_fold(
+            |j, row| rows.fill(j, row),
+            Vec::new,
+            |acc: &mut Vec<f64>, _, col| acc.extend(col.iter().map(|c| c.norm_sqr() * rows.inv_norm)),
+        )
+        .concat();
+    // The other columns mirror the stored ones: p(k, l) = p(nx − k, ny − l).
+    let hx = fft.half_columns();
+    let mut p = vec![0.0; nx * ny];
+    p.par_chunks_mut(nx).enumerate().for_each(|(ky, row)| {
+        for (kx, v) in row.iter_mut().enumerate() {
+            *v = if kx < hx {
+                half[kx * ny + ky]
+            } else {
+                half[(nx - kx) * ny + (ny - ky) % ny]
+            };
+        }
+    });
+    p
+}
+
+/// The rows of a map as the analysis transforms them ([`periodogram`]): mean-free for a periodic
+/// map; for a patch, w·(z − z̄_w) with the separable [`hann`] window w and the window-weighted
+/// mean z̄_w. `inv_norm` turns |DFT|² into the periodogram: 1/((nx ny)² mean(w²)), w = 1 for
+/// a periodic map.
+struct TransformRows<'a> {
+    map: &'a HeightMap,
+    mean: f64,
+    window: Option<(Vec<f64>, Vec<f64>)>,
+    inv_norm: f64,
+}
+
+impl<'a> TransformRows<'a> {
+    fn new(map: &'a HeightMap) -> Self {
+        let (nx, ny) = (map.nx, map.ny);
+        let norm = ((nx * ny) as f64).powi(2);
+        // Row sums in parallel, added in row order: independent of the number of threads.
+        let row_sums = |weight: &(dyn Fn(&[f64]) -> f64 + Sync)| -> Vec<f64> {
+            map.z.par_chunks(nx).map(weight).collect()
+        };
+        if map.periodic {
+            let mean = row_sums(&|row| row.iter().sum()).iter().sum::<f64>() / (nx * ny) as f64;
+            return Self {
+                map,
+                mean,
+                window: None,
+                inv_norm: 1.0 / norm,
+            };
+        }
         let (wx, wy) = (hann(nx), hann(ny));
         let sw: f64 = wx.iter().sum::<f64>() * wy.iter().sum::<f64>();
-        let mean_w: f64 = map
-            .z
-            .chunks(nx)
+        let mean_w = row_sums(&|row| row.iter().zip(&wx).map(|(z, a)| a * z).sum())
+            .iter()
             .zip(&wy)
-            .map(|(row, b)| b * row.iter().zip(&wx).map(|(z, a)| a * z).sum::<f64>())
+            .map(|(s, b)| b * s)
             .sum::<f64>()
             / sw;
-        data = map
-            .z
-            .iter()
-            .enumerate()
-            .map(|(k, v)| Complex64::new((v - mean_w) * wx[k % nx] * wy[k / nx], 0.0))
-            .collect();
         let w2 =
             wx.iter().map(|a| a * a).sum::<f64>() * wy.iter().map(|b| b * b).sum::<f64>() / (nx * ny) as f64;
-        norm *= w2;
+        Self {
+            map,
+            mean: mean_w,
+            window: Some((wx, wy)),
+            inv_norm: 1.0 / (norm * w2),
+        }
     }
-    fft2(&mut data, nx, ny, Direction::Forward);
-    data.into_par_iter().map(|c| c.norm_sqr() / norm).collect()
+
+    /// Row `j` as transformed.
+    fn fill(&self, j: usize, row: &mut [f64]) {
+        let nx = self.map.nx;
+        let z = &self.map.z[j * nx..(j + 1) * nx];
+        match &self.window {
+            None => row.iter_mut().zip(z).for_each(|(r, v)| *r = v - self.mean),
+            Some((wx, wy)) => {
+                let b = wy[j];
+                for ((r, v), a) in row.iter_mut().zip(z).zip(wx) {
+                    *r = (v - self.mean) * a * b;
+                }
+            }
+        }
+    }
 }
 
 /// The discrete 2D PSD C̃(q_k, q_l) [m⁴] of (B.1.8)-(B.1.9), in the convention of (3.8)
@@ -86,7 +143,7 @@ pub fn psd_2d(map: &HeightMap) -> Vec<f64> {
 /// the whole map (the windowed Σ p is the variance of the map's centre: with a red spectrum it
 /// scatters more, while m2 and m4, set by short wavelengths, are local).
 pub fn moments_of_map(map: &HeightMap) -> Moments {
-    moments_of_periodogram(map, &periodogram(map))
+    spectrum_sums(map, false).0
 }
 
 /// [`moments_of_map`] from a periodogram already computed.
@@ -112,9 +169,15 @@ pub fn moments_of_periodogram(map: &HeightMap, p: &[f64]) -> Moments {
         })
         .collect();
     debug_assert_eq!(rows.len(), ny);
-    let (m0, mut s2, mut s4) = rows
+    let (m0, s2, s4) = rows
         .into_iter()
         .fold((0.0, 0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1, a.2 + b.2));
+    moments_from_sums(map, m0, s2, s4)
+}
+
+/// The moments from the sums Σ p, Σ p q², Σ p q⁴ over the periodogram (the DC bin left out),
+/// with the window's contribution removed for a non-periodic map ([`moments_of_map`]).
+fn moments_from_sums(map: &HeightMap, m0: f64, mut s2: f64, mut s4: f64) -> Moments {
     if !map.periodic {
         let (j2, j4) = hann_spectrum_moments(map);
         s2 -= m0 * j2;
@@ -168,25 +231,126 @@ pub struct RadialPsd {
 /// multiples of Δq, from Δq up to the Nyquist wavenumber π/max(Δx, Δy) (the largest full
 /// circle on the grid). Empty rings are left out.
 pub fn radial_psd(map: &HeightMap) -> RadialPsd {
-    radial_average(map, &psd_2d(map))
+    spectrum_sums(map, true).1
 }
 
 /// The isotropic PSD (B.1.10) ([`radial_psd`]) and the spectral moments (3.8)
 /// ([`moments_of_map`]) from one Fourier transform of the map.
 pub fn radial_psd_and_moments(map: &HeightMap) -> (RadialPsd, Moments) {
-    let p = periodogram(map);
-    let m = moments_of_periodogram(map, &p);
-    let s = map.lx * map.ly / (4.0 * std::f64::consts::PI.powi(2));
-    let c2d: Vec<f64> = p.into_par_iter().map(|v| v * s).collect();
-    (radial_average(map, &c2d), m)
+    let (m, psd) = spectrum_sums(map, true);
+    (psd, m)
+}
+
+/// The rings of the isotropic PSD (B.1.10) on the grid of `map`: width Δq = 2π/max(L1, L2),
+/// centred on multiples of Δq up to the Nyquist wavenumber; (Δq, number of rings).
+fn rings(map: &HeightMap) -> (f64, usize) {
+    let dq = 2.0 * std::f64::consts::PI / map.lx.max(map.ly);
+    let q_nyq = std::f64::consts::PI / map.dx().max(map.dy());
+    (dq, (q_nyq / dq).floor() as usize)
+}
+
+/// The ring of wavenumber q ≥ 0: the nearest multiple of Δq, q/Δq rounded half up (the same
+/// expression wherever rings are formed, so that bins fall into the same rings).
+fn ring_of(q: f64, dq: f64) -> usize {
+    (q / dq + 0.5) as usize
+}
+
+/// Sums over the periodogram of one block of spectrum columns: Σ p, Σ p q², Σ p q⁴ and, per
+/// ring, Σ q, Σ p and the number of bins (each over the whole spectrum, a stored column
+/// standing for its mirror image too).
+struct SpectrumSums {
+    moments: [f64; 3],
+    sum_q: Vec<f64>,
+    sum_p: Vec<f64>,
+    count: Vec<usize>,
+}
+
+/// The spectral moments ([`moments_of_map`]) and, if `with_rings`, the isotropic PSD
+/// ([`radial_psd`]; empty otherwise) in one pass over the half spectrum of the map's real
+/// Fourier transform, which is never stored whole.
+fn spectrum_sums(map: &HeightMap, with_rings: bool) -> (Moments, RadialPsd) {
+    let rows = TransformRows::new(map);
+    let fft = RealFft2::new(map.nx, map.ny);
+    let (qx2, qy2) = axis_wavenumbers_squared(map);
+    let (dq, n_rings) = rings(map);
+    let n_bins = if with_rings { n_rings + 1 } else { 0 };
+    let blocks = fft.forward_fold(
+        |j, row| rows.fill(j, row),
+        || SpectrumSums {
+            moments: [0.0; 3],
+            sum_q: vec![0.0; n_bins],
+            sum_p: vec![0.0; n_bins],
+            count: vec![0; n_bins],
+        },
+        |acc, kx, col| {
+            let w = fft.column_weight(kx);
+            let (mut s0, mut s2, mut s4) = (0.0, 0.0, 0.0);
+            for (ky, c) in col.iter().enumerate() {
+                if kx == 0 && ky == 0 {
+                    continue;
+                }
+                let p = c.norm_sqr() * rows.inv_norm;
+                let q2 = qx2[kx] + qy2[ky];
+                s0 += p;
+                s2 += p * q2;
+                s4 += p * q2 * q2;
+                if with_rings {
+                    let q = q2.sqrt();
+                    let ring = ring_of(q, dq);
+                    if ring == 0 || ring > n_rings {
+                        continue;
+                    }
+                    acc.sum_q[ring] += w * q;
+                    acc.sum_p[ring] += w * p;
+                    acc.count[ring] += w as usize;
+                }
+            }
+            acc.moments[0] += w * s0;
+            acc.moments[1] += w * s2;
+            acc.moments[2] += w * s4;
+        },
+    );
+    // Blocks added in order: independent of the number of threads.
+    let mut total = SpectrumSums {
+        moments: [0.0; 3],
+        sum_q: vec![0.0; n_bins],
+        sum_p: vec![0.0; n_bins],
+        count: vec![0; n_bins],
+    };
+    for b in &blocks {
+        for i in 0..3 {
+            total.moments[i] += b.moments[i];
+        }
+        for r in 0..n_bins {
+            total.sum_q[r] += b.sum_q[r];
+            total.sum_p[r] += b.sum_p[r];
+            total.count[r] += b.count[r];
+        }
+    }
+    let [m0, s2, s4] = total.moments;
+    let moments = moments_from_sums(map, m0, s2, s4);
+    // C̃ = lx ly p / (4π²), as psd_2d.
+    let scale = map.lx * map.ly / (4.0 * std::f64::consts::PI.powi(2));
+    let mut psd = RadialPsd {
+        q: Vec::new(),
+        c: Vec::new(),
+        count: Vec::new(),
+    };
+    for r in 1..n_bins {
+        if total.count[r] > 0 {
+            let n = total.count[r] as f64;
+            psd.q.push(total.sum_q[r] / n);
+            psd.c.push(scale * total.sum_p[r] / n);
+            psd.count.push(total.count[r]);
+        }
+    }
+    (moments, psd)
 }
 
 /// [`radial_psd`] of a 2D PSD already computed.
 pub fn radial_average(map: &HeightMap, c2d: &[f64]) -> RadialPsd {
-    let (nx, lx, ly) = (map.nx, map.lx, map.ly);
-    let dq = 2.0 * std::f64::consts::PI / lx.max(ly);
-    let q_nyq = std::f64::consts::PI / map.dx().max(map.dy());
-    let n_rings = (q_nyq / dq).floor() as usize;
+    let nx = map.nx;
+    let (dq, n_rings) = rings(map);
     let (qx2, qy2) = axis_wavenumbers_squared(map);
     // Partial sums over fixed blocks of rows in parallel, added in block order: the result does
     // not depend on the number of threads.
@@ -202,7 +366,7 @@ pub fn radial_average(map: &HeightMap, c2d: &[f64]) -> RadialPsd {
                 let l = b * ROWS + dl;
                 for (k, &c) in row.iter().enumerate() {
                     let q = (qx2[k] + qy2[l]).sqrt();
-                    let ring = (q / dq).round() as usize;
+                    let ring = ring_of(q, dq);
                     if ring == 0 || ring > n_rings {
                         continue;
                     }

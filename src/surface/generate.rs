@@ -1,21 +1,25 @@
 //! Random rough surfaces with a Gaussian height distribution and a prescribed isotropic PSD, by
 //! filtering Gaussian white noise (appendix C.1, the method of Hu and Tonder, done in Fourier
-//! space): steps 1-6 of C.1 become z = F⁻¹[√C(|q|) · F[ζ]], then the heights are shifted to zero
-//! mean and scaled to the requested σ_rms exactly.
+//! space): steps 1-6 of C.1 become z = F⁻¹[√C(|q|) · F[ζ]], then the heights are scaled to the
+//! requested σ_rms exactly.
 //!
 //! The noise comes from ChaCha8 seeded with a `u64` and the standard normal of `rand_distr`, so
-//! a seed gives the same surface on every platform (up to the last bits of the FFT's rounding).
+//! a seed gives the same surface on every platform and for any number of threads (up to the
+//! last bits of the FFT's rounding, which may differ between SIMD paths). The transforms are
+//! real-to-complex ([`RealFft2`]); the filter H of a spectrum and grid is kept for the next
+//! surface with the same shape (sample averages draw many).
+
+use std::sync::{Arc, Mutex, PoisonError};
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 use rayon::prelude::*;
-use rustfft::num_complex::Complex64;
 
 use super::height_map::HeightMap;
 use super::spectrum::Spectrum;
 use crate::error::{Error, Result};
-use crate::numerics::fft::{Direction, fft2, signed_index};
+use crate::numerics::fft::{RealFft2, recycle_buffer, signed_index};
 
 /// Wavenumber |q| [1/m] of DFT bin (k, l) of an `nx × ny` grid of size `lx × ly`:
 /// q_k = 2πk/L with signed k, as in (B.1.9).
@@ -38,55 +42,118 @@ pub fn white_noise(n: usize, seed: u64) -> Vec<f64> {
 /// Wavelengths outside the grid's band (longer than the box, shorter than two pixels) are absent,
 /// so the PSD of the result is the spectrum's shape inside the band, scaled by σ²/m0(band).
 ///
+/// The filtered half spectrum Y = H·F[ζ], with Y(0, 0) = 0, gives the mean-free surface, whose
+/// mean square is Σ |Y|² over the whole spectrum (Parseval), so the scale to σ_rms is applied in
+/// the inverse transform's last pass.
+///
 /// # Errors
 /// [`Error::InvalidParameter`] for an invalid spectrum or grid, or a spectrum with no power
 /// inside the grid's band.
 pub fn generate(spectrum: &Spectrum, nx: usize, ny: usize, lx: f64, ly: f64, seed: u64) -> Result<HeightMap> {
     let psd = spectrum.prepare()?;
-    // Validates the grid before any work.
-    HeightMap::new(nx, ny, lx, ly, vec![0.0; nx * ny])?;
-    let noise = white_noise(nx * ny, seed);
-    let mut data: Vec<Complex64> = noise.into_iter().map(|v| Complex64::new(v, 0.0)).collect();
-    fft2(&mut data, nx, ny, Direction::Forward);
-    // |q| depends on |signed k|, |signed l| only: the filter H = C^(1/2) (C.1.12) on one quadrant
-    // of (hx × hy) bins serves all four (bit for bit the same values).
-    let (hx, hy) = (nx / 2 + 1, ny / 2 + 1);
-    let filter: Vec<f64> = (0..hx * hy)
-        .into_par_iter()
-        .map(|i| {
-            let (k, l) = (i % hx, i / hx);
-            if k == 0 && l == 0 {
-                0.0
-            } else {
-                psd.psd(wavenumber(k, l, nx, ny, lx, ly)).sqrt()
-            }
-        })
-        .collect();
-    data.par_chunks_mut(nx).enumerate().for_each(|(l, row)| {
-        let frow = &filter[l.min(ny - l) * hx..][..hx];
-        for (k, v) in row.iter_mut().enumerate() {
-            *v *= frow[k.min(nx - k)];
+    HeightMap::validate_grid(nx, ny, lx, ly)?;
+    let fft = RealFft2::new(nx, ny);
+    // The noise is one sequential stream; the filter is evaluated on the other threads meanwhile.
+    let (mut z, filter) = rayon::join(
+        || white_noise(nx * ny, seed),
+        || Filter::cached(spectrum, &fft, nx, ny, lx, ly, |q| psd.sqrt_psd(q)),
+    );
+    let mut y = fft.forward(|j, row| row.copy_from_slice(&z[j * nx..(j + 1) * nx]));
+    let power: Vec<f64> = fft.inverse_columns(&mut y, |kx, col| {
+        let mut sum = 0.0;
+        for (ky, v) in col.iter_mut().enumerate() {
+            *v *= filter.at(kx, ky.min(ny - ky));
+            sum += v.norm_sqr();
         }
+        fft.column_weight(kx) * sum
     });
-    fft2(&mut data, nx, ny, Direction::Inverse);
-    let mut z: Vec<f64> = data.into_iter().map(|c| c.re).collect();
-    let mut map = HeightMap {
-        nx,
-        ny,
-        lx,
-        ly,
-        z: std::mem::take(&mut z),
-        periodic: true,
-    };
-    map.remove_mean();
-    let rms = map.rms();
-    if !(rms > 0.0 && rms.is_finite()) {
+    let mean_square: f64 = power.iter().sum();
+    if !(mean_square > 0.0 && mean_square.is_finite()) {
+        recycle_buffer(y);
         return Err(Error::invalid(
             "spectrum",
             format!("{spectrum:?}"),
             "has no power inside the grid's wavenumber band",
         ));
     }
-    map.scale(spectrum.rms() / rms);
-    Ok(map)
+    fft.inverse_rows(&y, &mut z, spectrum.rms() / mean_square.sqrt());
+    recycle_buffer(y);
+    Ok(HeightMap {
+        nx,
+        ny,
+        lx,
+        ly,
+        z,
+        periodic: true,
+    })
+}
+
+/// The filter H = C^(1/2) (C.1.12) on the bins (kx, |ky|), kx = 0..hx, |ky| = 0..=ny/2 (|q|
+/// depends on |signed ky| only), zero at q = 0. On a square grid (nx = ny, lx = ly) H is
+/// symmetric in kx and ky, and only the bins kx ≤ ky are evaluated.
+struct Filter {
+    /// Row kx holds |ky| = first[kx].. (square grid: kx..; else 0..).
+    rows: Vec<Vec<f64>>,
+    square: bool,
+}
+
+/// What a filter depends on: the spectrum's shape (its σ_rms cancels in the scaling) and the grid.
+type FilterKey = (Spectrum, usize, usize, f64, f64);
+
+impl Filter {
+    /// The filter of `spectrum` on the grid, from the one-entry cache when the last surface had
+    /// the same shape and grid (a sample average draws many surfaces of one kind).
+    fn cached(
+        spectrum: &Spectrum,
+        fft: &RealFft2,
+        nx: usize,
+        ny: usize,
+        lx: f64,
+        ly: f64,
+        h: impl Fn(f64) -> f64 + Sync,
+    ) -> Arc<Filter> {
+        static LAST: Mutex<Option<(FilterKey, Arc<Filter>)>> = Mutex::new(None);
+        let key = (spectrum.with_rms(1.0), nx, ny, lx, ly);
+        if let Some((k, f)) = &*LAST.lock().unwrap_or_else(PoisonError::into_inner) {
+            if *k == key {
+                return Arc::clone(f);
+            }
+        }
+        let f = Arc::new(Filter::new(fft, nx, ny, lx, ly, h));
+        *LAST.lock().unwrap_or_else(PoisonError::into_inner) = Some((key, Arc::clone(&f)));
+        f
+    }
+
+    fn new(fft: &RealFft2, nx: usize, ny: usize, lx: f64, ly: f64, h: impl Fn(f64) -> f64 + Sync) -> Self {
+        let square = nx == ny && lx == ly;
+        let hy = ny / 2 + 1;
+        let tau = 2.0 * std::f64::consts::PI;
+        let rows = (0..fft.half_columns())
+            .into_par_iter()
+            .map(|kx| {
+                let qx = tau * kx as f64 / lx;
+                let start = if square { kx } else { 0 };
+                (start..hy)
+                    .map(|ky| {
+                        if kx == 0 && ky == 0 {
+                            return 0.0;
+                        }
+                        let qy = tau * ky as f64 / ly;
+                        h((qx * qx + qy * qy).sqrt())
+                    })
+                    .collect()
+            })
+            .collect();
+        Self { rows, square }
+    }
+
+    /// H at (kx, |ky|).
+    fn at(&self, kx: usize, ky: usize) -> f64 {
+        if self.square {
+            let (a, b) = if kx <= ky { (kx, ky) } else { (ky, kx) };
+            self.rows[a][b - a]
+        } else {
+            self.rows[kx][ky]
+        }
+    }
 }

@@ -54,18 +54,7 @@ impl HeightMap {
     /// # Errors
     /// As [`HeightMap::new`].
     pub fn validate(&self) -> Result<()> {
-        if self.nx < 2 || self.ny < 2 {
-            return Err(Error::invalid(
-                "grid",
-                format!("{}x{}", self.nx, self.ny),
-                "needs at least 2 points in each direction",
-            ));
-        }
-        for (name, v) in [("length", self.lx), ("length-y", self.ly)] {
-            if !(v > 0.0 && v.is_finite()) {
-                return Err(Error::invalid(name, v, "must be positive and finite"));
-            }
-        }
+        Self::validate_grid(self.nx, self.ny, self.lx, self.ly)?;
         if self.z.len() != self.nx * self.ny {
             return Err(Error::invalid(
                 "heights",
@@ -83,6 +72,26 @@ impl HeightMap {
                     k / self.nx
                 ),
             ));
+        }
+        Ok(())
+    }
+
+    /// Check a grid before any heights exist: at least 2 × 2 points, sizes positive and finite.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming `grid`, `length` or `length-y`.
+    pub fn validate_grid(nx: usize, ny: usize, lx: f64, ly: f64) -> Result<()> {
+        if nx < 2 || ny < 2 {
+            return Err(Error::invalid(
+                "grid",
+                format!("{nx}x{ny}"),
+                "needs at least 2 points in each direction",
+            ));
+        }
+        for (name, v) in [("length", lx), ("length-y", ly)] {
+            if !(v > 0.0 && v.is_finite()) {
+                return Err(Error::invalid(name, v, "must be positive and finite"));
+            }
         }
         Ok(())
     }

@@ -405,6 +405,43 @@ impl PreparedSpectrum {
             }
         }
     }
+
+    /// √C^iso(q) [m²], the filter H of (C.1.12) that [`crate::surface::generate`] applies to white
+    /// noise: [`PreparedSpectrum::psd`] with its square root taken inside the exponentials
+    /// (one logarithm and one exponential per wavenumber for (3.16)).
+    pub fn sqrt_psd(&self, q: f64) -> f64 {
+        let k = self.amplitude.sqrt();
+        match self.spectrum {
+            Spectrum::Gaussian {
+                correlation_length: lc,
+                ..
+            } => k * (-0.125 * lc * lc * q * q).exp(),
+            Spectrum::Abc {
+                correlation_length: lc,
+                exponent,
+                cutoff,
+                ..
+            } => {
+                let damp = cutoff.map_or(0.0, |q0| -0.5 * q / q0);
+                k * (damp - 0.5 * exponent * (lc * lc * q * q).ln_1p()).exp()
+            }
+            Spectrum::SelfAffine {
+                hurst,
+                q_low,
+                q_roll,
+                q_high,
+                ..
+            } => {
+                if q < q_low || q > q_high {
+                    0.0
+                } else if q < q_roll {
+                    k
+                } else {
+                    k * (q / q_roll).powf(-(1.0 + hurst))
+                }
+            }
+        }
+    }
 }
 
 /// J_k = ∫_0^∞ s^k e^{-s/b} (1 + s²)^{-n} ds (b = q0 L_c; `None` for b = ∞), the dimensionless
@@ -509,6 +546,36 @@ pub fn nayak_curvature_pdf(t: f64, alpha: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn sqrt_psd_is_the_square_root_of_the_psd() {
+        for s in [
+            Spectrum::Gaussian {
+                rms: 2.0,
+                correlation_length: 0.3,
+            },
+            PSD_3_17,
+            Spectrum::Abc {
+                rms: 1.0,
+                correlation_length: 1.0,
+                exponent: 3.5,
+                cutoff: None,
+            },
+            Spectrum::SelfAffine {
+                rms: 1.0e-9,
+                hurst: 0.8,
+                q_low: 1.0e5,
+                q_roll: 1.0e6,
+                q_high: 1.0e9,
+            },
+        ] {
+            let p = s.prepare().unwrap();
+            for q in [0.0, 3.0e4, 2.0e5, 1.0, 7.5, 1.0e6, 4.0e7, 1.0e8, 9.0e8, 2.0e9] {
+                let (a, b) = (p.sqrt_psd(q), p.psd(q).sqrt());
+                assert!((a - b).abs() <= 1e-13 * b, "{s:?} at q = {q}: {a:e} vs {b:e}");
+            }
+        }
+    }
 
     #[test]
     fn each_spectrum_integrates_to_its_rms_squared() {
