@@ -10,6 +10,7 @@ mod ch5;
 mod ch6;
 mod cli;
 mod common;
+mod hardening;
 mod layering;
 mod reference_ch1;
 mod registry;
