@@ -182,3 +182,75 @@ fn analyze_surface_at_extreme_lengths_is_analysed_or_names_the_field() {
     let o = adhesion_in(d, &["--headless", "--analyze-surface", "huge.csv"]);
     assert_one_line_error(&o, &["huge.csv", "header lx = 1e300"]);
 }
+
+// fig3.7d at scan lengths whose area leaves the f64 range (1e300, 1e200 m: an index out of
+// bounds on an empty PSD before) and at a pixel too small for its wavenumbers: one-line errors
+// naming `length`.
+#[test]
+fn fig3_7d_at_extreme_lengths_names_the_length() {
+    let dir = tempfile::tempdir().unwrap();
+    for v in ["1e300", "1e200", "1e-80"] {
+        let set = format!("length={v}");
+        let o = adhesion_in(
+            dir.path(),
+            &[
+                "--headless",
+                "--quick",
+                "--figure",
+                "fig3.7d",
+                "--set",
+                &set,
+                "--out",
+                "o",
+            ],
+        );
+        assert_one_line_error(&o, &["`length`", v]);
+        assert!(!dir.path().join("o").join("fig3.7d.json").exists());
+    }
+}
+
+// A scene whose memory grows with its parameters estimates it before it starts: fig5.10 with
+// 4096 x 4096 springs (inside the declared range; it ran out of memory before) needs more than
+// this machine has, and any size above a limit set in ADHESION_MEMORY_LIMIT is refused at once
+// with the estimate and the limit.
+#[test]
+fn a_run_that_would_not_fit_in_memory_is_refused_before_it_starts() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = [
+        "--headless",
+        "--figure",
+        "fig5.10",
+        "--set",
+        "springs_x=4096",
+        "--set",
+        "springs_y=4096",
+        "--out",
+        "o",
+    ];
+    let o = Command::new(env!("CARGO_BIN_EXE_adhesion"))
+        .current_dir(dir.path())
+        .env("ADHESION_MEMORY_LIMIT", "16G")
+        .args(args)
+        .output()
+        .unwrap();
+    assert_one_line_error(
+        &o,
+        &["`springs_x x springs_y` = 4096 x 4096", "24.1 GiB", "16.0 GiB"],
+    );
+    let o = Command::new(env!("CARGO_BIN_EXE_adhesion"))
+        .current_dir(dir.path())
+        .env("ADHESION_MEMORY_LIMIT", "100M")
+        .args([
+            "--headless",
+            "--figure",
+            "fig3.7d",
+            "--set",
+            "grid=2048",
+            "--out",
+            "o",
+        ])
+        .output()
+        .unwrap();
+    assert_one_line_error(&o, &["`grid` = 2048", "320 MiB", "100 MiB"]);
+    assert!(!dir.path().join("o").exists());
+}
