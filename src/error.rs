@@ -103,6 +103,16 @@ pub enum Error {
         /// Backend message.
         message: String,
     },
+    /// A file operation that failed, with the file and what was being done.
+    #[error("{operation} {}: {cause}", path.display())]
+    File {
+        /// What was being done: "writing", "reading", "creating the folder", ...
+        operation: &'static str,
+        /// The file or folder.
+        path: PathBuf,
+        /// The system's error (not a `source`: its text is already in the message).
+        cause: std::io::Error,
+    },
     /// File-system error.
     #[error(transparent)]
     Io(#[from] std::io::Error),
@@ -115,6 +125,16 @@ impl Error {
             name: name.into(),
             value: value.to_string(),
             reason: reason.into(),
+        }
+    }
+
+    /// A closure turning an I/O error into [`Error::File`] for `operation` on `path`.
+    pub fn file(operation: &'static str, path: &std::path::Path) -> impl FnOnce(std::io::Error) -> Self {
+        let path = path.to_path_buf();
+        move |cause| Error::File {
+            operation,
+            path,
+            cause,
         }
     }
 

@@ -225,7 +225,7 @@ pub fn run(args: &SurfaceArgs, out: &Path) -> Result<String> {
         let (spectrum, nx, ny, lx, ly) = generation_request(args)?;
         let map = generate(&spectrum, nx, ny, lx, ly, args.seed)?;
         if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir)?;
+            std::fs::create_dir_all(dir).map_err(Error::file("creating the folder", dir))?;
         }
         write_height_map(&map, out)?;
         return Ok(format!("{}\n", out.display()));

@@ -254,3 +254,132 @@ fn a_run_that_would_not_fit_in_memory_is_refused_before_it_starts() {
     assert_one_line_error(&o, &["`grid` = 2048", "320 MiB", "100 MiB"]);
     assert!(!dir.path().join("o").exists());
 }
+
+fn adhesion(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_adhesion"))
+        .args(args)
+        .output()
+        .expect("binary runs")
+}
+
+fn files_in(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .map(|rd| {
+            rd.filter_map(Result::ok)
+                .map(|e| e.file_name().to_string_lossy().into_owned())
+                .collect()
+        })
+        .unwrap_or_default();
+    v.sort();
+    v
+}
+
+// An export whose last format cannot be written (a folder in the way of fig1.1.csv, fit.json)
+// leaves none of its formats and no temporary file (it left the PNG and SVG before), and the
+// error names the path and the operation.
+#[test]
+fn a_failed_export_leaves_no_format_and_no_temporary() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o");
+    std::fs::create_dir_all(out.join("fig1.1.csv")).unwrap();
+    let o = adhesion(&["--headless", "--figure", "fig1.1", "--out", out.to_str().unwrap()]);
+    assert_one_line_error(&o, &["writing", "fig1.1.csv", "folder"]);
+    assert_eq!(files_in(&out), ["fig1.1.csv"]);
+    std::fs::create_dir_all(out.join("fit.json")).unwrap();
+    let curve = crate::common::root().join("tests/fixtures/curves/synthetic_cycle.csv");
+    let o = adhesion(&[
+        "--headless",
+        "--fit",
+        curve.to_str().unwrap(),
+        "--tip-radius",
+        "1e-6",
+        "--spring-constant",
+        "0.5",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_one_line_error(&o, &["writing", "fit.json"]);
+    assert_eq!(files_in(&out), ["fig1.1.csv", "fit.json"]);
+}
+
+// SIGTERM while an export writes its files (a 260 MB CSV): the process removes its temporaries
+// and exits 128 + 15; the formats appear all together or not at all.
+#[test]
+fn a_signal_during_an_export_leaves_no_temporary_and_no_partial_set() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_adhesion"))
+        .args(["--headless", "--figure", "fig1.1", "--set", "points=1000000"])
+        .args(["--format", "csv,json", "--out", out.to_str().unwrap()])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    let mut signalled = false;
+    while start.elapsed() < std::time::Duration::from_secs(60) {
+        if child.try_wait().unwrap().is_some() {
+            break;
+        }
+        if files_in(&out).iter().any(|f| f.ends_with(".tmp")) {
+            let ok = Command::new("kill")
+                .args(["-TERM", &child.id().to_string()])
+                .status()
+                .unwrap();
+            assert!(ok.success());
+            signalled = true;
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(2));
+    }
+    let status = child.wait().unwrap();
+    assert!(
+        signalled,
+        "no temporary file seen while the export ran ({status:?})"
+    );
+    assert_eq!(status.code(), Some(143), "{status:?}");
+    let left = files_in(&out);
+    assert!(
+        left.is_empty() || left == ["fig1.1.csv", "fig1.1.json"],
+        "left behind: {left:?}"
+    );
+}
+
+// Two exports of one scene into one folder at once, with different parameters: the CSV and the
+// JSON that remain always come from the same run (the sets are renamed under a folder lock).
+#[test]
+fn concurrent_exports_to_one_folder_leave_a_consistent_set() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o");
+    for _ in 0..4 {
+        let spawn = |points: &str| {
+            Command::new(env!("CARGO_BIN_EXE_adhesion"))
+                .args([
+                    "--headless",
+                    "--figure",
+                    "fig1.1",
+                    "--set",
+                    &format!("points={points}"),
+                ])
+                .args(["--format", "csv,json", "--out", out.to_str().unwrap()])
+                .stdout(std::process::Stdio::null())
+                .spawn()
+                .unwrap()
+        };
+        let (mut a, mut b) = (spawn("20000"), spawn("30000"));
+        assert!(a.wait().unwrap().success() && b.wait().unwrap().success());
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("fig1.1.json")).unwrap()).unwrap();
+        let points = json["parameters"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|p| p["name"] == "points")
+            .and_then(|p| p["value"].as_u64())
+            .expect("points in the JSON parameters");
+        let csv = std::fs::read_to_string(out.join("fig1.1.csv")).unwrap();
+        let hertz_rows = csv.lines().filter(|l| l.starts_with("1,Hertz,")).count() as u64;
+        assert_eq!(hertz_rows, points, "CSV of one run beside the JSON of the other");
+        assert_eq!(files_in(&out), ["fig1.1.csv", "fig1.1.json"]);
+    }
+}
