@@ -67,7 +67,7 @@ pub enum Error {
         message: String,
     },
     /// A bracketing root finder was given an interval without a sign change.
-    #[error("no sign change on [{lo}, {hi}]")]
+    #[error("no sign change on [{}, {}]", crate::params::fmt_sig(*lo), crate::params::fmt_sig(*hi))]
     NoBracket {
         /// Lower end.
         lo: f64,
@@ -103,6 +103,9 @@ pub enum Error {
         /// Backend message.
         message: String,
     },
+    /// Command-line options that do not belong together or that the command does not use.
+    #[error("{0}")]
+    Usage(String),
     /// A file operation that failed, with the file and what was being done.
     #[error("{operation} {}: {cause}", path.display())]
     File {
@@ -122,8 +125,8 @@ impl Error {
     /// Shorthand for [`Error::InvalidParameter`].
     pub fn invalid(name: impl Into<String>, value: impl ToString, reason: impl Into<String>) -> Self {
         Error::InvalidParameter {
-            name: name.into(),
-            value: value.to_string(),
+            name: crate::params::escape_for_message(&name.into(), 80),
+            value: crate::params::echo_value(&value.to_string()),
             reason: reason.into(),
         }
     }

@@ -36,6 +36,7 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
         print!("{}", preset_text(scenes::find(id)?));
         return Ok(ExitCode::SUCCESS);
     }
+    crate::cli::check_options(cli)?;
     let formats = parse_formats(&cli.format)?;
     if cli.reproduce {
         return reproduce_command(&cli.out);

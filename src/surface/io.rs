@@ -126,7 +126,7 @@ pub fn parse_csv(text: &str, path: &Path, pixel_size: Option<f64>) -> Result<Hei
                 return Err(Error::data_file(
                     path,
                     0,
-                    format!("pixel size {p} must be positive and finite"),
+                    format!("pixel size {} must be positive and finite", fmt_sig(p)),
                 ));
             }
             (p * nx as f64, p * ny as f64)

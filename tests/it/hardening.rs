@@ -383,3 +383,135 @@ fn concurrent_exports_to_one_folder_leave_a_consistent_set() {
         assert_eq!(files_in(&out), ["fig1.1.csv", "fig1.1.json"]);
     }
 }
+
+// Options that the command does not use, or commands given together, are one-line errors (they
+// were silently ignored: `--all --preset x.toml --set radius=-1` ran every scene with defaults).
+#[test]
+fn conflicting_or_unused_options_are_one_line_errors() {
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["--headless", "--all", "--preset", "x.toml", "--set", "radius=-1"],
+            "--preset applies to --figure only",
+        ),
+        (
+            &["--headless", "--all", "--surface", "missing.gsf"],
+            "--surface applies to --figure only",
+        ),
+        (
+            &["--headless", "--fit", "c.csv", "--figure", "fig1.1"],
+            "--figure and --fit cannot be combined",
+        ),
+        (
+            &["--headless", "--generate-surface", "--analyze-surface", "x.csv"],
+            "--generate-surface and --analyze-surface cannot be combined",
+        ),
+        (
+            &["--headless", "--figure", "fig1.1", "--pixel-size", "1e-9"],
+            "--pixel-size applies to --analyze-surface only",
+        ),
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    for (args, needle) in cases {
+        let mut all = args.to_vec();
+        all.extend(["--out", "o"]);
+        let o = adhesion_in(dir.path(), &all);
+        assert_one_line_error(&o, &[needle]);
+        assert!(files_in(dir.path()).is_empty(), "{args:?} wrote files");
+    }
+}
+
+// Negative numbers in exponent form are values, not flags: the program's own range message in
+// one line (clap's multi-line "unexpected argument '-1' found" before); clap's own errors are
+// one line too.
+#[test]
+fn negative_numbers_are_values_and_command_line_errors_are_one_line() {
+    let cases: &[(&[&str], &[&str])] = &[
+        (
+            &[
+                "--headless",
+                "--generate-surface",
+                "--rms",
+                "-1e-9",
+                "--size",
+                "8",
+                "--length",
+                "1e-6",
+                "--correlation-length",
+                "1e-7",
+                "--out",
+                "s.csv",
+            ],
+            &["`rms` = -1e-9", "positive"],
+        ),
+        (
+            &["--headless", "--fit", "c.csv", "--tip-radius", "-1e-6"],
+            &["c.csv"],
+        ),
+        (
+            &[
+                "--headless",
+                "--analyze-surface",
+                "m.csv",
+                "--pixel-size",
+                "-1e-8",
+            ],
+            &["m.csv"],
+        ),
+        (&["--headless", "--bogus"], &["--bogus", "--help"]),
+        (&["--headless", "--figure"], &["--figure"]),
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("m.csv"), "1,2\n3,4\n").unwrap();
+    for (args, needles) in cases {
+        let o = adhesion_in(dir.path(), args);
+        assert_one_line_error(&o, needles);
+    }
+    let o = adhesion_in(
+        dir.path(),
+        &[
+            "--headless",
+            "--analyze-surface",
+            "m.csv",
+            "--pixel-size",
+            "-1e-8",
+        ],
+    );
+    assert_one_line_error(&o, &["pixel size -1e-8 must be positive"]);
+}
+
+// Echoed input is escaped and cut: a 5 MB value with CR and NUL comes back as one short line;
+// numbers in messages have at most 6 significant digits.
+#[test]
+fn echoed_input_is_escaped_and_truncated_and_numbers_are_short() {
+    let dir = tempfile::tempdir().unwrap();
+    let long = format!("units = \"{}\\r\\u0000x\"\n", "a".repeat(5_000_000));
+    std::fs::write(dir.path().join("p.toml"), long).unwrap();
+    let o = adhesion_in(
+        dir.path(),
+        &[
+            "--headless",
+            "--figure",
+            "fig1.1",
+            "--preset",
+            "p.toml",
+            "--out",
+            "o",
+        ],
+    );
+    assert_one_line_error(&o, &["p.toml"]);
+    assert!(o.stderr.len() < 3000, "{} bytes echoed", o.stderr.len());
+    assert!(!o.stderr.contains(&b'\r') && !o.stderr.contains(&0u8));
+    let o = adhesion_in(
+        dir.path(),
+        &[
+            "--headless",
+            "--figure",
+            "fig3.7d",
+            "--set",
+            "exponent=1e300",
+            "--out",
+            "o",
+        ],
+    );
+    assert_one_line_error(&o, &["`exponent` = 1e300:"]);
+}
