@@ -10,6 +10,8 @@ mod ch5;
 mod ch6;
 mod cli;
 mod common;
+mod edges;
+mod fuzz;
 mod hardening;
 mod layering;
 mod reference_ch1;
