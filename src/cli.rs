@@ -80,3 +80,105 @@ pub struct Cli {
     #[command(flatten)]
     pub surface: crate::surface::SurfaceArgs,
 }
+
+/// A command-line parsing error as one line: clap's first line (without its usage block),
+/// with a pointer to `--help`.
+pub fn one_line(e: &clap::Error) -> String {
+    let text = e.render().to_string();
+    let first = text
+        .lines()
+        .find(|l| !l.trim().is_empty())
+        .unwrap_or("error: bad command line");
+    let first = crate::params::escape_for_message(first, 200);
+    if first.starts_with("error:") {
+        format!("{first} (see --help)")
+    } else {
+        format!("error: {first} (see --help)")
+    }
+}
+
+/// Options that do not belong together, or that the chosen command does not use: one line
+/// naming them.
+///
+/// # Errors
+/// The first conflict found.
+pub fn check_options(cli: &Cli) -> crate::error::Result<()> {
+    let s = &cli.surface;
+    let commands: Vec<&str> = [
+        (cli.figure.is_some(), "--figure"),
+        (cli.all, "--all"),
+        (cli.reproduce, "--reproduce"),
+        (cli.fit.fit.is_some(), "--fit"),
+        (s.generate_surface, "--generate-surface"),
+        (s.analyze_surface.is_some(), "--analyze-surface"),
+    ]
+    .into_iter()
+    .filter_map(|(on, name)| on.then_some(name))
+    .collect();
+    if commands.len() > 1 {
+        return Err(crate::error::Error::Usage(format!(
+            "{} cannot be combined: give one of them at a time",
+            commands.join(" and ")
+        )));
+    }
+    let command = commands.first().copied().unwrap_or("");
+    let used = |on: bool, name: &'static str, by: &[&str]| -> crate::error::Result<()> {
+        if on && !by.contains(&command) {
+            let by = by.join(" or ");
+            let reason = if command.is_empty() {
+                format!("applies to {by} only")
+            } else {
+                format!("applies to {by} only, not {command}")
+            };
+            return Err(conflict(name, &reason));
+        }
+        Ok(())
+    };
+    used(cli.preset.is_some(), "--preset", &["--figure"])?;
+    used(!cli.set.is_empty(), "--set", &["--figure"])?;
+    used(s.surface.is_some(), "--surface", &["--figure"])?;
+    used(cli.quick, "--quick", &["--figure", "--all"])?;
+    used(s.pixel_size.is_some(), "--pixel-size", &["--analyze-surface"])?;
+    used(s.periodic, "--periodic", &["--analyze-surface"])?;
+    used(s.remove_tilt, "--remove-tilt", &["--analyze-surface"])?;
+    used(s.rms.is_some(), "--rms", &["--generate-surface"])?;
+    used(
+        s.correlation_length.is_some(),
+        "--correlation-length",
+        &["--generate-surface"],
+    )?;
+    used(!s.size.is_empty(), "--size", &["--generate-surface"])?;
+    used(!s.length.is_empty(), "--length", &["--generate-surface"])?;
+    used(s.q_roll.is_some(), "--q-roll", &["--generate-surface"])?;
+    used(s.q_high.is_some(), "--q-high", &["--generate-surface"])?;
+    Ok(())
+}
+
+fn conflict(name: &str, reason: &str) -> crate::error::Error {
+    crate::error::Error::Usage(format!("{name} {reason}"))
+}
+
+/// The command line with every `--option -1e-9` written as `--option=-1e-9`, so that a negative
+/// number (also in exponent form, which clap would take for the short flag `-1`) is read as
+/// the option's value.
+pub fn join_negative_values<I: IntoIterator<Item = std::ffi::OsString>>(args: I) -> Vec<std::ffi::OsString> {
+    let mut out: Vec<std::ffi::OsString> = Vec::new();
+    for a in args {
+        let negative_number = a
+            .to_str()
+            .is_some_and(|t| t.starts_with('-') && t.len() > 1 && t.parse::<f64>().is_ok());
+        if negative_number
+            && let Some(prev) = out.last_mut()
+            && let Some(p) = prev.to_str()
+            && p.starts_with("--")
+            && !p.contains('=')
+            && p.len() > 2
+        {
+            let joined = format!("{p}={}", a.to_string_lossy());
+            *prev = joined.into();
+            continue;
+        }
+        out.push(a);
+    }
+    out
+}

@@ -67,7 +67,7 @@ pub enum Error {
         message: String,
     },
     /// A bracketing root finder was given an interval without a sign change.
-    #[error("no sign change on [{lo}, {hi}]")]
+    #[error("no sign change on [{}, {}]", crate::params::fmt_sig(*lo), crate::params::fmt_sig(*hi))]
     NoBracket {
         /// Lower end.
         lo: f64,
@@ -103,6 +103,19 @@ pub enum Error {
         /// Backend message.
         message: String,
     },
+    /// Command-line options that do not belong together or that the command does not use.
+    #[error("{0}")]
+    Usage(String),
+    /// A file operation that failed, with the file and what was being done.
+    #[error("{operation} {}: {cause}", path.display())]
+    File {
+        /// What was being done: "writing", "reading", "creating the folder", ...
+        operation: &'static str,
+        /// The file or folder.
+        path: PathBuf,
+        /// The system's error (not a `source`: its text is already in the message).
+        cause: std::io::Error,
+    },
     /// File-system error.
     #[error(transparent)]
     Io(#[from] std::io::Error),
@@ -112,9 +125,19 @@ impl Error {
     /// Shorthand for [`Error::InvalidParameter`].
     pub fn invalid(name: impl Into<String>, value: impl ToString, reason: impl Into<String>) -> Self {
         Error::InvalidParameter {
-            name: name.into(),
-            value: value.to_string(),
+            name: crate::params::escape_for_message(&name.into(), 80),
+            value: crate::params::echo_value(&value.to_string()),
             reason: reason.into(),
+        }
+    }
+
+    /// A closure turning an I/O error into [`Error::File`] for `operation` on `path`.
+    pub fn file(operation: &'static str, path: &std::path::Path) -> impl FnOnce(std::io::Error) -> Self {
+        let path = path.to_path_buf();
+        move |cause| Error::File {
+            operation,
+            path,
+            cause,
         }
     }
 

@@ -636,16 +636,16 @@ pub fn command(args: &FitArgs, out: &Path) -> Result<Vec<PathBuf>> {
     let report = fit_curve(&curve, path, radius, args.spring_constant, args.model)?;
     let fig = fit_figure(&curve, &report)?;
     let json = serde_json::to_string_pretty(&report).expect("the report has finite numbers and string keys");
-    let svg = crate::render::plot::svg_string(&fig)?;
-    let csv = crate::render::data::csv(&fig);
-    std::fs::create_dir_all(out)?;
-    let png_path = out.join("fit.png");
-    crate::render::plot::write_png(&fig, &png_path)?;
-    let mut written = vec![png_path];
-    for (name, text) in [("fit.svg", svg), ("fit.csv", csv), ("fit.json", json)] {
-        let p = out.join(name);
-        crate::render::write_atomic(&p, text.as_bytes())?;
-        written.push(p);
-    }
-    Ok(written)
+    let files = [
+        (out.join("fit.png"), crate::render::plot::png_bytes(&fig)?),
+        (
+            out.join("fit.svg"),
+            crate::render::plot::svg_string(&fig)?.into_bytes(),
+        ),
+        (out.join("fit.csv"), crate::render::data::csv(&fig).into_bytes()),
+        (out.join("fit.json"), json.into_bytes()),
+    ];
+    std::fs::create_dir_all(out).map_err(Error::file("creating the folder", out))?;
+    crate::render::write_set(&files)?;
+    Ok(files.into_iter().map(|(p, _)| p).collect())
 }

@@ -15,7 +15,7 @@ use crate::error::{Error, Result};
 use crate::figure::Figure;
 use crate::job::{Job, JobEvent};
 use crate::params::{ParamValues, fmt_float, value_text};
-use crate::render::{Format, data, plot, write_atomic};
+use crate::render::{Format, data, plot, write_set};
 use crate::reproduction;
 use crate::scenes::{self, SceneDyn, chapter_title};
 
@@ -36,6 +36,7 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
         print!("{}", preset_text(scenes::find(id)?));
         return Ok(ExitCode::SUCCESS);
     }
+    crate::cli::check_options(cli)?;
     let formats = parse_formats(&cli.format)?;
     if cli.reproduce {
         return reproduce_command(&cli.out);
@@ -246,7 +247,7 @@ pub fn export_scene(
 }
 
 /// Write a computed figure in the given formats as `<out>/<id>.<ext>`. All files are rendered
-/// first (PNG to a temporary file), then moved into place.
+/// in memory first, then written together ([`write_set`]): all formats appear or none.
 ///
 /// # Errors
 /// Rendering and I/O errors; on error no new file is left behind.
@@ -258,28 +259,29 @@ pub fn write_figure(
     out: &Path,
     formats: &[Format],
 ) -> Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(out)?;
     let path = |f: Format| out.join(format!("{}.{}", fig.id, f.extension()));
-    // Render the text formats in memory first: a failure there writes nothing.
-    let mut texts: Vec<(PathBuf, String)> = Vec::new();
+    // Render every format in memory first: a failure there writes nothing.
+    let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
     for &f in formats {
-        match f {
-            Format::Svg => texts.push((path(f), plot::svg_string(fig)?)),
-            Format::Csv => texts.push((path(f), data::csv(fig))),
-            Format::Json => texts.push((path(f), data::json(fig, caption, values, run_time_s))),
-            Format::Png => {}
-        }
+        let bytes = match f {
+            Format::Png => plot::png_bytes(fig)?,
+            Format::Svg => plot::svg_string(fig)?.into_bytes(),
+            Format::Csv => data::csv(fig).into_bytes(),
+            Format::Json => data::json(fig, caption, values, run_time_s).into_bytes(),
+        };
+        files.push((path(f), bytes));
     }
-    let mut written = Vec::new();
-    if formats.contains(&Format::Png) {
-        plot::write_png(fig, &path(Format::Png))?;
-        written.push(path(Format::Png));
-    }
-    for (p, text) in texts {
-        write_atomic(&p, text.as_bytes())?;
-        written.push(p);
-    }
-    Ok(written)
+    create_folder(out)?;
+    write_set(&files)?;
+    Ok(files.into_iter().map(|(p, _)| p).collect())
+}
+
+/// Create the output folder (and its parents).
+///
+/// # Errors
+/// [`Error::File`] naming the folder.
+pub fn create_folder(out: &Path) -> Result<()> {
+    std::fs::create_dir_all(out).map_err(Error::file("creating the folder", out))
 }
 
 /// A job that draws a progress bar on stderr once a run has taken more than a second.
@@ -338,11 +340,13 @@ fn finish_progress() {
 /// `--reproduce`: compute every registered number, write the report, print a summary.
 fn reproduce_command(out: &Path) -> anyhow::Result<ExitCode> {
     let outcomes = reproduction::evaluate_all();
-    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
     let md = reproduction::markdown(&outcomes);
     let json = serde_json::to_string_pretty(&outcomes).context("serialising the report")?;
-    write_atomic(&out.join("reproduction.md"), md.as_bytes())?;
-    write_atomic(&out.join("reproduction.json"), json.as_bytes())?;
+    create_folder(out)?;
+    write_set(&[
+        (out.join("reproduction.md"), md.into_bytes()),
+        (out.join("reproduction.json"), json.into_bytes()),
+    ])?;
     for o in &outcomes {
         println!(
             "{:<44} {:<12} printed {:<14} computed {:<14} {:?}{}",

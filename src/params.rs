@@ -280,6 +280,69 @@ pub fn fmt_value(x: f64) -> String {
     format!("{x}")
 }
 
+/// Text from the user as a message shows it: control characters escaped (`\n`, `\r`, `\t`,
+/// `\0`, `\u{1b}`), and cut after `max_chars` characters with a note of the full length, so
+/// that an echoed value never breaks the one-line message or floods the terminal.
+pub fn escape_for_message(text: &str, max_chars: usize) -> String {
+    let mut out = String::new();
+    for (n, c) in text.chars().enumerate() {
+        if n == max_chars {
+            out.push_str(&format!("… ({} characters)", text.chars().count()));
+            break;
+        }
+        match c {
+            '\n' => out.push_str("\\n"),
+            '\r' => out.push_str("\\r"),
+            '\t' => out.push_str("\\t"),
+            '\0' => out.push_str("\\0"),
+            c if c.is_control() || c == '\u{feff}' => out.push_str(&format!("\\u{{{:x}}}", c as u32)),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+/// A value echoed in a message: a float as [`fmt_sig`] (not the hundreds of digits of a huge
+/// one), anything else as [`escape_for_message`] (at most 80 characters).
+pub fn echo_value(text: &str) -> String {
+    let t = text.trim();
+    if (t.len() > 12 || t.contains(['.', 'e', 'E']))
+        && let Ok(x) = t.parse::<f64>()
+    {
+        return fmt_sig(x);
+    }
+    escape_for_message(text, 80)
+}
+
+/// A number for messages with at most 6 significant digits: plain for moderate magnitudes,
+/// scientific otherwise (`1.23457e-9`), `NaN`, `inf` and `-inf` as such.
+pub fn fmt_sig(x: f64) -> String {
+    fn trim(m: &str) -> &str {
+        if m.contains('.') {
+            m.trim_end_matches('0').trim_end_matches('.')
+        } else {
+            m
+        }
+    }
+    if !x.is_finite() {
+        return fmt_value(x);
+    }
+    if x == 0.0 {
+        return "0".into();
+    }
+    let a = x.abs();
+    if (1e-3..1e6).contains(&a) {
+        let decimals = (5 - a.log10().floor() as i32).max(0) as usize;
+        // A carry on rounding (999999.7 -> 1000000) only adds a trailing zero.
+        return trim(&format!("{x:.decimals$}")).to_string();
+    }
+    let t = format!("{x:.5e}");
+    match t.split_once('e') {
+        Some((m, e)) => format!("{}e{e}", trim(m)),
+        None => t,
+    }
+}
+
 /// The text of a TOML value as the user would type it (the inverse of [`ParamSpec::parse`]).
 pub fn value_text(value: &toml::Value) -> String {
     match value {
@@ -633,6 +696,31 @@ macro_rules! param_choice {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn message_numbers_have_at_most_six_significant_digits() {
+        use super::fmt_sig;
+        assert_eq!(fmt_sig(4.710_337_979_759_895e24), "4.71034e24");
+        assert_eq!(fmt_sig(1.465_612_345), "1.46561");
+        assert_eq!(fmt_sig(-1e-9), "-1e-9");
+        assert_eq!(fmt_sig(0.25), "0.25");
+        assert_eq!(fmt_sig(123_456.78), "123457");
+        assert_eq!(fmt_sig(f64::INFINITY), "inf");
+        assert_eq!(fmt_sig(f64::NAN), "NaN");
+        assert_eq!(fmt_sig(0.0), "0");
+        assert_eq!(fmt_sig(f64::MAX), "1.79769e308");
+        assert_eq!(super::echo_value(&format!("{}", 1e300)), "1e300");
+        assert_eq!(super::echo_value("1.4656123456789012"), "1.46561");
+        assert_eq!(
+            super::escape_for_message("a\r\nb\0\u{1b}[2J", 80),
+            "a\\r\\nb\\0\\u{1b}[2J"
+        );
+        let long = "x".repeat(5_000_000);
+        assert_eq!(
+            super::escape_for_message(&long, 10),
+            "xxxxxxxxxx… (5000000 characters)"
+        );
+    }
+
     use super::*;
 
     crate::scene_params! {

@@ -53,6 +53,14 @@ pub trait Scene: Send + Sync + 'static {
     /// Reduce the resolution for quick runs (tests of every preset); the physics is unchanged.
     fn quick(_params: &mut Self::Params) {}
 
+    /// An estimate of the memory the run needs, for scenes whose memory grows with their
+    /// parameters beyond what a machine may have (grids, arrays of springs); `None` for scenes
+    /// that stay small everywhere in their declared ranges. Checked against
+    /// [`memory_limit`] before the run starts.
+    fn memory_estimate(_params: &Self::Params) -> Option<MemoryEstimate> {
+        None
+    }
+
     /// Compute the figure.
     ///
     /// # Errors
@@ -102,6 +110,85 @@ pub trait SceneDyn: Send + Sync {
     fn run(&self, values: &ParamValues, job: &Job) -> Result<Figure>;
 }
 
+/// The memory a run needs [bytes] and the parameters that set it, as the user writes them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MemoryEstimate {
+    /// Estimated peak memory [bytes].
+    pub bytes: f64,
+    /// The parameter(s) the estimate grows with, e.g. "springs_x x springs_y".
+    pub parameter: &'static str,
+    /// Their values, e.g. "4096 x 4096".
+    pub value: String,
+}
+
+impl MemoryEstimate {
+    /// Refuse when the estimate exceeds `limit` [bytes].
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming the parameters, with the estimate and the limit.
+    pub fn check(&self, limit: f64) -> Result<()> {
+        if self.bytes > limit {
+            return Err(Error::invalid(
+                self.parameter,
+                &self.value,
+                format!(
+                    "the run needs about {} of memory, more than the {} available; choose a \
+                     smaller value",
+                    fmt_bytes(self.bytes),
+                    fmt_bytes(limit)
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Bytes as "1.2 GiB", "340 MiB".
+pub fn fmt_bytes(b: f64) -> String {
+    const GIB: f64 = 1024.0 * 1024.0 * 1024.0;
+    if b >= GIB {
+        format!("{:.1} GiB", b / GIB)
+    } else {
+        format!("{:.0} MiB", b / (1024.0 * 1024.0))
+    }
+}
+
+/// The memory a run may use [bytes]: `ADHESION_MEMORY_LIMIT` (bytes, or with a suffix K, M, G)
+/// when set, else the memory the system reports available (`MemAvailable` of /proc/meminfo),
+/// else 4 GiB.
+pub fn memory_limit() -> f64 {
+    fn parse(t: &str) -> Option<f64> {
+        let t = t.trim();
+        let (num, mult) = match t.char_indices().last()? {
+            (i, 'k' | 'K') => (&t[..i], 1024.0),
+            (i, 'm' | 'M') => (&t[..i], 1024.0 * 1024.0),
+            (i, 'g' | 'G') => (&t[..i], 1024.0 * 1024.0 * 1024.0),
+            _ => (t, 1.0),
+        };
+        num.trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|v| *v > 0.0)
+            .map(|v| v * mult)
+    }
+    if let Some(v) = std::env::var("ADHESION_MEMORY_LIMIT")
+        .ok()
+        .as_deref()
+        .and_then(parse)
+    {
+        return v;
+    }
+    std::fs::read_to_string("/proc/meminfo")
+        .ok()
+        .and_then(|t| {
+            t.lines()
+                .find_map(|l| l.strip_prefix("MemAvailable:"))
+                .and_then(|v| v.trim().strip_suffix("kB"))
+                .and_then(|v| v.trim().parse::<f64>().ok())
+        })
+        .map_or(4.0 * 1024.0 * 1024.0 * 1024.0, |kb| kb * 1024.0)
+}
+
 /// Adapter from a typed [`Scene`] to [`SceneDyn`].
 pub struct Registered<S>(PhantomData<S>);
 
@@ -144,6 +231,9 @@ impl<S: Scene> SceneDyn for Registered<S> {
     fn run(&self, values: &ParamValues, job: &Job) -> Result<Figure> {
         let p: S::Params = values.to_params()?;
         S::validate(&p)?;
+        if let Some(m) = S::memory_estimate(&p) {
+            m.check(memory_limit())?;
+        }
         let mut figure = S::run(&p, job)?;
         figure.id = S::ID.to_string();
         Ok(figure)

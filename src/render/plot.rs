@@ -87,35 +87,44 @@ pub fn figure_size(fig: &Figure, s: f64) -> (u32, u32) {
     )
 }
 
-/// Render to a PNG file at `path` at twice the nominal size (1240 × 1008 pixels for one
-/// panel: 300 dpi at about 10.5 cm wide). The file is written atomically.
+/// Render to PNG bytes at twice the nominal size (1240 × 1008 pixels for one panel: 300 dpi
+/// at about 10.5 cm wide), in memory.
 ///
 /// # Errors
-/// [`Error::Render`] when drawing fails, I/O errors.
-pub fn write_png(fig: &Figure, path: &Path) -> Result<()> {
+/// [`Error::Render`] when drawing or encoding fails.
+pub fn png_bytes(fig: &Figure) -> Result<Vec<u8>> {
     register_fonts();
     let scale = 2.0;
-    let size = figure_size(fig, scale);
-    let tmp = super::temporary_path(path);
-    let drawn = (|| -> Result<()> {
-        let root = BitMapBackend::new(&tmp, size).into_drawing_area();
-        draw(&root, fig, scale).map_err(|message| Error::Render {
-            format: "png",
-            message,
-        })?;
-        root.present().map_err(|e| Error::Render {
-            format: "png",
-            message: e.to_string(),
-        })?;
-        Ok(())
-    })();
-    match drawn {
-        Ok(()) => Ok(std::fs::rename(&tmp, path)?),
-        Err(e) => {
-            let _ = std::fs::remove_file(&tmp);
-            Err(e)
-        }
+    let (w, h) = figure_size(fig, scale);
+    let render_error = |message: String| Error::Render {
+        format: "png",
+        message,
+    };
+    let mut rgb = vec![0u8; w as usize * h as usize * 3];
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
+        draw(&root, fig, scale).map_err(render_error)?;
+        root.present().map_err(|e| render_error(e.to_string()))?;
     }
+    let mut out = Vec::new();
+    {
+        let mut enc = png::Encoder::new(&mut out, w, h);
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        let mut writer = enc.write_header().map_err(|e| render_error(e.to_string()))?;
+        writer
+            .write_image_data(&rgb)
+            .map_err(|e| render_error(e.to_string()))?;
+    }
+    Ok(out)
+}
+
+/// Render to a PNG file at `path` ([`png_bytes`]), atomically.
+///
+/// # Errors
+/// As [`png_bytes`], plus [`Error::File`].
+pub fn write_png(fig: &Figure, path: &Path) -> Result<()> {
+    super::write_atomic(path, &png_bytes(fig)?)
 }
 
 /// Render to an SVG document in memory.

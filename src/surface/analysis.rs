@@ -458,20 +458,23 @@ pub struct PeakStatistics {
 }
 
 /// Count the peaks of a map and the mean distance from each to its nearest neighbour
-/// (section B.4), with a cell list so the cost stays near-linear in the number of peaks.
+/// (section B.4).
+///
+/// The nearest-neighbour search runs on a cell list laid over the pixel grid (at most one
+/// cell per pixel in each direction, cells of about one peak each and as square as the grid
+/// allows), and distances are taken in pixel offsets scaled by the larger pixel side, so the
+/// cost depends on the grid and the peaks only, never on the physical lengths: a map of
+/// 1e-9 m by 1e9 m or of pixels of 1e-170 m costs what a square map of the same grid costs.
+/// With lengths so extreme that the density or the distance leaves the f64 range, those
+/// fields are not finite (the callers report that as an error).
 pub fn peak_statistics(map: &HeightMap) -> PeakStatistics {
     let pk = peaks(map);
-    let (lx, ly) = (map.lx, map.ly);
-    let pos: Vec<(f64, f64)> = pk
-        .iter()
-        .map(|&(i, j)| (i as f64 * map.dx(), j as f64 * map.dy()))
-        .collect();
-    let n = pos.len();
-    let area = if map.periodic {
-        lx * ly
-    } else {
-        (map.nx - 2) as f64 * map.dx() * (map.ny - 2) as f64 * map.dy()
-    };
+    let n = pk.len();
+    let (nx, ny) = (map.nx, map.ny);
+    // Counted area in pixels times the pixel area, multiplied in an order that cannot
+    // overflow before the result does.
+    let (ix, iy) = if map.periodic { (nx, ny) } else { (nx - 2, ny - 2) };
+    let area = (ix as f64 * map.dx()) * (iy as f64 * map.dy());
     let density = n as f64 / area;
     if n < 2 {
         return PeakStatistics {
@@ -480,52 +483,100 @@ pub fn peak_statistics(map: &HeightMap) -> PeakStatistics {
             mean_nearest_distance: f64::NAN,
         };
     }
-    // Cells of about one peak each.
-    let cell = (lx * ly / n as f64).sqrt();
-    let cx = ((lx / cell).floor() as usize).max(1);
-    let cy = ((ly / cell).floor() as usize).max(1);
-    let (wx, wy) = (lx / cx as f64, ly / cy as f64);
+    let mean_scaled = mean_nearest_scaled(&pk, nx, ny, map.dx(), map.dy(), map.periodic);
+    PeakStatistics {
+        count: n,
+        density,
+        mean_nearest_distance: mean_scaled * map.dx().max(map.dy()),
+    }
+}
+
+/// Mean nearest-neighbour distance of the points `pk` (column, row) of an `nx × ny` grid with
+/// pixel sides `dx`, `dy`, in units of max(dx, dy) (periodic distances when `wrap`).
+fn mean_nearest_scaled(pk: &[(usize, usize)], nx: usize, ny: usize, dx: f64, dy: f64, wrap: bool) -> f64 {
+    let n = pk.len();
+    let s = dx.max(dy);
+    // Pixel sides relative to the larger one: in (0, 1], and exactly 1 for the larger.
+    let (ex, ey) = (dx / s, dy / s);
+    // Cells of about one peak each, as square as the grid allows: cx/cy = (nx ex)/(ny ey), taken
+    // through logarithms so that no ratio of lengths overflows, and at most one per pixel.
+    let ln_aspect = (nx as f64).ln() + ex.ln() - (ny as f64).ln() - ey.ln();
+    let ln_n = (n as f64).ln();
+    let cells_along =
+        |ln: f64, max: usize| -> usize { (0.5 * ln).exp().round().clamp(1.0, max as f64) as usize };
+    let cx = cells_along(ln_n + ln_aspect, nx);
+    let cy = cells_along(ln_n - ln_aspect, ny);
+    let cell_of = |i: usize, j: usize| (i * cx / nx, j * cy / ny);
     let mut cells: Vec<Vec<usize>> = vec![Vec::new(); cx * cy];
-    let cell_of = |x: f64, y: f64| (((x / wx) as usize).min(cx - 1), ((y / wy) as usize).min(cy - 1));
-    for (k, &(x, y)) in pos.iter().enumerate() {
-        let (a, b) = cell_of(x, y);
+    for (k, &(i, j)) in pk.iter().enumerate() {
+        let (a, b) = cell_of(i, j);
         cells[b * cx + a].push(k);
     }
-    let wrap = map.periodic;
-    let periodic = |d: f64, l: f64| {
-        let d = d.abs() % l;
-        if wrap { d.min(l - d) } else { d }
-    };
+    // A point whose cell is r > 0 cells away along x is more than (r − 1)·nx/cx pixels away, so
+    // every point outside a rectangle of ra × rb cells around a peak's cell is farther than
+    // ra·wx along x or rb·wy along y.
+    let (wx, wy) = (nx as f64 / cx as f64 * ex, ny as f64 / cy as f64 * ey);
+    let offset = |d: usize, n: usize| if wrap { d.min(n - d) } else { d };
     let total: f64 = (0..n)
         .into_par_iter()
         .map(|k| {
-            let (x, y) = pos[k];
-            let (a, b) = cell_of(x, y);
-            let mut best = f64::INFINITY;
-            let max_ring = if wrap { cx.max(cy) / 2 + 1 } else { cx.max(cy) };
-            for ring in 0..=max_ring {
-                // Every point outside rings 0..ring is farther than ring·min(wx, wy).
-                if best <= ring.saturating_sub(1) as f64 * wx.min(wy) {
+            let (i, j) = pk[k];
+            let (a, b) = cell_of(i, j);
+            let visit = |ca: isize, cb: isize| -> f64 {
+                let mut best = f64::INFINITY;
+                if !wrap && (ca < 0 || cb < 0 || ca >= cx as isize || cb >= cy as isize) {
+                    return best;
+                }
+                let ca = ca.rem_euclid(cx as isize) as usize;
+                let cb = cb.rem_euclid(cy as isize) as usize;
+                for &o in &cells[cb * cx + ca] {
+                    if o == k {
+                        continue;
+                    }
+                    let (io, jo) = pk[o];
+                    let di = offset(io.abs_diff(i), nx) as f64 * ex;
+                    let dj = offset(jo.abs_diff(j), ny) as f64 * ey;
+                    best = best.min(di.hypot(dj));
+                }
+                best
+            };
+            let (a, b) = (a as isize, b as isize);
+            // Every cell is examined once the rectangle spans the grid (both ways round when
+            // the grid wraps).
+            let spans = |r: isize, c: usize, at: isize| {
+                if wrap {
+                    2 * r + 1 >= c as isize
+                } else {
+                    at - r <= 0 && at + r >= c as isize - 1
+                }
+            };
+            let (mut ra, mut rb) = (0isize, 0isize);
+            let mut best = visit(a, b);
+            loop {
+                let (sx, sy) = (spans(ra, cx, a), spans(rb, cy, b));
+                if sx && sy {
                     break;
                 }
-                let r = ring as isize;
-                for db in -r..=r {
-                    for da in -r..=r {
-                        if da.abs() != r && db.abs() != r {
-                            continue;
+                // Points outside the rectangle are farther than this along x or along y.
+                let reach_x = if sx { f64::INFINITY } else { ra as f64 * wx };
+                let reach_y = if sy { f64::INFINITY } else { rb as f64 * wy };
+                if best <= reach_x.min(reach_y) {
+                    break;
+                }
+                if reach_x <= reach_y {
+                    ra += 1;
+                    for db in -rb..=rb {
+                        best = best.min(visit(a - ra, b + db));
+                        if !(wrap && 2 * ra == cx as isize) {
+                            best = best.min(visit(a + ra, b + db));
                         }
-                        let (ca, cb) = (a as isize + da, b as isize + db);
-                        if !wrap && (ca < 0 || cb < 0 || ca >= cx as isize || cb >= cy as isize) {
-                            continue;
-                        }
-                        let ca = ca.rem_euclid(cx as isize) as usize;
-                        let cb = cb.rem_euclid(cy as isize) as usize;
-                        for &o in &cells[cb * cx + ca] {
-                            if o == k {
-                                continue;
-                            }
-                            let d = periodic(pos[o].0 - x, lx).hypot(periodic(pos[o].1 - y, ly));
-                            best = best.min(d);
+                    }
+                } else {
+                    rb += 1;
+                    for da in -ra..=ra {
+                        best = best.min(visit(a + da, b - rb));
+                        if !(wrap && 2 * rb == cy as isize) {
+                            best = best.min(visit(a + da, b + rb));
                         }
                     }
                 }
@@ -533,11 +584,7 @@ pub fn peak_statistics(map: &HeightMap) -> PeakStatistics {
             best
         })
         .sum();
-    PeakStatistics {
-        count: n,
-        density,
-        mean_nearest_distance: total / n as f64,
-    }
+    total / n as f64
 }
 
 /// An analytic PSD averaged over the same rings as [`radial_psd`] of `map`: the expectation of

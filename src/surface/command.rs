@@ -12,6 +12,7 @@ use super::psd_fit::{AbcFit, Cutoff, fit_abc};
 use super::spectrum::{Moments, Spectrum};
 use super::{HeightMap, SurfaceArgs};
 use crate::error::{Error, Result};
+use crate::params::fmt_sig;
 
 /// Statistics of a height map, as printed by `--analyze-surface`.
 #[derive(Debug, Clone, Serialize)]
@@ -55,7 +56,42 @@ pub struct SurfaceReport {
 
 /// Statistics of a map (mean removed first; `remove_tilt` also removes the plane). A
 /// non-periodic map is windowed ([`crate::surface::analysis`]).
-pub fn report(map: &HeightMap, cutoff: Cutoff) -> SurfaceReport {
+///
+/// # Errors
+/// [`Error::InvalidParameter`] naming the first statistic that is not finite (lengths or
+/// heights so extreme that a spectral moment or a density leaves the f64 range); the mean
+/// nearest-peak distance may be NaN (null) only when fewer than two peaks were found.
+pub fn report(map: &HeightMap, cutoff: Cutoff) -> Result<SurfaceReport> {
+    let r = report_unchecked(map, cutoff);
+    let fields = [
+        ("sigma_rms", r.sigma_rms),
+        ("m0", r.m0),
+        ("m2", r.m2),
+        ("m4", r.m4),
+        ("nayak_alpha", r.nayak_alpha),
+        ("asperity_density", r.asperity_density),
+        ("peak_density", r.peak_density),
+        ("mean_nearest_peak_distance", r.mean_nearest_peak_distance),
+    ];
+    for (name, v) in fields {
+        let undefined_distance = name == "mean_nearest_peak_distance" && r.peak_count < 2 && v.is_nan();
+        if !v.is_finite() && !undefined_distance {
+            return Err(Error::invalid(
+                "length",
+                format!("{} x {} m", fmt_sig(map.lx), fmt_sig(map.ly)),
+                format!(
+                    "the map's `{name}` is {} in f64 (heights up to {} m): the lengths or heights \
+                     are out of range",
+                    fmt_sig(v),
+                    fmt_sig(map.z.iter().fold(0.0_f64, |a, z| a.max(z.abs())))
+                ),
+            ));
+        }
+    }
+    Ok(r)
+}
+
+fn report_unchecked(map: &HeightMap, cutoff: Cutoff) -> SurfaceReport {
     let (psd, m): (_, Moments) = radial_psd_and_moments(map);
     let peaks: PeakStatistics = peak_statistics(map);
     let fit = fit_abc(&psd, cutoff);
@@ -189,7 +225,7 @@ pub fn run(args: &SurfaceArgs, out: &Path) -> Result<String> {
         let (spectrum, nx, ny, lx, ly) = generation_request(args)?;
         let map = generate(&spectrum, nx, ny, lx, ly, args.seed)?;
         if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir)?;
+            std::fs::create_dir_all(dir).map_err(Error::file("creating the folder", dir))?;
         }
         write_height_map(&map, out)?;
         return Ok(format!("{}\n", out.display()));
@@ -205,7 +241,7 @@ pub fn run(args: &SurfaceArgs, out: &Path) -> Result<String> {
         } else {
             map.remove_mean();
         }
-        let r = report(&map, cutoff);
+        let r = report(&map, cutoff)?;
         let json =
             serde_json::to_string_pretty(&r).map_err(|e| Error::invalid("report", "json", e.to_string()))?;
         return Ok(format!("{json}\n"));

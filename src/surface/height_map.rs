@@ -93,6 +93,13 @@ impl HeightMap {
                 return Err(Error::invalid(name, v, "must be positive and finite"));
             }
         }
+        if let Some(reason) = size_problem(nx, ny, lx, ly) {
+            return Err(Error::invalid(
+                "length",
+                format!("{} x {}", fmt_g(lx), fmt_g(ly)),
+                reason,
+            ));
+        }
         Ok(())
     }
 
@@ -157,6 +164,39 @@ impl HeightMap {
     pub fn scale(&mut self, k: f64) {
         self.z.iter_mut().for_each(|v| *v *= k);
     }
+}
+
+/// Why a grid of `nx × ny` points and physical size `lx × ly` [m] (positive, finite) cannot be
+/// analysed in f64, or `None` when it can: a pixel side so small (below about 1e-77 m) that
+/// (2π/Δx)⁴ of the spectral moment m4 overflows, or an area lx·ly that leaves the normal f64 range (the PSD
+/// scale and the peak density overflow or vanish).
+pub fn size_problem(nx: usize, ny: usize, lx: f64, ly: f64) -> Option<String> {
+    let (dx, dy) = (lx / nx as f64, ly / ny as f64);
+    // The spectral moment m4 sums q⁴ up to the corner of the Fourier grid, (q_x² + q_y²)² ≤
+    // 4 (2π/Δ)⁴ with Δ the smaller pixel side.
+    let q = 2.0 * std::f64::consts::PI / dx.min(dy);
+    if !(dx >= f64::MIN_POSITIVE && dy >= f64::MIN_POSITIVE && (4.0 * q.powi(4)).is_finite()) {
+        return Some(format!(
+            "a pixel of {} x {} m is too small: its wavenumbers 2π/Δx to the 4th power leave \
+             the f64 range",
+            fmt_g(dx),
+            fmt_g(dy)
+        ));
+    }
+    let area = lx * ly;
+    if !(area.is_finite() && area >= f64::MIN_POSITIVE) {
+        return Some(format!(
+            "the area {} m x {} m is outside the f64 range",
+            fmt_g(lx),
+            fmt_g(ly)
+        ));
+    }
+    None
+}
+
+/// A number with at most 6 significant digits, for messages.
+fn fmt_g(v: f64) -> String {
+    crate::params::fmt_sig(v)
 }
 
 #[cfg(test)]

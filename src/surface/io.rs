@@ -11,8 +11,9 @@
 
 use std::path::Path;
 
-use super::height_map::HeightMap;
+use super::height_map::{HeightMap, size_problem};
 use crate::error::{Error, Result};
+use crate::params::fmt_sig;
 use crate::render::write_atomic;
 
 /// Magic first line of a Gwyddion simple field file.
@@ -125,7 +126,7 @@ pub fn parse_csv(text: &str, path: &Path, pixel_size: Option<f64>) -> Result<Hei
                 return Err(Error::data_file(
                     path,
                     0,
-                    format!("pixel size {p} must be positive and finite"),
+                    format!("pixel size {} must be positive and finite", fmt_sig(p)),
                 ));
             }
             (p * nx as f64, p * ny as f64)
@@ -157,6 +158,13 @@ pub fn parse_csv(text: &str, path: &Path, pixel_size: Option<f64>) -> Result<Hei
             ));
         }
     };
+    if let Some(reason) = size_problem(nx, ny, lx, ly) {
+        let field = match pixel_size {
+            Some(p) => format!("pixel size {}", fmt_sig(p)),
+            None => format!("header lx = {}, ly = {}", fmt_sig(lx), fmt_sig(ly)),
+        };
+        return Err(Error::data_file(path, 0, format!("{field}: {reason}")));
+    }
     let mut map = HeightMap::new(nx, ny, lx, ly, z).map_err(|e| Error::data_file(path, 0, e.to_string()))?;
     map.periodic = periodic;
     Ok(map)
@@ -338,8 +346,25 @@ pub fn parse_gsf(bytes: &[u8], path: &Path) -> Result<HeightMap> {
         .chunks_exact(4)
         .map(|c| f64::from(f32::from_le_bytes([c[0], c[1], c[2], c[3]])) * z_unit)
         .collect();
-    let mut map = HeightMap::new(nx, ny, lx * xy_unit, ly * xy_unit, z)
-        .map_err(|e| Error::data_file(path, 0, e.to_string()))?;
+    let (lx_m, ly_m) = (lx * xy_unit, ly * xy_unit);
+    let reason = if lx_m > 0.0 && ly_m > 0.0 && lx_m.is_finite() && ly_m.is_finite() {
+        size_problem(nx, ny, lx_m, ly_m)
+    } else {
+        Some("the lengths must be positive and finite in metres".to_string())
+    };
+    if let Some(reason) = reason {
+        return Err(Error::data_file(
+            path,
+            0,
+            format!(
+                "XReal = {}, YReal = {} (XYUnits): {reason}",
+                fmt_sig(lx),
+                fmt_sig(ly)
+            ),
+        ));
+    }
+    let mut map =
+        HeightMap::new(nx, ny, lx_m, ly_m, z).map_err(|e| Error::data_file(path, 0, e.to_string()))?;
     map.periodic = periodic;
     Ok(map)
 }

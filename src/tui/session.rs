@@ -165,7 +165,8 @@ impl Session {
         let text = form.values().to_preset_text(&preset_header(scene));
         let written = (|| -> crate::error::Result<()> {
             if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-                std::fs::create_dir_all(dir)?;
+                std::fs::create_dir_all(dir)
+                    .map_err(crate::error::Error::file("creating the folder", dir))?;
             }
             write_atomic(path, text.as_bytes())
         })();

@@ -1,0 +1,190 @@
+//! Seeded mutation fuzzing of the input parsers: force-curve CSV, height-map CSV, .gsf,
+//! peeling-profile CSV and presets. Each parser gets valid seeds mutated (bytes flipped,
+//! inserted, deleted, duplicated; numbers such as 1e308, -0, nan spliced in) and must return
+//! `Ok` or `Err`, never panic. A short run is in CI; `ADHESION_FUZZ_ITERATIONS` sets the count
+//! of the `#[ignore]`d long run (default one million per parser).
+
+use std::path::Path;
+
+const SEED: u64 = 0x5eed_f022;
+
+/// xorshift64*: a small deterministic generator.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
+    }
+    fn below(&mut self, n: usize) -> usize {
+        (self.next() % n.max(1) as u64) as usize
+    }
+}
+
+const TOKENS: &[&[u8]] = &[
+    b",",
+    b"\n",
+    b"\r",
+    b"\r\n",
+    b"-",
+    b"e",
+    b"9",
+    b"0",
+    b".",
+    b"\0",
+    b"\xff",
+    b"#",
+    b"=",
+    b"\"",
+    b"[",
+    b"]",
+    b"1e308",
+    b"-1e308",
+    b"1e-320",
+    b"-0",
+    b"nan",
+    b"inf",
+    b"-inf",
+    b"\xef\xbb\xbf",
+    b"18446744073709551616",
+    b"4294967297",
+    b" ",
+    b"\t",
+    b"XRes = 65536",
+    b"XReal = 1e-300",
+    b"# adhesion height map: nx=2 ny=2 lx=1 ly=1",
+    b"periodic=1",
+    b"depth_nm,force_nN",
+];
+
+fn mutate(rng: &mut Rng, seed: &[u8]) -> Vec<u8> {
+    let mut b = seed.to_vec();
+    for _ in 0..1 + rng.below(4) {
+        let at = rng.below(b.len() + 1);
+        match rng.below(5) {
+            0 if !b.is_empty() => {
+                let i = rng.below(b.len());
+                b[i] ^= 1 << rng.below(8);
+            }
+            1 => {
+                let t = TOKENS[rng.below(TOKENS.len())];
+                b.splice(at..at, t.iter().copied());
+            }
+            2 if !b.is_empty() => {
+                let end = (at + 1 + rng.below(16)).min(b.len());
+                let at = at.min(end);
+                b.drain(at..end);
+            }
+            3 if !b.is_empty() => {
+                let end = (at + 1 + rng.below(64)).min(b.len());
+                let at = at.min(end);
+                let chunk: Vec<u8> = b[at..end].to_vec();
+                b.splice(at..at, chunk);
+            }
+            _ => b.truncate(at),
+        }
+    }
+    b
+}
+
+fn seeds() -> Vec<(&'static str, Vec<u8>)> {
+    let root = crate::common::root();
+    let curve = std::fs::read(root.join("tests/fixtures/curves/synthetic_cycle.csv")).unwrap();
+    let map = b"# adhesion height map: nx=3 ny=2 lx=3e-6 ly=2e-6 (SI units, rows are y)\n1e-9,2e-9,-1e-9\n0,3e-9,1e-9\n".to_vec();
+    let mut gsf =
+        b"Gwyddion Simple Field 1.0\nXRes = 2\nYRes = 2\nXReal = 1e-6\nYReal = 1e-6\nXYUnits = m\n".to_vec();
+    let pad = 4 - gsf.len() % 4;
+    gsf.extend(std::iter::repeat_n(0u8, pad));
+    for z in [1e-9f32, -1e-9, 2e-9, 0.0] {
+        gsf.extend(z.to_le_bytes());
+    }
+    let profile = b"# x, y\n0,0\n0.1,0.01\n0.2,0.04\n0.3,0.09\n".to_vec();
+    let preset = adhesion::headless::preset_text(adhesion::scenes::find("fig1.1").unwrap()).into_bytes();
+    vec![
+        ("force-curve CSV", curve),
+        ("height-map CSV", map),
+        (".gsf", gsf),
+        ("profile CSV", profile),
+        ("preset", preset),
+    ]
+}
+
+/// Run one parser on `bytes`; true when it panicked.
+fn panics(kind: &str, bytes: &[u8], dir: &Path) -> bool {
+    let path = dir.join("input");
+    std::panic::catch_unwind(|| match kind {
+        "force-curve CSV" => {
+            let _ = adhesion::fit::parse_curve(&String::from_utf8_lossy(bytes), Path::new("c.csv"));
+        }
+        "height-map CSV" => {
+            if let Ok(m) =
+                adhesion::surface::io::parse_csv(&String::from_utf8_lossy(bytes), Path::new("m.csv"), None)
+            {
+                let _ = adhesion::surface::command::report(&m, adhesion::surface::Cutoff::None);
+            }
+        }
+        ".gsf" => {
+            if let Ok(m) = adhesion::surface::io::parse_gsf(bytes, Path::new("m.gsf")) {
+                let _ = adhesion::surface::command::report(&m, adhesion::surface::Cutoff::None);
+            }
+        }
+        "profile CSV" => {
+            std::fs::write(&path, bytes).unwrap();
+            let _ = adhesion::scenes::fig6::load_profile(&path);
+        }
+        _ => {
+            std::fs::write(&path, bytes).unwrap();
+            let mut v = adhesion::scenes::find("fig1.1").unwrap().defaults();
+            let _ = v.apply_preset_file(&path);
+        }
+    })
+    .is_err()
+}
+
+/// Executions and panics per parser.
+fn fuzz(iterations: usize) -> Vec<(&'static str, usize, usize)> {
+    let dir = tempfile::tempdir().unwrap();
+    let mut out = Vec::new();
+    for (k, (kind, seed)) in seeds().into_iter().enumerate() {
+        let mut rng = Rng(SEED + k as u64);
+        let mut corpus = vec![seed];
+        let mut crashes = 0;
+        for i in 0..iterations {
+            let parent = &corpus[rng.below(corpus.len())];
+            let input = mutate(&mut rng, parent);
+            if panics(kind, &input, dir.path()) {
+                crashes += 1;
+                eprintln!("{kind}: panic on {:?}", String::from_utf8_lossy(&input));
+            }
+            // Keep some mutants as parents so that mutations stack up.
+            if i % 64 == 0 && corpus.len() < 256 && input.len() < 1 << 16 {
+                corpus.push(input);
+            }
+        }
+        out.push((kind, iterations, crashes));
+    }
+    out
+}
+
+#[test]
+fn parsers_survive_mutated_input() {
+    for (kind, n, crashes) in fuzz(500) {
+        assert_eq!(crashes, 0, "{kind}: {crashes} of {n} inputs panicked");
+    }
+}
+
+#[test]
+#[ignore = "long fuzzing run: ADHESION_FUZZ_ITERATIONS per parser (default 1e6)"]
+fn parsers_survive_a_million_mutated_inputs() {
+    let n = std::env::var("ADHESION_FUZZ_ITERATIONS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(1_000_000);
+    let results = fuzz(n);
+    for (kind, n, crashes) in &results {
+        println!("{kind}: {n} executions, {crashes} panics");
+    }
+    assert!(results.iter().all(|r| r.2 == 0));
+}
