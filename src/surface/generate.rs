@@ -114,10 +114,10 @@ impl Filter {
     ) -> Arc<Filter> {
         static LAST: Mutex<Option<(FilterKey, Arc<Filter>)>> = Mutex::new(None);
         let key = (spectrum.with_rms(1.0), nx, ny, lx, ly);
-        if let Some((k, f)) = &*LAST.lock().unwrap_or_else(PoisonError::into_inner) {
-            if *k == key {
-                return Arc::clone(f);
-            }
+        if let Some((k, f)) = &*LAST.lock().unwrap_or_else(PoisonError::into_inner)
+            && *k == key
+        {
+            return Arc::clone(f);
         }
         let f = Arc::new(Filter::new(fft, nx, ny, lx, ly, h));
         *LAST.lock().unwrap_or_else(PoisonError::into_inner) = Some((key, Arc::clone(&f)));
