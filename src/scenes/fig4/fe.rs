@@ -341,6 +341,7 @@ impl Scene for Fig4_5Models {
     const ID: &'static str = "fig4.5-models";
     const CHAPTER: &'static str = "4";
     const TITLE: &'static str = "Smooth tip: finite-element model against the surface model";
+    const SWEEP: bool = true;
     const CAPTION: &'static str = "The cycle of Fig. 4.5 (R = 5 um, E = 4.4 MPa, nu = 0.25, C6 = 3, C12 = 1, sigma = 1 nm, \
         A_H = 2e-21 J) computed with the dissertation's finite-element model (an axisymmetric tip with the body \
         force (4.15)) and with the surface model that draws the other chapter 4 figures (the body force \
