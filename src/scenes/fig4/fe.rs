@@ -345,9 +345,9 @@ impl Scene for Fig4_5Models {
     const CAPTION: &'static str = "The cycle of Fig. 4.5 (R = 5 um, E = 4.4 MPa, nu = 0.25, C6 = 3, C12 = 1, sigma = 1 nm, \
         A_H = 2e-21 J) computed with the dissertation's finite-element model (an axisymmetric tip with the body \
         force (4.15)) and with the surface model that draws the other chapter 4 figures (the body force \
-        integrated through a column, the traction (4.19)). (a) P-h cycles of both; (b) the adhesive force of \
-        shallow finite-element cycles (to h = 0) against the number of unknowns as the bulk mesh is refined \
-        (grading) and as the tip grows (size r0 = h0), with the surface model's value for reference. The two \
+        integrated through a column, the traction (4.19)). (a) P-h cycles of both; the adhesive force of \
+        shallow finite-element cycles (to h = 0) (b) against the number of unknowns as the bulk mesh is refined \
+        (grading) and (c) against the tip's size r0 = h0, with the surface model's value for reference. The two \
         models differ only through the strain of the surface layer (order p/E) and the finite tip.";
     const RESULTS: &'static [(&'static str, &'static str)] = &[
         ("fe_adhesive_force_norm", "P_adh/(pi w R), finite elements"),
@@ -474,44 +474,54 @@ impl Scene for Fig4_5Models {
         draw_cycle(&mut ph, &bem.cycle, "surface model", 7, scale);
         draw_cycle(&mut ph, &fe.cycle, "finite elements", 0, scale);
         fig.panels.push(ph);
-        if !studies.is_empty() {
+        // (b) against the unknowns as the bulk mesh is refined, (c) against the tip's size
+        // (which adds few unknowns: the mesh grows logarithmically with it).
+        for (by_grading, label, title, axis, color) in [
+            (
+                true,
+                "(b)",
+                "bulk mesh refined (grading marked)",
+                "Unknowns of the finite-element model",
+                0,
+            ),
+            (false, "(c)", "tip grown (r0 = h0)", "Tip size r0/R = h0/R", 1),
+        ] {
+            let mut pts: Vec<(f64, f64, f64)> = studies
+                .iter()
+                .filter(|s| s.0 == by_grading)
+                .map(|s| (if by_grading { s.2 as f64 } else { s.1 }, -s.3 / force_scale, s.1))
+                .collect();
+            if pts.is_empty() {
+                continue;
+            }
+            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
             let mut pc = Panel::new(
-                Axis::log("Unknowns of the finite-element model", ""),
+                Axis::log(axis, ""),
                 Axis::linear("Adhesive force P_adh/(πwR), cycle to h = 0", ""),
             )
-            .titled("(b)", "mesh and tip-size convergence");
-            for (by_grading, name, color) in [
-                (true, "bulk mesh refined (grading)", 0),
-                (false, "tip size r0 = h0 grown", 1),
-            ] {
-                let mut pts: Vec<(f64, f64)> = studies
-                    .iter()
-                    .filter(|s| s.0 == by_grading)
-                    .map(|s| (s.2 as f64, -s.3 / force_scale))
-                    .collect();
-                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-                if pts.len() > 1 {
-                    pc.add(Series::new(name, Style::Stable, pts.clone()).with_color(color));
-                }
-                for s in studies.iter().filter(|s| s.0 == by_grading) {
-                    let label = if by_grading {
-                        format!("{}", s.1)
-                    } else {
-                        format!("{}R", s.1)
-                    };
-                    pc.mark(
-                        Marker::new(label.clone(), MarkerShape::Point, s.2 as f64, -s.3 / force_scale)
-                            .with_color(color)
-                            .with_label(label),
-                    );
-                }
+            .titled(label, title);
+            pc.add(
+                Series::new(
+                    "finite elements",
+                    Style::Stable,
+                    pts.iter().map(|q| (q.0, q.1)).collect(),
+                )
+                .with_color(color),
+            );
+            for q in &pts {
+                let text = if by_grading {
+                    format!("{}", q.2)
+                } else {
+                    format!("{}R", q.2)
+                };
+                pc.mark(
+                    Marker::new(text.clone(), MarkerShape::Point, q.0, q.1)
+                        .with_color(color)
+                        .with_label(text),
+                );
             }
             if let Some(f) = reference_shallow {
-                let xs: Vec<f64> = studies.iter().map(|s| s.2 as f64).collect();
-                let (lo, hi) = (
-                    xs.iter().copied().fold(f64::INFINITY, f64::min),
-                    xs.iter().copied().fold(0.0, f64::max),
-                );
+                let (lo, hi) = (pts[0].0, pts[pts.len() - 1].0);
                 pc.add(
                     Series::new(
                         "surface model",
