@@ -131,6 +131,16 @@ impl Error {
         }
     }
 
+    /// `Ok` when `v` is finite and positive, otherwise [`Error::InvalidParameter`] naming
+    /// `name` with "must be positive".
+    pub fn require_positive(name: &str, v: f64) -> Result<()> {
+        if v.is_finite() && v > 0.0 {
+            Ok(())
+        } else {
+            Err(Error::invalid(name, v, "must be positive"))
+        }
+    }
+
     /// A closure turning an I/O error into [`Error::File`] for `operation` on `path`.
     pub fn file(operation: &'static str, path: &std::path::Path) -> impl FnOnce(std::io::Error) -> Self {
         let path = path.to_path_buf();

@@ -187,11 +187,7 @@ impl SphereContact {
 pub const JKR_HYSTERESIS_CONSTANT: f64 = 7.092_195_971_863_96;
 
 fn check_positive(name: &str, v: f64) -> Result<()> {
-    if v.is_finite() && v > 0.0 {
-        Ok(())
-    } else {
-        Err(Error::invalid(name, v, "must be positive"))
-    }
+    Error::require_positive(name, v)
 }
 
 /// The JKR theory in its non-dimensional form (scales a₀, h₀, P₀ = πwR; see the module docs).

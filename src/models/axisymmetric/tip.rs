@@ -219,13 +219,7 @@ impl Tip {
     /// # Errors
     /// [`Error::InvalidParameter`] naming the parameter; grid errors.
     pub fn new(p: &TipParams) -> Result<Self> {
-        let positive = |name: &'static str, v: f64| {
-            if v > 0.0 && v.is_finite() {
-                Ok(())
-            } else {
-                Err(Error::invalid(name, v, "must be positive"))
-            }
-        };
+        let positive = Error::require_positive;
         positive("radius", p.radius)?;
         positive("modulus", p.modulus)?;
         positive("wavelength", p.wavelength)?;

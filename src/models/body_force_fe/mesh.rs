@@ -119,13 +119,7 @@ impl Mesh {
     /// than its graded surface layers, a fine zone wider than the tip, more than
     /// [`MAX_LEAVES`] leaves).
     pub fn new(spec: &MeshSpec, profile: impl Fn(f64) -> f64) -> Result<Self> {
-        let positive = |name: &'static str, v: f64| {
-            if v > 0.0 && v.is_finite() {
-                Ok(())
-            } else {
-                Err(Error::invalid(name, v, "must be positive"))
-            }
-        };
+        let positive = Error::require_positive;
         positive("r0", spec.r0)?;
         positive("h0", spec.h0)?;
         positive("element_width", spec.width)?;

@@ -164,13 +164,7 @@ impl FeTip {
     /// # Errors
     /// [`Error::InvalidParameter`] naming the parameter.
     pub fn new(p: &FeTipParams) -> Result<Self> {
-        let positive = |name: &'static str, v: f64| {
-            if v > 0.0 && v.is_finite() {
-                Ok(())
-            } else {
-                Err(Error::invalid(name, v, "must be positive"))
-            }
-        };
+        let positive = Error::require_positive;
         positive("radius", p.radius)?;
         positive("youngs_modulus", p.youngs_modulus)?;
         positive("wavelength", p.wavelength)?;
