@@ -436,6 +436,13 @@ fn quadrature_points(grid: &RingGrid, n: usize, shape: impl Fn(f64) -> f64) -> R
     Ok(out)
 }
 
+/// How far a point at gap `gap` must start moved away from the substrate when the next step
+/// closes gaps by `closing`, so that its gap shrinks to no less than half: 0 where the step
+/// leaves more than half (shared by the surface and the finite-element models' starts).
+pub fn start_shift(gap: f64, closing: f64) -> f64 {
+    (0.5 * gap - (gap - closing)).max(0.0)
+}
+
 /// The contact set of a state.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct ContactSet {
@@ -576,11 +583,7 @@ impl Controlled for Tip {
             return;
         }
         for (i, ui) in u.iter_mut().enumerate() {
-            let g = from + self.profile[i] - *ui;
-            let short = 0.5 * g - (g - closing);
-            if short > 0.0 {
-                *ui -= short;
-            }
+            *ui -= start_shift(from + self.profile[i] - *ui, closing);
         }
     }
 

@@ -33,7 +33,7 @@ use std::f64::consts::PI;
 
 use crate::error::{Error, Result};
 use crate::models::axisymmetric::cycle::CycleModel;
-use crate::models::axisymmetric::tip::{ContactSet, TipScales};
+use crate::models::axisymmetric::tip::{ContactSet, TipScales, start_shift};
 use crate::models::body_force_fe::assembly::{Assembled, FIXED, assemble, held_top_dofs};
 use crate::models::body_force_fe::element::{Chord, Density, StrainForm, chords, elasticity_matrix};
 use crate::models::body_force_fe::mesh::{Mesh, MeshSpec};
@@ -451,9 +451,8 @@ impl Energy for FeEnergy<'_> {
         let t = self.tip;
         let mut elastic = 0.0;
         for (tri, form) in t.mesh.triangles.iter().zip(&t.strain_forms) {
-            let ur = tri.map(|k| t.node_displacement(u, k)[0]);
-            let uz = tri.map(|k| t.node_displacement(u, k)[1]);
-            elastic += form.energy(&t.elasticity, ur, uz);
+            let [a, b, c] = tri.map(|k| t.node_displacement(u, k));
+            elastic += form.energy(&t.elasticity, [a[0], b[0], c[0]], [a[1], b[1], c[1]]);
         }
         let mut body = 0.0;
         for c in 0..t.chords.len() {
@@ -528,11 +527,7 @@ impl Controlled for FeTip {
             if i == FIXED {
                 continue;
             }
-            let d = from + height + u[i];
-            let short = 0.5 * d - (d - closing);
-            if short > 0.0 {
-                u[i] += short;
-            }
+            u[i] += start_shift(from + height + u[i], closing);
         }
     }
 
