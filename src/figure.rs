@@ -146,6 +146,9 @@ pub enum Style {
     Stable,
     /// Unstable equilibrium branch: dashed line.
     Unstable,
+    /// A dashed line that is not an equilibrium branch (a second quantity, a bound, a level
+    /// of another model): drawn like [`Style::Unstable`], named apart in the CSV.
+    Dashed,
     /// Analytic limit, asymptote or approximation: dotted line.
     Reference,
     /// Points without a line (measured data, FE points, exact points on a fit).
@@ -164,6 +167,7 @@ impl Style {
         match self {
             Style::Stable => "stable",
             Style::Unstable => "unstable",
+            Style::Dashed => "dashed",
             Style::Reference => "reference",
             Style::Scatter => "scatter",
             Style::ErrorBar => "errorbar",
@@ -302,6 +306,10 @@ pub struct Region {
     pub color: Option<usize>,
     /// Closed polygon (the last point connects to the first).
     pub points: Vec<(f64, f64)>,
+    /// Drawn as an outline with hatching instead of a translucent fill, so that overlapping
+    /// regions stay readable.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub hatched: bool,
 }
 
 /// An arrow, e.g. a snap-through jump.
@@ -541,6 +549,9 @@ pub struct Panel {
     pub field: Option<Field>,
     /// Legend placement.
     pub legend: Legend,
+    /// Draw one data unit as long on both axes (maps of a square surface stay square).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub equal_aspect: bool,
 }
 
 impl Panel {
@@ -557,6 +568,7 @@ impl Panel {
             arrows: Vec::new(),
             field: None,
             legend: Legend::Auto,
+            equal_aspect: false,
         }
     }
 
@@ -565,6 +577,13 @@ impl Panel {
     pub fn titled(mut self, label: impl Into<String>, title: impl Into<String>) -> Self {
         self.label = label.into();
         self.title = title.into();
+        self
+    }
+
+    /// Draw one data unit as long on both axes.
+    #[must_use]
+    pub fn with_equal_aspect(mut self) -> Self {
+        self.equal_aspect = true;
         self
     }
 
@@ -597,6 +616,23 @@ impl Panel {
             name: name.into(),
             color,
             points,
+            hatched: false,
+        });
+        self
+    }
+
+    /// Add a region drawn as an outline with hatching (readable where regions overlap).
+    pub fn hatch(
+        &mut self,
+        name: impl Into<String>,
+        points: Vec<(f64, f64)>,
+        color: Option<usize>,
+    ) -> &mut Self {
+        self.regions.push(Region {
+            name: name.into(),
+            color,
+            points,
+            hatched: true,
         });
         self
     }

@@ -6,6 +6,7 @@ pub mod axes;
 pub mod data;
 pub mod plot;
 pub mod terminal;
+pub mod text;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};

@@ -77,6 +77,20 @@ fn grid(n: usize) -> (usize, usize) {
     }
 }
 
+/// Left edge, row and width of panel `k` of `n` (panel width `pw`): the grid of [`grid`],
+/// with the panels of a short last row widened to fill it, so that no slot stays empty.
+fn panel_slot(n: usize, k: usize, pw: i32) -> (i32, i32, i32) {
+    let (cols, _) = grid(n);
+    let (c, r) = (k % cols, k / cols);
+    let in_last = n - (n / cols) * cols;
+    if in_last > 0 && k >= n - in_last {
+        let w = pw * cols as i32 / in_last as i32;
+        (c as i32 * w, r as i32, w)
+    } else {
+        (c as i32 * pw, r as i32, pw)
+    }
+}
+
 /// Pixel size of a figure at scale `s`.
 pub fn figure_size(fig: &Figure, s: f64) -> (u32, u32) {
     let (c, r) = grid(fig.panels.len());
@@ -189,15 +203,11 @@ fn draw<DB: DrawingBackend>(root: &Area<DB>, fig: &Figure, s: f64) -> Draw<()> {
             .map_err(err)?;
         top = m.px(44.0);
     }
-    let (cols, rows) = grid(fig.panels.len());
     let pw = m.px(PANEL_W);
     let ph = m.px(PANEL_H);
     for (k, panel) in fig.panels.iter().enumerate() {
-        let (c, r) = (k % cols, k / cols);
-        let _ = rows;
-        let area = root
-            .clone()
-            .shrink((c as i32 * pw, top + r as i32 * ph), (pw as u32, ph as u32));
+        let (x, y, w) = panel_slot(fig.panels.len(), k, pw);
+        let area = root.clone().shrink((x, top + y * ph), (w as u32, ph as u32));
         draw_panel(&area, panel, &m)?;
     }
     Ok(())
@@ -408,7 +418,7 @@ fn draw_pixel_line<DB: DrawingBackend>(
     let c = color.to_rgba();
     match style {
         Style::Stable | Style::Contour => draw_polyline(area, run, c, width)?,
-        Style::Unstable => {
+        Style::Unstable | Style::Dashed => {
             for d in dash(run, m.s * 9.0, m.s * 6.0) {
                 draw_polyline(area, &d, c, width)?;
             }
@@ -603,13 +613,72 @@ fn draw_heat<DB: DrawingBackend>(
 /// One legend entry.
 enum Swatch {
     Line(Style, RGBColor),
-    Marker(MarkerShape, RGBColor),
+    Marker(MarkerShape, Vec<RGBColor>),
     Fill(RGBColor),
+    Hatch(RGBColor, usize),
 }
 
-fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -> Draw<()> {
-    let (w, h) = area.dim_in_pixel();
-    let (w, h) = (f64::from(w), f64::from(h));
+/// Hatch angle of palette colour `c`: overlapping regions of different colours are hatched
+/// in different directions, so each stays readable.
+fn hatch_angle(c: usize) -> f64 {
+    const ANGLES: [f64; 4] = [45.0, -45.0, 0.0, 90.0];
+    ANGLES[c % ANGLES.len()].to_radians()
+}
+
+/// Segments of the lines `p·n = s` (n the normal of direction `angle`, s on a grid of
+/// `spacing`) inside the closed polygon `poly`, by the even-odd rule.
+pub(crate) fn hatch_segments(poly: &[(f64, f64)], angle: f64, spacing: f64) -> Vec<((f64, f64), (f64, f64))> {
+    let (dx, dy) = (angle.cos(), angle.sin());
+    let (nx, ny) = (-dy, dx);
+    let proj = |p: (f64, f64)| p.0 * nx + p.1 * ny;
+    let lo = poly.iter().map(|&p| proj(p)).fold(f64::INFINITY, f64::min);
+    let hi = poly.iter().map(|&p| proj(p)).fold(f64::NEG_INFINITY, f64::max);
+    let mut out = Vec::new();
+    if !(lo.is_finite() && hi.is_finite() && spacing > 0.0) {
+        return out;
+    }
+    let mut s = (lo / spacing).floor() * spacing + 0.5 * spacing;
+    while s < hi {
+        let mut cuts: Vec<(f64, (f64, f64))> = Vec::new();
+        for k in 0..poly.len() {
+            let a = poly[k];
+            let b = poly[(k + 1) % poly.len()];
+            let (da, db) = (proj(a) - s, proj(b) - s);
+            if (da < 0.0) != (db < 0.0) {
+                let t = da / (da - db);
+                let q = (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1));
+                cuts.push((q.0 * dx + q.1 * dy, q));
+            }
+        }
+        cuts.sort_by(|u, v| u.0.total_cmp(&v.0));
+        for pair in cuts.chunks_exact(2) {
+            out.push((pair[0].1, pair[1].1));
+        }
+        s += spacing;
+    }
+    out
+}
+
+/// A region as an outline with hatching in its colour.
+fn draw_hatched<DB: DrawingBackend>(
+    area: &Area<DB>,
+    poly: &[(f64, f64)],
+    color: RGBColor,
+    c: usize,
+    m: &Metrics,
+) -> Draw<()> {
+    let thin = m.px(0.8).max(1) as u32;
+    for (a, b) in hatch_segments(poly, hatch_angle(c), 7.0 * m.s) {
+        draw_polyline(area, &[a, b], color.mix(0.55), thin)?;
+    }
+    let mut closed = poly.to_vec();
+    closed.push(poly[0]);
+    draw_polyline(area, &closed, color.mix(0.8), m.px(1.0).max(1) as u32)
+}
+
+/// The plotting frame of a panel of size `w` × `h` pixels before the legend is placed, and
+/// whether it has a colour bar; `None` when there is nothing to draw.
+fn panel_frame(panel: &Panel, w: f64, h: f64, m: &Metrics) -> Option<(Frame, bool, [f64; 4])> {
     let has_bar = panel.field.as_ref().is_some_and(|f| {
         matches!(f.kind, FieldKind::Heat) || matches!(f.kind, FieldKind::Contour { filled: true, .. })
     });
@@ -623,12 +692,7 @@ fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -
         }) * m.s,
         h - 66.0 * m.s,
     );
-    let Some(((xlo, xhi), (ylo, yhi))) = panel.data_bounds() else {
-        let style = text_style(m.font(14.0), false, BLACK).pos(Pos::new(HPos::Center, VPos::Center));
-        return area
-            .draw_text("no data", &style, ((w / 2.0) as i32, (h / 2.0) as i32))
-            .map_err(err);
-    };
+    let ((xlo, xhi), (ylo, yhi)) = panel.data_bounds()?;
     let (xa, xb) = panel
         .x
         .range
@@ -640,19 +704,50 @@ fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -
     let xlog = panel.x.scale == Scale::Log;
     let ylog = panel.y.scale == Scale::Log;
     let tr = |v: f64, log: bool| if log { v.max(1e-300).log10() } else { v };
-    let frame = Frame {
-        x0: frame_box.0,
-        x1: frame_box.1,
-        y0: frame_box.2,
-        y1: frame_box.3,
-        xr: (tr(xa, xlog), tr(xb, xlog)),
-        yr: (tr(ya, ylog), tr(yb, ylog)),
-        xlog,
-        ylog,
+    let mut frame_box = frame_box;
+    if panel.equal_aspect && !xlog && !ylog {
+        // Shrink the longer side so that one data unit has one length on both axes.
+        let (fw, fh) = (frame_box.1 - frame_box.0, frame_box.3 - frame_box.2);
+        let (dx, dy) = (xb - xa, yb - ya);
+        if dx > 0.0 && dy > 0.0 {
+            let unit = (fw / dx).min(fh / dy);
+            let (nw, nh) = (unit * dx, unit * dy);
+            frame_box.0 += 0.5 * (fw - nw);
+            frame_box.1 = frame_box.0 + nw;
+            frame_box.2 += 0.5 * (fh - nh);
+            frame_box.3 = frame_box.2 + nh;
+        }
+    }
+    Some((
+        Frame {
+            x0: frame_box.0,
+            x1: frame_box.1,
+            y0: frame_box.2,
+            y1: frame_box.3,
+            xr: (tr(xa, xlog), tr(xb, xlog)),
+            yr: (tr(ya, ylog), tr(yb, ylog)),
+            xlog,
+            ylog,
+        },
+        has_bar,
+        [xa, xb, ya, yb],
+    ))
+}
+
+fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -> Draw<()> {
+    let (w, h) = area.dim_in_pixel();
+    let (w, h) = (f64::from(w), f64::from(h));
+    let Some((frame, has_bar, [xa, xb, ya, yb])) = panel_frame(panel, w, h, m) else {
+        let style = text_style(m.font(14.0), false, BLACK).pos(Pos::new(HPos::Center, VPos::Center));
+        return area
+            .draw_text("no data", &style, ((w / 2.0) as i32, (h / 2.0) as i32))
+            .map_err(err);
     };
     if !(frame.xr.1 > frame.xr.0 && frame.yr.1 > frame.yr.0) {
         return Err(format!("empty axis range in panel `{}`", panel.title));
     }
+    let colors = panel.series_colors();
+    let (frame, legend) = plan_legend(panel, frame, &colors, m, w, has_bar);
     let grey = RGBColor(225, 225, 225);
     let tick_font = m.font(13.0);
 
@@ -686,7 +781,6 @@ fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -
     }
 
     // Regions.
-    let colors = panel.series_colors();
     let mut next_color = colors.iter().copied().max().map_or(0, |c| c + 1);
     for region in &panel.regions {
         let c = region.color.unwrap_or_else(|| {
@@ -700,8 +794,13 @@ fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -
             .map(|(x, y)| ipt((x.clamp(frame.x0, frame.x1), y.clamp(frame.y0, frame.y1))))
             .collect();
         if pts.len() >= 3 {
-            area.draw(&Polygon::new(pts, rgb(palette(c)).mix(0.18).filled()))
-                .map_err(err)?;
+            if region.hatched {
+                let poly: Vec<(f64, f64)> = pts.iter().map(|&(x, y)| (f64::from(x), f64::from(y))).collect();
+                draw_hatched(area, &poly, rgb(palette(c)), c, m)?;
+            } else {
+                area.draw(&Polygon::new(pts, rgb(palette(c)).mix(0.18).filled()))
+                    .map_err(err)?;
+            }
         }
     }
 
@@ -935,101 +1034,219 @@ fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -
         .map_err(err)?;
     }
 
-    draw_legend(area, panel, &frame, &colors, m)
+    if let Some(plan) = legend {
+        draw_legend(area, &plan, m)?;
+    }
+    Ok(())
 }
 
-fn draw_legend<DB: DrawingBackend>(
-    area: &Area<DB>,
-    panel: &Panel,
-    frame: &Frame,
-    colors: &[usize],
-    m: &Metrics,
-) -> Draw<()> {
-    if panel.legend == Legend::Hidden {
-        return Ok(());
-    }
+/// A legend ready to draw: its entries and its box in pixels.
+struct LegendPlan {
+    entries: Vec<(String, Swatch)>,
+    x: f64,
+    y: f64,
+    w: f64,
+    h: f64,
+    row: f64,
+    pad: f64,
+    swatch_w: f64,
+    font: f64,
+}
+
+/// The legend entries of a panel: one per series name, region name and marker name.
+fn legend_entries(panel: &Panel, colors: &[usize]) -> Vec<(String, Swatch)> {
     let mut entries: Vec<(String, Swatch)> = Vec::new();
+    if panel.legend == Legend::Hidden {
+        return entries;
+    }
     for (s, &c) in panel.series.iter().zip(colors) {
         if !s.legend || entries.iter().any(|(n, _)| *n == s.name) {
             continue;
         }
-        entries.push((s.name.clone(), Swatch::Line(s.style, rgb(palette(c)))));
+        // A curve drawn in stable and unstable parts shows its solid style in the legend.
+        let style = if panel
+            .series
+            .iter()
+            .any(|o| o.name == s.name && o.style == Style::Stable)
+        {
+            Style::Stable
+        } else {
+            s.style
+        };
+        entries.push((s.name.clone(), Swatch::Line(style, rgb(palette(c)))));
     }
     for r in &panel.regions {
         if !entries.iter().any(|(n, _)| *n == r.name) {
-            entries.push((r.name.clone(), Swatch::Fill(rgb(palette(r.color.unwrap_or(8))))));
+            let c = r.color.unwrap_or(8);
+            let swatch = if r.hatched {
+                Swatch::Hatch(rgb(palette(c)), c)
+            } else {
+                Swatch::Fill(rgb(palette(c)))
+            };
+            entries.push((r.name.clone(), swatch));
         }
     }
     for mk in &panel.markers {
         if !entries.iter().any(|(n, _)| *n == mk.name) {
-            // Markers of one name share a legend entry; shown in black when colours vary.
-            let same: Vec<usize> = panel
-                .markers
-                .iter()
-                .filter(|o| o.name == mk.name)
-                .map(|o| panel.marker_color(o, colors).unwrap_or(7))
-                .collect();
-            let c = if same.iter().all(|&c| c == same[0]) {
-                same[0]
-            } else {
-                7
-            };
-            entries.push((mk.name.clone(), Swatch::Marker(mk.shape, rgb(palette(c)))));
+            // Markers of one name share a legend entry, which shows each of their colours.
+            let mut same: Vec<usize> = Vec::new();
+            for o in panel.markers.iter().filter(|o| o.name == mk.name) {
+                let c = panel.marker_color(o, colors).unwrap_or(7);
+                if !same.contains(&c) {
+                    same.push(c);
+                }
+            }
+            let cols = same.iter().map(|&c| rgb(palette(c))).collect();
+            entries.push((mk.name.clone(), Swatch::Marker(mk.shape, cols)));
         }
     }
+    entries
+}
+
+/// Pixel positions of everything a legend must not cover: the series drawn as lines (densified,
+/// so that a line crossing a box counts), the series points and the markers.
+fn covered_points(panel: &Panel, frame: &Frame) -> Vec<(f64, f64)> {
+    panel
+        .series
+        .iter()
+        .flat_map(|s| {
+            if matches!(s.style, Style::Scatter | Style::ErrorBar) {
+                s.points.iter().filter_map(|&p| frame.map(p)).collect()
+            } else {
+                densify(frame, &s.points)
+            }
+        })
+        .chain(panel.markers.iter().filter_map(|mk| frame.map((mk.x, mk.y))))
+        .filter(|p| frame.inside(*p))
+        .collect()
+}
+
+/// Place the legend where it covers no drawn point: the preferred corner, the other corners and
+/// the middles of the edges inside the frame; when every one covers data, outside the frame on
+/// the right (the frame narrows to make room). Returns the frame to draw in and the legend.
+fn plan_legend(
+    panel: &Panel,
+    frame: Frame,
+    colors: &[usize],
+    m: &Metrics,
+    panel_w: f64,
+    has_bar: bool,
+) -> (Frame, Option<LegendPlan>) {
+    let entries = legend_entries(panel, colors);
     if entries.is_empty() {
-        return Ok(());
+        return (frame, None);
     }
     let font = m.font(12.5);
-    let style = text_style(font, false, BLACK).pos(Pos::new(HPos::Left, VPos::Center));
-    let mut text_w = 0u32;
-    for (name, _) in &entries {
-        text_w = text_w.max(area.estimate_text_size(name, &style).map_err(err)?.0);
-    }
+    let text_w = entries
+        .iter()
+        .map(|(n, _)| super::text::width(n, font, false))
+        .fold(0.0, f64::max);
     let row = font * 1.45;
     let swatch_w = 30.0 * m.s;
     let pad = 7.0 * m.s;
-    let box_w = swatch_w + 3.0 * pad + f64::from(text_w);
+    let box_w = swatch_w + 3.0 * pad + text_w;
     let box_h = row * entries.len() as f64 + 2.0 * pad - 0.3 * row;
-    // Candidate corners; pick the one covering the fewest drawn points.
+    let plan = |x: f64, y: f64, entries: Vec<(String, Swatch)>| LegendPlan {
+        entries,
+        x,
+        y,
+        w: box_w,
+        h: box_h,
+        row,
+        pad,
+        swatch_w,
+        font,
+    };
     let inset = 8.0 * m.s;
-    let corners = [
-        (Legend::UpperRight, frame.x1 - inset - box_w, frame.y0 + inset),
-        (Legend::UpperLeft, frame.x0 + inset, frame.y0 + inset),
-        (
-            Legend::LowerRight,
-            frame.x1 - inset - box_w,
-            frame.y1 - inset - box_h,
-        ),
-        (Legend::LowerLeft, frame.x0 + inset, frame.y1 - inset - box_h),
+    let (l, r) = (frame.x0 + inset, frame.x1 - inset - box_w);
+    let (t, b) = (frame.y0 + inset, frame.y1 - inset - box_h);
+    let (cx, cy) = (0.5 * (l + r), 0.5 * (t + b));
+    let mut candidates = vec![
+        (Legend::UpperRight, r, t),
+        (Legend::UpperLeft, l, t),
+        (Legend::LowerRight, r, b),
+        (Legend::LowerLeft, l, b),
+        (Legend::Auto, cx, t),
+        (Legend::Auto, cx, b),
+        (Legend::Auto, l, cy),
+        (Legend::Auto, r, cy),
     ];
-    let (bx, by) = match panel.legend {
-        Legend::Auto => {
-            let points: Vec<(f64, f64)> = panel
+    // A scene's preferred corner is tried first.
+    if let Some(k) = candidates
+        .iter()
+        .position(|c| c.0 == panel.legend && c.0 != Legend::Auto)
+    {
+        let c = candidates.remove(k);
+        candidates.insert(0, c);
+    }
+    let fits = r >= l && b >= t;
+    if fits {
+        let points = covered_points(panel, &frame);
+        let cover = |x: f64, y: f64| {
+            points
+                .iter()
+                .filter(|p| {
+                    p.0 >= x - pad && p.0 <= x + box_w + pad && p.1 >= y - pad && p.1 <= y + box_h + pad
+                })
+                .count()
+        };
+        if let Some(&(_, x, y)) = candidates.iter().find(|(_, x, y)| cover(*x, *y) == 0) {
+            return (frame, Some(plan(x, y, entries)));
+        }
+    }
+    // Outside on the right, beyond the colour bar if there is one.
+    let x = panel_w - box_w - 6.0 * m.s;
+    let right_margin = if has_bar { 110.0 } else { 16.0 } * m.s;
+    let x1 = (x - right_margin).max(frame.x0 + 0.3 * (frame.x1 - frame.x0));
+    let frame = Frame { x1, ..frame };
+    (frame, Some(plan(x, frame.y0, entries)))
+}
+
+/// Where each panel's frame and legend go, as the PNG renderer draws them (pixels of the
+/// panel's own area at the PNG scale), with the pixel positions of every series point and
+/// marker inside the frame. `None` for a panel with nothing to draw.
+pub fn panel_layouts(fig: &Figure) -> Vec<Option<PanelLayout>> {
+    let m = Metrics { s: 2.0 };
+    let (pw, ph) = (m.px(PANEL_W), m.px(PANEL_H));
+    fig.panels
+        .iter()
+        .enumerate()
+        .map(|(k, panel)| {
+            let (_, _, pw) = panel_slot(fig.panels.len(), k, pw);
+            let (frame, has_bar, _) = panel_frame(panel, f64::from(pw), f64::from(ph), &m)?;
+            let colors = panel.series_colors();
+            let (frame, legend) = plan_legend(panel, frame, &colors, &m, f64::from(pw), has_bar);
+            let points = panel
                 .series
                 .iter()
-                .flat_map(|s| densify(frame, &s.points))
+                .flat_map(|s| s.points.iter().filter_map(|&p| frame.map(p)))
                 .chain(panel.markers.iter().filter_map(|mk| frame.map((mk.x, mk.y))))
+                .filter(|p| frame.inside(*p))
                 .collect();
-            let cover = |x: f64, y: f64| {
-                points
-                    .iter()
-                    .filter(|p| {
-                        p.0 >= x - pad && p.0 <= x + box_w + pad && p.1 >= y - pad && p.1 <= y + box_h + pad
-                    })
-                    .count()
-            };
-            let best = corners
-                .iter()
-                .min_by_key(|(_, x, y)| cover(*x, *y))
-                .expect("four corners");
-            (best.1, best.2)
-        }
-        fixed => corners
-            .iter()
-            .find(|c| c.0 == fixed)
-            .map_or((corners[0].1, corners[0].2), |c| (c.1, c.2)),
-    };
+            Some(PanelLayout {
+                frame: (frame.x0, frame.x1, frame.y0, frame.y1),
+                legend: legend.map(|l| (l.x, l.y, l.x + l.w, l.y + l.h)),
+                points,
+            })
+        })
+        .collect()
+}
+
+/// A panel's layout in pixels ([`panel_layouts`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PanelLayout {
+    /// Plotting frame: left, right, top, bottom.
+    pub frame: (f64, f64, f64, f64),
+    /// Legend box: left, top, right, bottom.
+    pub legend: Option<(f64, f64, f64, f64)>,
+    /// Every series point and marker inside the frame.
+    pub points: Vec<(f64, f64)>,
+}
+
+fn draw_legend<DB: DrawingBackend>(area: &Area<DB>, plan: &LegendPlan, m: &Metrics) -> Draw<()> {
+    let (bx, by, box_w, box_h) = (plan.x, plan.y, plan.w, plan.h);
+    let (row, pad, swatch_w) = (plan.row, plan.pad, plan.swatch_w);
+    let style = text_style(plan.font, false, BLACK).pos(Pos::new(HPos::Left, VPos::Center));
     area.draw(&Rectangle::new(
         [ipt((bx, by)), ipt((bx + box_w, by + box_h))],
         WHITE.mix(0.88).filled(),
@@ -1040,7 +1257,7 @@ fn draw_legend<DB: DrawingBackend>(
         RGBColor(160, 160, 160).stroke_width(1),
     ))
     .map_err(err)?;
-    for (k, (name, swatch)) in entries.iter().enumerate() {
+    for (k, (name, swatch)) in plan.entries.iter().enumerate() {
         let y = by + pad + row * (k as f64 + 0.35);
         let x0 = bx + pad;
         let x1 = x0 + swatch_w;
@@ -1060,7 +1277,26 @@ fn draw_legend<DB: DrawingBackend>(
                 }
                 other => draw_pixel_line(area, &[(x0, y), (x1, y)], *other, *c, m)?,
             },
-            Swatch::Marker(shape, c) => draw_marker(area, (0.5 * (x0 + x1), y), *shape, *c, m)?,
+            Swatch::Marker(shape, cols) => {
+                // Up to four colours side by side, smaller when there are several.
+                let k = cols.len().clamp(1, 4);
+                let step = (x1 - x0) / k as f64;
+                let mm = Metrics {
+                    s: if k > 1 { m.s * 0.75 } else { m.s },
+                };
+                for (i, c) in cols.iter().take(4).enumerate() {
+                    draw_marker(area, (x0 + step * (i as f64 + 0.5), y), *shape, *c, &mm)?;
+                }
+            }
+            Swatch::Hatch(c, k) => {
+                let poly = [
+                    (x0, y - 5.0 * m.s),
+                    (x1, y - 5.0 * m.s),
+                    (x1, y + 5.0 * m.s),
+                    (x0, y + 5.0 * m.s),
+                ];
+                draw_hatched(area, &poly, *c, *k, m)?;
+            }
             Swatch::Fill(c) => {
                 area.draw(&Rectangle::new(
                     [ipt((x0, y - 5.0 * m.s)), ipt((x1, y + 5.0 * m.s))],

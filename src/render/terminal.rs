@@ -116,8 +116,8 @@ pub fn render_panel(panel: &Panel, area: Rect, buf: &mut Buffer) {
                 marker: TuiMarker::Braille,
                 kind: GraphType::Line,
             }),
-            Style::Unstable | Style::Reference => {
-                let (on, off) = if s.style == Style::Unstable {
+            Style::Unstable | Style::Dashed | Style::Reference => {
+                let (on, off) = if s.style != Style::Reference {
                     (0.02, 0.015)
                 } else {
                     (0.004, 0.012)

@@ -253,10 +253,10 @@ crate::scene_params! {
         sigma1_over_ho: f64 = 0.5, unit = "", range = Range::open(0.0, 1.0e3);
         /// Larger roughness θ₂ = σ_rms/h_o.
         sigma2_over_ho: f64 = 2.0, unit = "", range = Range::open(0.0, 1.0e3);
-        /// Separation where the approach starts and the retraction ends, in units of σ_rms (far enough that every asperity has detached, about 3σ + h_o).
-        start_separation_sigma: f64 = 5.0, unit = "", range = Range::open(-10.0, 10.0);
-        /// Minimum separation d_min reached on loading, in units of σ_rms.
-        min_separation_sigma: f64 = -1.0, unit = "", range = Range::open(-10.0, 10.0);
+        /// Separation d/h_o where the approach starts and the retraction ends, the same for both surfaces (far enough that every asperity of the rougher one has detached, about 3σ_rms + h_o).
+        start_separation_ho: f64 = 8.0, unit = "", range = Range::open(-1.0e4, 1.0e4);
+        /// Minimum separation d_min/h_o reached on loading, the same for both surfaces.
+        min_separation_ho: f64 = -1.0, unit = "", range = Range::open(-1.0e4, 1.0e4);
         /// Separations per phase.
         points: usize = 241, unit = "", range = Range::between(10.0, 1.0e5);
     }
@@ -301,11 +301,11 @@ impl Scene for Fig1_4b {
     ];
 
     fn validate(p: &Self::Params) -> Result<()> {
-        if p.min_separation_sigma >= p.start_separation_sigma {
+        if p.min_separation_ho >= p.start_separation_ho {
             return Err(Error::invalid(
-                "min_separation_sigma",
-                p.min_separation_sigma,
-                "must be below start_separation_sigma",
+                "min_separation_ho",
+                p.min_separation_ho,
+                "must be below start_separation_ho",
             ));
         }
         Ok(())
@@ -317,7 +317,7 @@ impl Scene for Fig1_4b {
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
         let mut panel = Panel::new(
-            Axis::linear("Separation d/σ_rms", ""),
+            Axis::linear("Separation d/h_o", ""),
             Axis::linear("Total force P/(N P_o)", ""),
         );
         let mut fig = Figure::new(Self::ID, Self::TITLE);
@@ -326,15 +326,13 @@ impl Scene for Fig1_4b {
             job.check()?;
             job.progress(k as f64 / 2.0, &format!("roughness {}/2", k + 1));
             let ft = FullerTabor::new(theta)?;
-            let cycle = ft.cycle(
-                p.start_separation_sigma * theta,
-                p.min_separation_sigma * theta,
-                p.points,
-            )?;
+            // One separation axis and one d_min for both surfaces, as in the dissertation's
+            // figure: scaling each curve by its own σ_rms would load both to the same
+            // contact fraction and make their normalised losses equal.
+            let cycle = ft.cycle(p.start_separation_ho, p.min_separation_ho, p.points)?;
             let name = format!("σ_rms/h_o = {theta}");
-            let scale = |v: &[(f64, f64)]| v.iter().map(|&(d, f)| (d / theta, f)).collect::<Vec<_>>();
-            let loading = scale(&cycle.loading);
-            let unloading = scale(&cycle.unloading);
+            let loading = cycle.loading.clone();
+            let unloading = cycle.unloading.clone();
             // Arrows show the direction of travel: approach to the left, retraction to the right.
             // Both branches are stored in the order of travel.
             for branch in [&loading, &unloading] {
@@ -347,7 +345,7 @@ impl Scene for Fig1_4b {
                 Marker::new(
                     "adhesive force",
                     MarkerShape::PullOff,
-                    cycle.adhesive_force_separation / theta,
+                    cycle.adhesive_force_separation,
                     cycle.adhesive_force,
                 )
                 .with_color(k),
@@ -356,7 +354,7 @@ impl Scene for Fig1_4b {
             fig.result(format!("energy_loss_{}_norm", k + 1), cycle.energy_loss);
             fig.result(
                 format!("contact_fraction_{}_norm", k + 1),
-                ft.contact_fraction(p.min_separation_sigma * theta)?,
+                ft.contact_fraction(p.min_separation_ho)?,
             );
             if job.wants_preview() {
                 let mut preview = fig.clone();

@@ -732,7 +732,7 @@ impl Scene for Fig2_5Accuracy {
                 by_setting_off
                     .add(Series::new(format!("pull-off, {name}"), Style::Stable, off_pts).with_color(k));
                 by_setting_off
-                    .add(Series::new(format!("hysteresis, {name}"), Style::Unstable, h_pts).with_color(k));
+                    .add(Series::new(format!("hysteresis, {name}"), Style::Dashed, h_pts).with_color(k));
             }
             if p.time_runs {
                 let style = if off_t.len() == 1 {
@@ -744,7 +744,7 @@ impl Scene for Fig2_5Accuracy {
                 let style = if h_t.len() == 1 {
                     Style::Scatter
                 } else {
-                    Style::Unstable
+                    Style::Dashed
                 };
                 by_time.add(Series::new(format!("hysteresis, {name}"), style, h_t).with_color(k));
             }

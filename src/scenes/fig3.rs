@@ -104,25 +104,72 @@ pub(crate) fn draw_md(
         .into_iter()
         .map(|(d, p)| (d + onset, p))
         .collect();
-    panel.shade(format!("{name} loss"), loop_pts, Some(color));
+    panel.hatch(format!("{name} loss"), loop_pts, Some(color));
     Ok(cycle.loss)
+}
+
+/// The contact radius ā at which the contact branch reaches the depth `depth` (h/R, negative
+/// in compression), so that every curve of a panel is drawn to the same depth.
+///
+/// # Errors
+/// Root-finding failures of the contact branch.
+pub(crate) fn radius_at_depth(md: &MaugisDugdale, depth: f64) -> Result<f64> {
+    let fold_a = md.cycle()?.pull_off_from.a;
+    let mut lo = fold_a.max(1e-6);
+    if md.contact_state(lo)?.h <= depth {
+        return Ok(lo);
+    }
+    let mut hi = (2.0 * lo).max(0.05);
+    while md.contact_state(hi)?.h > depth {
+        lo = hi;
+        hi *= 2.0;
+        if hi > 1.0e3 {
+            return Ok(hi);
+        }
+    }
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if md.contact_state(mid)?.h > depth {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Ok(hi)
+}
+
+/// A classical curve (chapter 1's sign of h flipped) sampled densely in ā and cut at the depth
+/// `depth` (h/R, negative in compression).
+fn classical_to_depth(f: impl Fn(f64) -> (f64, f64), depth: f64, n: usize) -> Vec<(f64, f64)> {
+    let n = 8 * n;
+    let mut out = Vec::with_capacity(n + 1);
+    for i in 0..=n {
+        let a = 2.0 * (i as f64 / n as f64).powi(2);
+        let (h, p) = f(a);
+        out.push((h, p));
+        if h < depth {
+            break;
+        }
+    }
+    out
 }
 
 crate::scene_params! {
     /// Parameters of scene fig3.4. The dissertation gives ℓ = 0.1 for (a) and χ = 0.2 for (b)
-    /// but not the values of the swept parameter; these span the DMT end, the transition and
-    /// the JKR end.
+    /// but not the values of the swept parameter; these span the DMT end (χ = 0.002, whose
+    /// interaction starts far outside the frame at Z0), the transition and the JKR end (χ = 20), and in (b) the
+    /// Hertz end (ℓ = 0.01) to strong adhesion.
     pub struct Fig3_4Params {
         /// ℓ = πw/(E*R) of panel (a), Eq. (3.1).
         ell_a: f64 = 0.1, unit = "", range = Range::positive();
         /// χ = w/(E*Z₀) values of panel (a), Eq. (3.2).
-        chis_a: Vec<f64> = vec![0.1, 0.3, 1.0, 5.0], unit = "", range = Range::positive();
+        chis_a: Vec<f64> = vec![0.002, 0.05, 0.2, 20.0], unit = "", range = Range::positive();
         /// χ of panel (b).
         chi_b: f64 = 0.2, unit = "", range = Range::positive();
         /// ℓ values of panel (b).
-        ells_b: Vec<f64> = vec![0.001, 0.01, 0.05, 0.1], unit = "", range = Range::positive();
-        /// Largest contact radius drawn, ā = a/R.
-        radius_max: f64 = 0.6, unit = "", range = Range::open(0.0, 10.0);
+        ells_b: Vec<f64> = vec![0.01, 0.05, 0.1, 0.2], unit = "", range = Range::positive();
+        /// Deepest indentation drawn, h/R (negative in compression): every curve is followed into compression to this depth.
+        depth_min: f64 = -0.2, unit = "", range = Range::open(-10.0, 0.0);
         /// Points per branch.
         points: usize = 200, unit = "", range = Range::between(10.0, 1.0e5);
     }
@@ -174,8 +221,7 @@ impl Scene for Fig3_4 {
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
         job.check()?;
         let n = p.points;
-        let a_max = p.radius_max;
-        let grid: Vec<f64> = (0..=n).map(|i| a_max * i as f64 / n as f64).collect();
+        let depth = p.depth_min;
         let axes = || {
             (
                 Axis::linear("Indentation depth h/R", ""),
@@ -193,7 +239,7 @@ impl Scene for Fig3_4 {
             Series::new(
                 "JKR (χ → ∞)",
                 Style::Reference,
-                grid.iter().map(|&r| (-c.jkr(r).h, c.jkr(r).p / 2.0)).collect(),
+                classical_to_depth(|r| (-c.jkr(r).h, c.jkr(r).p / 2.0), depth, n),
             )
             .with_color(7),
         );
@@ -201,7 +247,7 @@ impl Scene for Fig3_4 {
             Series::new(
                 "DMT (χ → 0)",
                 Style::Reference,
-                grid.iter().map(|&r| (-c.dmt(r).h, c.dmt(r).p / 2.0)).collect(),
+                classical_to_depth(|r| (-c.dmt(r).h, c.dmt(r).p / 2.0), depth, n),
             )
             .with_color(8),
         );
@@ -210,7 +256,31 @@ impl Scene for Fig3_4 {
             job.check()?;
             job.progress(k as f64 / total, &format!("(a) chi = {chi}"));
             let md = MaugisDugdale::new(chi, p.ell_a)?;
+            let a_max = radius_at_depth(&md, depth)?;
             losses_a.push(draw_md(&mut a, &md, &format!("χ = {chi}"), k, a_max, n)?);
+        }
+        // The DMT end starts its interaction at Z0 = ℓR/(πχ), far to the right of the other
+        // curves: frame the contact region and say where its instabilities lie.
+        let mut onsets: Vec<(f64, f64)> = p
+            .chis_a
+            .iter()
+            .map(|&chi| (MaugisDugdale::new(chi, p.ell_a).map(|m| m.onset_depth()), chi))
+            .map(|(o, chi)| o.map(|o| (o, chi)))
+            .collect::<Result<_>>()?;
+        onsets.sort_by(|u, v| u.0.total_cmp(&v.0));
+        if let [.., second, last] = onsets[..]
+            && last.0 > 3.0 * second.0
+        {
+            a.x = a.x.clone().with_range(
+                depth - 0.05 * (second.0 - depth),
+                second.0 + 0.25 * (second.0 - depth),
+            );
+            fig.note(format!(
+                "(a): the curve chi = {} starts at Z0, h/R = {:.3}, outside the frame; its pull-in and pull-off lie there (loss {:.2e})",
+                last.1,
+                last.0,
+                losses_a[p.chis_a.iter().position(|&c| c == last.1).unwrap_or(0)]
+            ));
         }
         fig.panels.push(a);
         if job.wants_preview() {
@@ -225,9 +295,7 @@ impl Scene for Fig3_4 {
             Series::new(
                 "Hertz (ℓ → 0)",
                 Style::Reference,
-                grid.iter()
-                    .map(|&r| (-hz.hertz(r).h, hz.hertz(r).p / 2.0))
-                    .collect(),
+                classical_to_depth(|r| (-hz.hertz(r).h, hz.hertz(r).p / 2.0), depth, n),
             )
             .with_color(7),
         );
@@ -236,6 +304,7 @@ impl Scene for Fig3_4 {
             job.check()?;
             job.progress((p.chis_a.len() + k) as f64 / total, &format!("(b) ell = {ell}"));
             let md = MaugisDugdale::new(p.chi_b, ell)?;
+            let a_max = radius_at_depth(&md, depth)?;
             losses_b.push(draw_md(&mut b, &md, &format!("ℓ = {ell}"), k, a_max, n)?);
         }
         fig.panels.push(b);
@@ -702,8 +771,8 @@ crate::scene_params! {
         grid_points: usize = 60, unit = "", range = Range::between(3.0, 1000.0);
         /// Measured loss per nominal area, drawn as its own contour.
         measured_level: f64 = 0.0241, unit = "J/m^2", range = Range::positive();
-        /// Loss per asperity: exact (3.4) through the table, empirical (3.6), or quadrature.
-        loss: LossChoice = LossChoice::Exact, unit = "", range = Range::any();
+        /// Loss per asperity: empirical (3.6) as the dissertation's figure, exact (3.4) through the table, or quadrature; the other of empirical and exact is drawn beside it.
+        loss: LossChoice = LossChoice::Empirical, unit = "", range = Range::any();
         /// Nominal area change in (a): approx 4 R_t |h_min| (B.2.3) or exact (B.2.2).
         area: AreaChoice = AreaChoice::Approx, unit = "", range = Range::any();
         /// Points per curve of (a), (b).
@@ -809,6 +878,15 @@ impl Fig3_8Params {
     }
 }
 
+/// How a loss method is named on the figure.
+fn loss_label(method: LossMethod) -> &'static str {
+    match method {
+        LossMethod::Empirical => "empirical loss (3.6)",
+        LossMethod::Table => "exact loss (3.4)",
+        LossMethod::Quadrature => "exact loss (3.4), quadrature",
+    }
+}
+
 /// Fig. 3.8: depth-dependent loss, loss per area, and its contour over (Z₀, σ_rms).
 pub struct Fig3_8;
 
@@ -820,7 +898,9 @@ impl Scene for Fig3_8 {
     const CAPTION: &'static str = "(a) Depth-dependent loss (3.15) vs maximum depth for (Z0, sigma_rms) = (24 nm, 12.2 nm) \
         and (96 nm, 3 nm); (b) loss per nominal area (3.19), the measured 0.0241 J/m^2 dashed; (c) contour of the \
         loss per area over (Z0, sigma_rms) with the measured level as its own line. PSD (3.16)-(3.17) scaled by k, \
-        Nayak statistics (3.7)-(3.11), MD loss per asperity (3.4) exact or empirical (3.6), JKR area (B.2).";
+        Nayak statistics (3.7)-(3.11), JKR area (B.2). MD loss per asperity: the empirical (3.6), as the \
+        dissertation's figure; the exact loss (3.4) is drawn beside it (lighter lines in (b), the dashed measured line in (c)): \
+        with it the two pairs no longer agree (0.0221 vs 0.0375 J/m^2) and lie off the measured line.";
     const RESULTS: &'static [(&'static str, &'static str)] = &[
         (
             "loss_per_area_1_J_per_m2",
@@ -925,14 +1005,23 @@ impl Scene for Fig3_8 {
             Axis::linear("Maximum depth |h_min|", "nm"),
             Axis::linear("ΔE_D", e_unit),
         )
-        .titled("(a)", "depth-dependent loss (3.15)");
+        .titled(
+            "(a)",
+            format!("depth-dependent loss (3.15), {}", loss_label(method)),
+        );
         let mut b = Panel::new(
             Axis::linear("Maximum depth |h_min|", "nm"),
             Axis::linear("ΔE_D/(4 R_t |h_min|)", "J/m²"),
         )
         .titled("(b)", "loss per nominal area (3.19)");
+        let main_label = loss_label(method);
         for (k, ((z0, sigma), &pa)) in pairs.iter().zip(&per_area).enumerate() {
-            let name = format!("Z0 = {:.0} nm, σ_rms = {:.1} nm", z0 / nm, sigma / nm);
+            let name = format!(
+                "pair {}: Z0 = {:.0} nm, σ_rms = {:.1} nm",
+                k + 1,
+                z0 / nm,
+                sigma / nm
+            );
             let style = if k == 0 { Style::Stable } else { Style::Reference };
             let area = |d: f64| -> Result<f64> {
                 match p.area {
@@ -950,7 +1039,36 @@ impl Scene for Fig3_8 {
                 .map(|&d| Ok((d / nm, pa * area(d)? / area_change_approx(p.tip_radius, d))))
                 .collect::<Result<_>>()?;
             a.add(Series::new(name.clone(), style, loss).with_color(k));
-            b.add(Series::new(name, style, per).with_color(k));
+            b.add(Series::new(format!("pair {}, {main_label}", k + 1), style, per).with_color(k));
+        }
+        // The other loss (exact beside empirical, or empirical beside exact): the difference
+        // between them is a finding, so it is drawn rather than left to a parameter.
+        let other = if method == LossMethod::Empirical {
+            LossMethod::Table
+        } else {
+            LossMethod::Empirical
+        };
+        let other_name = if other == LossMethod::Table {
+            "exact loss (3.4)"
+        } else {
+            "empirical loss (3.6)"
+        };
+        for (k, m) in models.iter().enumerate() {
+            let pa = m.loss_per_area(other)?;
+            let per: Vec<(f64, f64)> = depths
+                .iter()
+                .skip(1)
+                .map(|&d| {
+                    let area = match p.area {
+                        AreaChoice::Approx => area_change_approx(p.tip_radius, d),
+                        AreaChoice::Exact => jkr.area_change(d)?,
+                    };
+                    Ok((d / nm, pa * area / area_change_approx(p.tip_radius, d)))
+                })
+                .collect::<Result<_>>()?;
+            let style = if k == 0 { Style::Stable } else { Style::Reference };
+            // Lighter shades of the pair's colour: sky blue beside blue, orange beside vermillion.
+            b.add(Series::new(format!("pair {}, {other_name}", k + 1), style, per).with_color(5 - k));
         }
         b.add(
             Series::new(
@@ -960,6 +1078,13 @@ impl Scene for Fig3_8 {
             )
             .with_color(7),
         );
+        // From zero: the figure is about a loss per area that does not depend on depth.
+        let b_top = b
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter().map(|q| q.1))
+            .fold(p.measured_level, f64::max);
+        b.y = b.y.clone().with_range(0.0, 1.2 * b_top);
         let mut fig = Figure::new(Self::ID, Self::TITLE).with_panel(a).with_panel(b);
         if job.wants_preview() {
             job.preview(&fig);
@@ -983,8 +1108,20 @@ impl Scene for Fig3_8 {
             .highlight
             .push((p.measured_level, format!("measured {} J/m²", p.measured_level)));
         let mut c = Panel::new(Axis::linear("Z0", "nm"), Axis::linear("σ_rms", "nm"))
-            .titled("(c)", "loss per nominal area");
+            .titled("(c)", format!("loss per nominal area, {}", loss_label(method)));
         c.field = Some(field);
+        // Where the measured level lies with the other loss.
+        let (zs2, ss2, values2) = p.loss_grid(other, p.grid_points, job)?;
+        let other_field = Field::heat(
+            "other",
+            "",
+            zs2.iter().map(|z| z / nm).collect(),
+            ss2.iter().map(|s| s / nm).collect(),
+            values2,
+        );
+        for line in other_field.contour(p.measured_level) {
+            c.add(Series::new(format!("measured level, {other_name}"), Style::Dashed, line).with_color(1));
+        }
         for (k, (z0, sigma)) in pairs.iter().enumerate() {
             c.mark(Marker::new("pair", MarkerShape::Point, z0 / nm, sigma / nm).with_color(k));
         }

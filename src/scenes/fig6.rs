@@ -448,8 +448,8 @@ fn run_map(
         filled: true,
     };
     pa.field = Some(field);
-    pa.add(Series::new("max over θ", Style::Stable, lines[0].clone()).with_color(YELLOW));
-    pa.add(Series::new("min over θ", Style::Stable, lines[1].clone()).with_color(PURPLE));
+    pa.add(Series::new("max over θ", Style::Dashed, lines[0].clone()).with_color(YELLOW));
+    pa.add(Series::new("min over θ", Style::Dashed, lines[1].clone()).with_color(PURPLE));
     let mut pb = Panel::new(x_axis(), y_axis()).titled("(b)", "effective work of adhesion w_e/w");
     let mut field = Field::heat("w_e/w", "", a_grid, t_grid, wratio);
     field.kind = FieldKind::Contour {
@@ -457,8 +457,8 @@ fn run_map(
         filled: true,
     };
     pb.field = Some(field);
-    pb.add(Series::new("max over θ", Style::Stable, lines[2].clone()).with_color(YELLOW));
-    pb.add(Series::new("min over θ", Style::Stable, lines[3].clone()).with_color(PURPLE));
+    pb.add(Series::new("max over θ", Style::Dashed, lines[2].clone()).with_color(YELLOW));
+    pb.add(Series::new("min over θ", Style::Dashed, lines[3].clone()).with_color(PURPLE));
     pb.add(Series::new(format!("fit {fit_eq}"), Style::Reference, lines[4].clone()).with_color(BLACK));
     let mut fig = Figure::new("", "");
     fig.panels = vec![pa, pb];

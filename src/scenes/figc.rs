@@ -145,10 +145,29 @@ impl Scene for FigC1 {
                 )
                 .with_color(k),
             );
-            let mut panel = Panel::new(Axis::linear("x/L", ""), Axis::linear("y/L", ""))
-                .titled(LETTERS[k], format!("L_c = {lc}"));
+            // The cells span [0, 1) on both axes: square maps drawn square.
+            let edge = (-0.5 / n as f64, 1.0 - 0.5 / n as f64);
+            let mut panel = Panel::new(
+                Axis::linear("x/L", "").with_range(edge.0, edge.1),
+                Axis::linear("y/L", "").with_range(edge.0, edge.1),
+            )
+            .titled(LETTERS[k], format!("L_c = {lc}"))
+            .with_equal_aspect();
             panel.field = Some(Field::heat("Height z", "", coords.clone(), coords.clone(), map.z));
             fig = fig.with_panel(panel);
+        }
+        // One colour scale for every map, so that they compare.
+        let range = fig
+            .panels
+            .iter()
+            .filter_map(|p| p.field.as_ref()?.value_range())
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), (a, b)| {
+                (lo.min(a), hi.max(b))
+            });
+        if range.0 < range.1 {
+            for f in fig.panels.iter_mut().filter_map(|p| p.field.as_mut()) {
+                f.color_range = Some(range);
+            }
         }
         fig = fig.with_panel(profiles);
         fig.result("rms_max_error_norm", rms_err);

@@ -166,7 +166,7 @@ fn invalid_values_are_rejected_with_the_parameter_named() {
             "--figure",
             "fig1.4b",
             "--set",
-            "min_separation_sigma=6",
+            "min_separation_ho=9",
         ],
         "must be below",
     );

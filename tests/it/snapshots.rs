@@ -2,8 +2,11 @@
 //! `tests/fixtures/snapshots/<id>.csv` row by row: the same panel, series and style, and
 //! numbers equal to 1e-7 relative (plus 1e-12 of the column's range, for values near zero).
 //! Regenerate after an intended change with `UPDATE_SNAPSHOTS=1 cargo test --release snapshots`
-//! and review the diff.
+//! and review the diff. The same quick figures are checked for legends that cover data.
 
+use std::sync::OnceLock;
+
+use adhesion::figure::Figure;
 use adhesion::job::Job;
 use adhesion::render::data::{csv, parse_csv};
 use adhesion::scenes;
@@ -12,18 +15,56 @@ use crate::common::root;
 
 const REL_TOL: f64 = 1e-7;
 
+/// Every scene's figure in quick mode, computed once for the tests of this module.
+fn quick_figures() -> &'static [(&'static str, Figure)] {
+    static FIGS: OnceLock<Vec<(&'static str, Figure)>> = OnceLock::new();
+    FIGS.get_or_init(|| {
+        scenes::all()
+            .iter()
+            .map(|s| {
+                let id = s.info().id;
+                let values = s.quick(&s.defaults()).unwrap();
+                let fig = s
+                    .run(&values, &Job::quiet())
+                    .unwrap_or_else(|e| panic!("{id}: {e}"));
+                (id, fig)
+            })
+            .collect()
+    })
+}
+
+/// No legend box holds a series point or a marker, in any panel of any scene (the legend
+/// placement as the PNG renderer computes it).
+#[test]
+fn legends_cover_no_data_point_in_any_scene() {
+    let mut failures = Vec::new();
+    for (id, fig) in quick_figures() {
+        for (k, layout) in adhesion::render::plot::panel_layouts(fig).into_iter().enumerate() {
+            let Some(layout) = layout else { continue };
+            let Some((x0, y0, x1, y1)) = layout.legend else {
+                continue;
+            };
+            let inside = layout
+                .points
+                .iter()
+                .filter(|p| p.0 >= x0 && p.0 <= x1 && p.1 >= y0 && p.1 <= y1)
+                .count();
+            if inside > 0 {
+                failures.push(format!("{id} panel {}: {inside} points under the legend", k + 1));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 #[test]
 fn exported_csv_matches_the_stored_fixtures() {
     let update = std::env::var_os("UPDATE_SNAPSHOTS").is_some();
     let dir = root().join("tests/fixtures/snapshots");
     let mut failures = Vec::new();
-    for s in scenes::all() {
-        let id = s.info().id;
-        let values = s.quick(&s.defaults()).unwrap();
-        let fig = s
-            .run(&values, &Job::quiet())
-            .unwrap_or_else(|e| panic!("{id}: {e}"));
-        let got = csv(&fig);
+    for (id, fig) in quick_figures() {
+        let id = *id;
+        let got = csv(fig);
         let path = dir.join(format!("{id}.csv"));
         if update {
             std::fs::create_dir_all(&dir).unwrap();

@@ -312,7 +312,7 @@ fn width_panels(s: &Sweep) -> (Panel, Panel) {
     for (color, &n) in s.counts.iter().enumerate() {
         let runs = s.width_runs(n);
         let label = format!("{n} Gauss point{}", if n == 1 { "" } else { "s" });
-        for (k, (name, style)) in [("P_adh", Style::Stable), ("H", Style::Unstable)]
+        for (k, (name, style)) in [("P_adh", Style::Stable), ("H", Style::Dashed)]
             .into_iter()
             .enumerate()
         {
@@ -354,7 +354,7 @@ fn step_panels(s: &Sweep) -> (Panel, Panel) {
     let mut e = Panel::new(Axis::log("Depth step Δh/ζ0", ""), Axis::log("Relative error", ""))
         .titled("(e)", format!("error against step (h = {} b)", s.default.width));
     let reference = s.step_reference();
-    for (k, (name, style)) in [("P_adh", Style::Stable), ("H", Style::Unstable)]
+    for (k, (name, style)) in [("P_adh", Style::Stable), ("H", Style::Dashed)]
         .into_iter()
         .enumerate()
     {
@@ -395,7 +395,7 @@ fn cost_panel(s: &Sweep) -> Panel {
         .into_iter()
         .filter(|r| r.grid.step > s.finest_step())
         .collect();
-    for (k, (name, style)) in [("P_adh", Style::Stable), ("H", Style::Unstable)]
+    for (k, (name, style)) in [("P_adh", Style::Stable), ("H", Style::Dashed)]
         .into_iter()
         .enumerate()
     {

@@ -813,7 +813,7 @@ impl Analysis<'_> {
         b.add(
             Series::new(
                 "z0 read as the undeformed apex gap",
-                Style::Unstable,
+                Style::Dashed,
                 shown(&e.error_undeformed),
             )
             .with_color(7),
