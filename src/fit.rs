@@ -30,7 +30,9 @@ use crate::error::{Error, Result};
 use crate::figure::{Axis, Figure, Series, Style};
 use crate::models::machine_stiffness::{Experiment, Instability, TipGeometry, sphere_radius_at_depth};
 use crate::numerics::least_squares::{LmOptions, levenberg_marquardt};
-use crate::scenes::fig2::{Predictions, ph_panel, predictions};
+pub mod predictions;
+
+pub use predictions::{Predictions, ph_panel, predictions};
 
 /// Options of the `--fit` command (flattened into [`crate::cli::Cli`]).
 #[derive(Debug, Clone, Default, clap::Args)]

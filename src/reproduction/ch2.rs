@@ -8,8 +8,8 @@
 
 use super::{Claim, Expect, Precision};
 use crate::error::Result;
+use crate::fit::predictions::predictions;
 use crate::models::machine_stiffness::{Accuracy, Experiment, MachineStiffness, TipGeometry, TipShape};
-use crate::scenes::fig2::predictions;
 
 const SOFT: f64 = 1e-9;
 const STIFF: f64 = 1e9;
@@ -151,7 +151,7 @@ pub fn claims() -> Vec<Claim> {
             quantity: "Sun et al.: JKR pull-off -5 pi w R/6 [nN]",
             printed: "-9.59",
             precision: Precision::Printed,
-            code: "scenes::fig2::predictions",
+            code: "fit::predictions::predictions",
             compute: || Ok(predictions(&sun()?)?.jkr_pull_off_force * 1e9),
             expect: Expect::Differs(
                 "-5 pi w R/6 = -9.5965 nN, which rounds to -9.60; the printed -9.59 truncates it \
@@ -201,7 +201,7 @@ pub fn claims() -> Vec<Claim> {
             quantity: "Notbohm et al.: JKR pull-off -5 pi w R/6 [nN]",
             printed: "-167.5",
             precision: Precision::Printed,
-            code: "scenes::fig2::predictions",
+            code: "fit::predictions::predictions",
             compute: || Ok(predictions(&notbohm()?)?.jkr_pull_off_force * 1e9),
             expect: Expect::Differs(
                 "-5 pi w R/6 with w = 25.7 mJ/m^2 and R = 2.5 um is -168.2 nN; the printed -167.5 nN \
