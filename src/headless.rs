@@ -83,29 +83,116 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
     }
     if cli.all {
         let mut failed = 0;
+        let mut gallery = Vec::new();
         for scene in scenes::all() {
             let id = scene.info().id;
+            let info = scene.info();
             // Sweeps (minutes each at their defaults) run in their quick form here.
             let outcome = resolve_values(scene, None, &[], cli.quick || scene.info().sweep)
                 .and_then(|values| export_scene(scene, &values, &cli.out, &formats, &progress_job(id)));
+            let image = [Format::Png, Format::Svg]
+                .into_iter()
+                .find(|f| formats.contains(f))
+                .map(|f| format!("{id}.{}", f.extension()));
             match outcome {
                 Ok(paths) => {
                     for p in paths {
                         println!("{}", p.display());
                     }
+                    gallery.push(GalleryEntry {
+                        id,
+                        title: info.title,
+                        caption: info.caption,
+                        image,
+                        error: None,
+                    });
                 }
                 Err(e) => {
                     failed += 1;
                     eprintln!("error: {id}: {e}");
+                    gallery.push(GalleryEntry {
+                        id,
+                        title: info.title,
+                        caption: info.caption,
+                        image: None,
+                        error: Some(format!("{e:#}")),
+                    });
                 }
             }
         }
+        let index = cli.out.join("index.html");
+        crate::render::write_atomic(&index, gallery_html(&gallery).as_bytes())?;
+        println!("{}", index.display());
         if failed > 0 {
             bail!("{failed} scene(s) failed");
         }
         return Ok(ExitCode::SUCCESS);
     }
     bail!("nothing to do: give --figure ID, --all or --reproduce (see --help)")
+}
+
+/// One figure of the gallery page.
+#[derive(Debug, Clone)]
+pub struct GalleryEntry {
+    /// Scene id.
+    pub id: &'static str,
+    /// Title.
+    pub title: &'static str,
+    /// Caption.
+    pub caption: &'static str,
+    /// Image file name next to the page (PNG, else SVG), if one was written.
+    pub image: Option<String>,
+    /// Why the scene failed, if it did.
+    pub error: Option<String>,
+}
+
+fn html_escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// The gallery page written by `--all`: every figure with its id, title and caption, so that a
+/// reader can check them all at once.
+pub fn gallery_html(entries: &[GalleryEntry]) -> String {
+    let mut out = String::from(
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n\
+         <title>adhesion: every figure</title>\n<style>body{font-family:sans-serif;max-width:1400px;\
+         margin:auto;padding:1em}figure{margin:2em 0;border-top:1px solid #ccc;padding-top:1em}\
+         img{max-width:100%}figcaption{max-width:60em}.error{color:#b00}</style></head><body>\n\
+         <h1>Figures of the adhesion workbench</h1>\n",
+    );
+    out.push_str("<ul>\n");
+    for e in entries {
+        out.push_str(&format!(
+            "<li><a href=\"#{id}\">{id}</a>: {t}</li>\n",
+            id = html_escape(e.id),
+            t = html_escape(e.title)
+        ));
+    }
+    out.push_str("</ul>\n");
+    for e in entries {
+        out.push_str(&format!("<figure id=\"{}\">\n", html_escape(e.id)));
+        if let Some(img) = &e.image {
+            out.push_str(&format!(
+                "<a href=\"{img}\"><img src=\"{img}\" alt=\"{}\" loading=\"lazy\"></a>\n",
+                html_escape(e.title),
+                img = html_escape(img)
+            ));
+        }
+        if let Some(err) = &e.error {
+            out.push_str(&format!("<p class=\"error\">failed: {}</p>\n", html_escape(err)));
+        }
+        out.push_str(&format!(
+            "<figcaption><b>{}</b> {}. {}</figcaption>\n</figure>\n",
+            html_escape(e.id),
+            html_escape(e.title),
+            html_escape(e.caption)
+        ));
+    }
+    out.push_str("</body></html>\n");
+    out
 }
 
 /// Parse the `--format` list.
@@ -372,5 +459,35 @@ fn reproduce_command(out: &Path) -> anyhow::Result<ExitCode> {
             reason: "some claims changed status (marked UNEXPECTED)".into(),
         }
         .into())
+    }
+}
+
+#[cfg(test)]
+mod gallery_tests {
+    use super::*;
+
+    #[test]
+    fn gallery_shows_every_figure_with_its_caption_and_escapes_text() {
+        let entries = vec![
+            GalleryEntry {
+                id: "fig1.1",
+                title: "JKR",
+                caption: "P < 0 & pull-off",
+                image: Some("fig1.1.png".into()),
+                error: None,
+            },
+            GalleryEntry {
+                id: "fig9.9",
+                title: "broken",
+                caption: "c",
+                image: None,
+                error: Some("no bracket".into()),
+            },
+        ];
+        let html = gallery_html(&entries);
+        assert!(html.contains("<img src=\"fig1.1.png\""));
+        assert!(html.contains("P &lt; 0 &amp; pull-off"));
+        assert!(html.contains("failed: no bracket"));
+        assert_eq!(html.matches("<figure").count(), 2);
     }
 }

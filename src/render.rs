@@ -1,5 +1,6 @@
 //! Renderers of a [`crate::figure::Figure`]: PNG and SVG through plotters ([`plot`]), CSV and
-//! JSON ([`data`]), and a ratatui chart for the terminal ([`terminal`]). All file output is
+//! JSON ([`data`]), and a ratatui chart for the terminal ([`terminal`]); labels in a small math
+//! markup laid out with the embedded font ([`text`]). All file output is
 //! atomic ([`write_atomic`]): a temporary file in the target folder, renamed on success.
 
 pub mod axes;

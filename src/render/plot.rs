@@ -12,7 +12,7 @@ use std::sync::OnceLock;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use plotters::style::{FontDesc, FontFamily, FontStyle, FontTransform, RGBAColor};
+use plotters::style::{FontDesc, FontFamily, FontStyle, RGBAColor};
 
 use super::axes::{padded_range, ticks};
 use crate::error::{Error, Result};
@@ -42,9 +42,97 @@ pub fn palette(k: usize) -> (u8, u8, u8) {
 const PANEL_W: f64 = 620.0;
 const PANEL_H: f64 = 460.0;
 
-/// Layout constants at scale 1 (pixels).
+/// Layout constants at scale 1 (pixels), and for SVG output the raster images of the fields.
 struct Metrics {
     s: f64,
+    /// `Some` when drawing SVG: the heat maps go in as embedded PNG images, collected here.
+    images: Option<std::rc::Rc<std::cell::RefCell<Vec<String>>>>,
+    /// `Some` when drawing SVG: the labels in math markup, as `<text>` elements with
+    /// `<tspan>`s, appended after the drawing.
+    texts: Option<std::rc::Rc<std::cell::RefCell<Vec<String>>>>,
+}
+
+/// Horizontal and vertical anchor of a label.
+#[derive(Debug, Clone, Copy)]
+enum Anchor {
+    Start,
+    Middle,
+}
+
+#[derive(Debug, Clone, Copy)]
+enum Baseline {
+    Top,
+    Center,
+    Bottom,
+}
+
+/// Draw a label in math markup ([`super::text`]) at `at` with the given anchors: in PNG laid
+/// out and rasterised here (kerned, anti-aliased), in SVG as `<text>` with `<tspan>`s.
+/// `vertical` turns it to read bottom to top (y-axis labels).
+#[allow(clippy::too_many_arguments)]
+fn draw_label<DB: DrawingBackend>(
+    area: &Area<DB>,
+    text: &str,
+    at: (f64, f64),
+    anchor: (Anchor, Baseline),
+    size: f64,
+    bold: bool,
+    color: RGBColor,
+    vertical: bool,
+    m: &Metrics,
+) -> Draw<()> {
+    let l = super::text::layout(text, size, bold);
+    let dx = match anchor.0 {
+        Anchor::Start => 0.0,
+        Anchor::Middle => -0.5 * l.width,
+    };
+    let base = match anchor.1 {
+        Baseline::Top => l.ascent,
+        Baseline::Center => 0.5 * (l.ascent - l.descent),
+        Baseline::Bottom => -l.descent,
+    };
+    // Text coordinates (u along the text, v down from the baseline) to panel pixels.
+    let map = |u: f64, v: f64| {
+        if vertical {
+            (at.0 + v + base, at.1 - (u + dx))
+        } else {
+            (at.0 + u + dx, at.1 + v + base)
+        }
+    };
+    if let Some(texts) = &m.texts {
+        let (ox, oy) = area.get_base_pixel();
+        let (x, y) = map(-dx, 0.0);
+        let (x, y) = (x + f64::from(ox), y + f64::from(oy));
+        let anchor_name = match anchor.0 {
+            Anchor::Start => "start",
+            Anchor::Middle => "middle",
+        };
+        let rotate = if vertical {
+            format!(" transform=\"rotate(-90 {x:.1} {y:.1})\"")
+        } else {
+            String::new()
+        };
+        texts.borrow_mut().push(format!(
+            "<text x=\"{x:.1}\" y=\"{y:.1}\" font-family=\"DejaVu Sans, sans-serif\" font-size=\"{size:.1}\" \
+             font-weight=\"{}\" fill=\"#{:02X}{:02X}{:02X}\" text-anchor=\"{anchor_name}\"{rotate}>{}</text>",
+            if bold { "bold" } else { "normal" },
+            color.0,
+            color.1,
+            color.2,
+            super::text::svg_tspans(text)
+        ));
+        return Ok(());
+    }
+    let mut result = Ok(());
+    super::text::rasterize(&l, |u, v, c| {
+        let (x, y) = map(u, v);
+        if result.is_ok() {
+            result = area
+                .draw_pixel((x.round() as i32, y.round() as i32), &color.mix(c))
+                .map_err(err);
+        }
+    });
+    result
 }
 
 impl Metrics {
@@ -148,13 +236,20 @@ pub fn write_png(fig: &Figure, path: &Path) -> Result<()> {
 pub fn svg_string(fig: &Figure) -> Result<String> {
     register_fonts();
     let mut out = String::new();
+    let images = std::rc::Rc::new(std::cell::RefCell::new(Vec::new()));
+    let texts = std::rc::Rc::new(std::cell::RefCell::new(Vec::<String>::new()));
     {
         // Drawn at 2x so that the integer coordinates of the SVG backend resolve half a
         // nominal pixel; viewers scale the vector image freely.
         let scale = 2.0;
         let size = figure_size(fig, scale);
         let root = SVGBackend::with_string(&mut out, size).into_drawing_area();
-        draw(&root, fig, scale).map_err(|message| Error::Render {
+        let m = Metrics {
+            s: scale,
+            images: Some(std::rc::Rc::clone(&images)),
+            texts: Some(std::rc::Rc::clone(&texts)),
+        };
+        draw_with(&root, fig, m).map_err(|message| Error::Render {
             format: "svg",
             message,
         })?;
@@ -163,7 +258,111 @@ pub fn svg_string(fig: &Figure) -> Result<String> {
             message: e.to_string(),
         })?;
     }
-    Ok(out)
+    let out = embed_images(&out, &images.borrow());
+    let labels: String = texts.borrow().iter().map(|t| format!("{t}\n")).collect();
+    Ok(match out.rfind("</svg>") {
+        Some(end) => format!("{}{labels}{}", &out[..end], &out[end..]),
+        None => out,
+    })
+}
+
+/// Replace the placeholder rectangles of the heat maps (fill `#0102kk`, k the image index) by
+/// the embedded PNG images, at the rectangles' position and size.
+fn embed_images(svg: &str, images: &[String]) -> String {
+    let mut out = svg.to_string();
+    for (k, href) in images.iter().enumerate() {
+        let key = format!("fill=\"#0102{k:02X}\"");
+        let Some(at) = out.find(&key) else { continue };
+        let (Some(start), Some(end)) = (out[..at].rfind("<rect"), out[at..].find("/>")) else {
+            continue;
+        };
+        let end = at + end + 2;
+        let attr = |name: &str| -> String {
+            let tag = &out[start..end];
+            let pat = format!(" {name}=\"");
+            tag.find(&pat)
+                .and_then(|i| {
+                    let v = &tag[i + pat.len()..];
+                    v.find('"').map(|j| v[..j].to_string())
+                })
+                .unwrap_or_default()
+        };
+        let image = format!(
+            "<image x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" preserveAspectRatio=\"none\" \
+             style=\"image-rendering:pixelated\" href=\"data:image/png;base64,{href}\"/>",
+            attr("x"),
+            attr("y"),
+            attr("width"),
+            attr("height")
+        );
+        out.replace_range(start..end, &image);
+    }
+    out
+}
+
+/// Standard base64 (RFC 4648) with padding.
+fn base64(bytes: &[u8]) -> String {
+    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for c in bytes.chunks(3) {
+        let n = (u32::from(c[0]) << 16)
+            | (u32::from(*c.get(1).unwrap_or(&0)) << 8)
+            | u32::from(*c.get(2).unwrap_or(&0));
+        for (i, shift) in [18, 12, 6, 0].into_iter().enumerate() {
+            if i <= c.len() {
+                out.push(char::from(A[((n >> shift) & 63) as usize]));
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
+
+/// A heat map for SVG: rasterised at the frame's pixel size into a PNG that is embedded as an
+/// `<image>` (one element instead of one rectangle per cell); a placeholder rectangle keeps its
+/// place in the drawing order.
+fn draw_heat_raster<DB: DrawingBackend>(
+    area: &Area<DB>,
+    frame: &Frame,
+    field: &Field,
+    range: (f64, f64),
+    images: &std::cell::RefCell<Vec<String>>,
+) -> Draw<()> {
+    let w = (frame.x1 - frame.x0).round().max(1.0) as u32;
+    let h = (frame.y1 - frame.y0).round().max(1.0) as u32;
+    let mut rgb = vec![255u8; w as usize * h as usize * 3];
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
+        let local = Frame {
+            x0: 0.0,
+            x1: f64::from(w),
+            y0: 0.0,
+            y1: f64::from(h),
+            ..*frame
+        };
+        draw_heat(&root, &local, field, range)?;
+        root.present().map_err(err)?;
+    }
+    let mut png_bytes = Vec::new();
+    {
+        let mut enc = png::Encoder::new(&mut png_bytes, w, h);
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        enc.set_compression(png::Compression::Best);
+        let mut writer = enc.write_header().map_err(err)?;
+        writer.write_image_data(&rgb).map_err(err)?;
+    }
+    let k = images.borrow().len();
+    if k > 255 {
+        return Err("more than 256 heat maps in one figure".into());
+    }
+    images.borrow_mut().push(base64(&png_bytes));
+    area.draw(&Rectangle::new(
+        [ipt((frame.x0, frame.y0)), ipt((frame.x1, frame.y1))],
+        RGBColor(1, 2, k as u8).filled(),
+    ))
+    .map_err(err)
 }
 
 /// Render to an SVG file, atomically.
@@ -193,7 +392,19 @@ fn text_style(size: f64, bold: bool, color: RGBColor) -> TextStyle<'static> {
 
 /// Draw the whole figure onto `root`.
 fn draw<DB: DrawingBackend>(root: &Area<DB>, fig: &Figure, s: f64) -> Draw<()> {
-    let m = Metrics { s };
+    draw_with(
+        root,
+        fig,
+        Metrics {
+            s,
+            images: None,
+            texts: None,
+        },
+    )
+}
+
+/// Draw the whole figure onto `root` with the given metrics.
+fn draw_with<DB: DrawingBackend>(root: &Area<DB>, fig: &Figure, m: Metrics) -> Draw<()> {
     root.fill(&WHITE).map_err(err)?;
     let (w, _) = root.dim_in_pixel();
     let mut top = 0;
@@ -759,7 +970,11 @@ fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -
             FieldKind::Contour { filled, .. } => *filled,
         };
         if filled && let Some(range) = field.value_range() {
-            draw_heat(area, &frame, field, range)?;
+            if let Some(images) = &m.images {
+                draw_heat_raster(area, &frame, field, range, images)?;
+            } else {
+                draw_heat(area, &frame, field, range)?;
+            }
             bar_range = Some(range);
         }
     }
@@ -846,9 +1061,14 @@ fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -
         match series.style {
             Style::Scatter => {
                 for &p in &series.points {
+                    // Open circles: the lines under many data points stay visible.
                     if let Some(q) = frame.map(p).filter(|q| frame.inside(*q)) {
-                        area.draw(&Circle::new(ipt(q), m.px(3.2), color.filled()))
-                            .map_err(err)?;
+                        area.draw(&Circle::new(
+                            ipt(q),
+                            m.px(3.4),
+                            color.stroke_width(m.px(1.3).max(1) as u32),
+                        ))
+                        .map_err(err)?;
                     }
                 }
             }
@@ -895,9 +1115,17 @@ fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -
         if let Some(p) = frame.map((marker.x, marker.y)).filter(|p| frame.inside(*p)) {
             draw_marker(area, p, marker.shape, color, m)?;
             if let Some(label) = &marker.label {
-                let style = text_style(m.font(14.0), true, BLACK).pos(Pos::new(HPos::Left, VPos::Bottom));
-                area.draw_text(label, &style, ipt((p.0 + 7.0 * m.s, p.1 - 5.0 * m.s)))
-                    .map_err(err)?;
+                draw_label(
+                    area,
+                    label,
+                    (p.0 + 7.0 * m.s, p.1 - 5.0 * m.s),
+                    (Anchor::Start, Baseline::Bottom),
+                    m.font(14.0),
+                    true,
+                    BLACK,
+                    false,
+                    m,
+                )?;
             }
         }
     }
@@ -962,23 +1190,29 @@ fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -
         }
     }
     let label_font = m.font(15.0);
-    let xl_style = text_style(label_font, false, BLACK).pos(Pos::new(HPos::Center, VPos::Bottom));
-    area.draw_text(
+    draw_label(
+        area,
         &panel.x.title(),
-        &xl_style,
-        ipt((0.5 * (frame.x0 + frame.x1), h - 8.0 * m.s)),
-    )
-    .map_err(err)?;
-    let yl_style = text_style(label_font, false, BLACK)
-        .transform(FontTransform::Rotate270)
-        .pos(Pos::new(HPos::Center, VPos::Top));
+        (0.5 * (frame.x0 + frame.x1), h - 8.0 * m.s),
+        (Anchor::Middle, Baseline::Bottom),
+        label_font,
+        false,
+        BLACK,
+        false,
+        m,
+    )?;
     let yl_x = (frame.x0 - f64::from(widest) - 12.0 * m.s - label_font).max(4.0 * m.s);
-    area.draw_text(
+    draw_label(
+        area,
         &panel.y.title(),
-        &yl_style,
-        ipt((yl_x, 0.5 * (frame.y0 + frame.y1))),
-    )
-    .map_err(err)?;
+        (yl_x, 0.5 * (frame.y0 + frame.y1)),
+        (Anchor::Middle, Baseline::Top),
+        label_font,
+        false,
+        BLACK,
+        true,
+        m,
+    )?;
     let heading = match (panel.label.is_empty(), panel.title.is_empty()) {
         (true, true) => String::new(),
         (false, true) => panel.label.clone(),
@@ -986,9 +1220,17 @@ fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -
         (false, false) => format!("{} {}", panel.label, panel.title),
     };
     if !heading.is_empty() {
-        let style = text_style(m.font(15.0), true, BLACK).pos(Pos::new(HPos::Left, VPos::Bottom));
-        area.draw_text(&heading, &style, ipt((frame.x0, frame.y0 - 8.0 * m.s)))
-            .map_err(err)?;
+        draw_label(
+            area,
+            &heading,
+            (frame.x0, frame.y0 - 8.0 * m.s),
+            (Anchor::Start, Baseline::Bottom),
+            m.font(15.0),
+            true,
+            BLACK,
+            false,
+            m,
+        )?;
     }
 
     // Colour bar.
@@ -1206,7 +1448,11 @@ fn plan_legend(
 /// panel's own area at the PNG scale), with the pixel positions of every series point and
 /// marker inside the frame. `None` for a panel with nothing to draw.
 pub fn panel_layouts(fig: &Figure) -> Vec<Option<PanelLayout>> {
-    let m = Metrics { s: 2.0 };
+    let m = Metrics {
+        s: 2.0,
+        images: None,
+        texts: None,
+    };
     let (pw, ph) = (m.px(PANEL_W), m.px(PANEL_H));
     fig.panels
         .iter()
@@ -1246,7 +1492,6 @@ pub struct PanelLayout {
 fn draw_legend<DB: DrawingBackend>(area: &Area<DB>, plan: &LegendPlan, m: &Metrics) -> Draw<()> {
     let (bx, by, box_w, box_h) = (plan.x, plan.y, plan.w, plan.h);
     let (row, pad, swatch_w) = (plan.row, plan.pad, plan.swatch_w);
-    let style = text_style(plan.font, false, BLACK).pos(Pos::new(HPos::Left, VPos::Center));
     area.draw(&Rectangle::new(
         [ipt((bx, by)), ipt((bx + box_w, by + box_h))],
         WHITE.mix(0.88).filled(),
@@ -1264,8 +1509,12 @@ fn draw_legend<DB: DrawingBackend>(area: &Area<DB>, plan: &LegendPlan, m: &Metri
         match swatch {
             Swatch::Line(style, c) => match style {
                 Style::Scatter => {
-                    area.draw(&Circle::new(ipt((0.5 * (x0 + x1), y)), m.px(3.2), c.filled()))
-                        .map_err(err)?;
+                    area.draw(&Circle::new(
+                        ipt((0.5 * (x0 + x1), y)),
+                        m.px(3.4),
+                        c.stroke_width(m.px(1.3).max(1) as u32),
+                    ))
+                    .map_err(err)?;
                 }
                 Style::ErrorBar => {
                     draw_polyline(
@@ -1283,6 +1532,8 @@ fn draw_legend<DB: DrawingBackend>(area: &Area<DB>, plan: &LegendPlan, m: &Metri
                 let step = (x1 - x0) / k as f64;
                 let mm = Metrics {
                     s: if k > 1 { m.s * 0.75 } else { m.s },
+                    images: None,
+                    texts: None,
                 };
                 for (i, c) in cols.iter().take(4).enumerate() {
                     draw_marker(area, (x0 + step * (i as f64 + 0.5), y), *shape, *c, &mm)?;
@@ -1305,7 +1556,17 @@ fn draw_legend<DB: DrawingBackend>(area: &Area<DB>, plan: &LegendPlan, m: &Metri
                 .map_err(err)?;
             }
         }
-        area.draw_text(name, &style, ipt((x1 + pad, y))).map_err(err)?;
+        draw_label(
+            area,
+            name,
+            (x1 + pad, y),
+            (Anchor::Start, Baseline::Center),
+            plan.font,
+            false,
+            BLACK,
+            false,
+            m,
+        )?;
     }
     Ok(())
 }
@@ -1333,6 +1594,89 @@ fn densify(frame: &Frame, points: &[(f64, f64)]) -> Vec<(f64, f64)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Dark pixels of `text` drawn at baseline y = 60 from x = 10, 40 px, in the box
+    /// `x0..x1` × `y0..y1` of a 200 × 100 white bitmap.
+    fn ink(text: &str, x0: i32, x1: i32, y0: i32, y1: i32) -> usize {
+        register_fonts();
+        let (w, h) = (200u32, 100u32);
+        let mut rgb = vec![255u8; (w * h * 3) as usize];
+        {
+            let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
+            let m = Metrics {
+                s: 1.0,
+                images: None,
+                texts: None,
+            };
+            let l = super::super::text::layout(text, 40.0, false);
+            // Baseline at y = 60: anchor the top at 60 - ascent.
+            draw_label(
+                &root,
+                text,
+                (10.0, 60.0 - l.ascent),
+                (Anchor::Start, Baseline::Top),
+                40.0,
+                false,
+                BLACK,
+                false,
+                &m,
+            )
+            .unwrap();
+        }
+        let mut n = 0;
+        for y in y0.max(0)..y1.min(h as i32) {
+            for x in x0.max(0)..x1.min(w as i32) {
+                if rgb[((y as u32 * w + x as u32) * 3) as usize] < 128 {
+                    n += 1;
+                }
+            }
+        }
+        n
+    }
+
+    #[test]
+    fn markup_renders_subscripts_below_and_hats_above_in_png() {
+        // "x_2": the 2 is lowered below the baseline (y = 60); in "x2" it sits on it.
+        let x_end = 10 + super::super::text::width("x", 40.0, false).ceil() as i32;
+        let below_sub = ink("x_2", x_end, x_end + 30, 64, 100);
+        let below_plain = ink("x2", x_end, x_end + 30, 64, 100);
+        assert!(below_sub > 20 && below_plain == 0, "{below_sub} vs {below_plain}");
+        // "\hat{P}": ink above the cap height of P (about 60 - 0.73 * 40 = 31).
+        let above_hat = ink("\\hat{P}", 10, 40, 0, 28);
+        let above_plain = ink("P", 10, 40, 0, 28);
+        assert!(above_hat > 5 && above_plain == 0, "{above_hat} vs {above_plain}");
+    }
+
+    #[test]
+    fn svg_labels_carry_tspans_with_a_baseline_shift() {
+        let mut p = Panel::new(
+            crate::figure::Axis::linear("σ_rms", "nm"),
+            crate::figure::Axis::linear("m^4", ""),
+        );
+        p.line("a", Style::Stable, vec![(0.0, 0.0), (1.0, 1.0)]);
+        let fig = Figure::new("t", "t").with_panel(p);
+        let svg = svg_string(&fig).unwrap();
+        assert!(
+            svg.contains("<tspan baseline-shift=\"-31%\" font-size=\"70%\">rms</tspan>"),
+            "{svg}"
+        );
+        assert!(svg.contains("font-size=\"70%\">4</tspan>"));
+    }
+
+    #[test]
+    fn base64_matches_rfc_4648_vectors() {
+        for (plain, coded) in [
+            ("", ""),
+            ("f", "Zg=="),
+            ("fo", "Zm8="),
+            ("foo", "Zm9v"),
+            ("foob", "Zm9vYg=="),
+            ("fooba", "Zm9vYmE="),
+            ("foobar", "Zm9vYmFy"),
+        ] {
+            assert_eq!(base64(plain.as_bytes()), coded);
+        }
+    }
 
     #[test]
     fn dashes_cover_about_the_on_fraction_of_a_line() {

@@ -98,7 +98,7 @@ fn pdms_modulus() -> f64 {
     0.75e6 * (1.0 - 0.25)
 }
 
-const WHY_PAIRS: &str = "neither moment set gives the printed 0.0241 J/m^2 at the printed pairs: with the moments of (3.16)-(3.17) (eta = 114.4 um^-2) the model gives 0.0251 and 0.0256 J/m^2 (best-fit Z0 25.3 and 97.7 nm), with the printed moments (3.18) (eta = 101.4 um^-2) 0.0259 and 0.0286 J/m^2 (Z0 26.3 and 101.0 nm); the few-per-cent gap is unexplained (the text does not give the inputs of its fit)";
+const WHY_PAIRS: &str = "neither moment set gives the printed 0.0241 J/m^2 at the printed pairs: with the moments of (3.16)-(3.17) (eta = 114.4 um^-2) the model gives 0.0251 and 0.0256 J/m^2 (best-fit Z0 25.3 and 97.7 nm), with the printed moments (3.18) (eta = 101.31 um^-2 from the printed two-digit m2, m4; printed 101.4) 0.0259 and 0.0286 J/m^2 (Z0 26.3 and 101.0 nm): 4 % and 6 % above the measured 0.0241 with the spectrum's moments, 7 % and 19 % with the printed ones; the gap is unexplained (the text does not give the inputs of its fit)";
 const WHY_EXACT: &str = "with the exact loss (3.4) instead of (3.6); (3.6) is up to 36 % off near lambda = 0.7, where the 96 nm pair lies (chi = 0.36)";
 
 /// Chapter 3 claims.

@@ -120,3 +120,19 @@ fn compare(expected: &[Row], got: &[Row]) -> Result<(), String> {
     }
     Ok(())
 }
+
+/// Heat maps go into the SVG as embedded PNG images, not one rectangle per cell: figC.1 at its
+/// default resolution (six maps) was 34 MB with 393 609 rectangles.
+#[test]
+fn fig_c1_svg_embeds_its_maps_and_stays_under_2_mb() {
+    let scene = scenes::find("figC.1").expect("scene");
+    let fig = scene.run(&scene.defaults(), &Job::quiet()).expect("run");
+    let svg = adhesion::render::plot::svg_string(&fig).expect("svg");
+    assert!(svg.len() < 2_000_000, "figC.1.svg is {} bytes", svg.len());
+    assert_eq!(svg.matches("<image ").count(), 6, "one image per map");
+    assert!(
+        svg.matches("<rect").count() < 2_000,
+        "{} rects",
+        svg.matches("<rect").count()
+    );
+}
