@@ -49,7 +49,7 @@ pub fn load_profile(path: &Path) -> Result<Profile> {
         std::fs::read_to_string(path).map_err(|e| Error::data_file(path, 0, format!("cannot read: {e}")))?;
     let mut points = Vec::new();
     let mut header_seen = false;
-    for (k, raw) in text.lines().enumerate() {
+    for (k, raw) in crate::params::normalise_line_ends(&text).lines().enumerate() {
         let line = raw.split('#').next().unwrap_or("").trim();
         if line.is_empty() {
             continue;
