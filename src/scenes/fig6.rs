@@ -582,7 +582,7 @@ impl Scene for Fig6_3 {
     }
 }
 
-/// A sweep over the aspect ratio: point `i` is the column of A number `i` ([`map_point`]).
+/// A sweep over the aspect ratio: point `i` is the column of A number `i` (`map_point`).
 impl Sweep for Fig6_3 {
     type Context = Profile;
 
@@ -668,7 +668,7 @@ impl Scene for Fig6_5 {
     }
 }
 
-/// A sweep over the aspect ratio: point `i` is the column of A number `i` ([`map_point`]).
+/// A sweep over the aspect ratio: point `i` is the column of A number `i` (`map_point`).
 impl Sweep for Fig6_5 {
     type Context = Profile;
 
