@@ -196,6 +196,79 @@ fn a_rerun_shard_computes_only_the_points_it_lost() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("0 to compute"));
 }
 
+/// A shard process killed (SIGKILL) after its first points, then run again: it computes only
+/// the points that were not written, and the points written before the kill stay untouched.
+#[test]
+fn a_killed_shard_resumes_where_it_stopped() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    // Four points of a few tenths of a second each, one thread: time to kill between them.
+    let sets = ["stiffness_exponents=6,7", "roughness_points=2"];
+    let mut args = vec![
+        "--headless",
+        "--figure",
+        "fig5.8",
+        "--shard",
+        "0/1",
+        "--out",
+        s(&out),
+    ];
+    for a in &sets {
+        args.extend(["--set", a]);
+    }
+    let run = || {
+        Command::new(env!("CARGO_BIN_EXE_adhesion"))
+            .args(&args)
+            .env("RAYON_NUM_THREADS", "1")
+            .stderr(std::process::Stdio::piped())
+            .stdout(std::process::Stdio::null())
+            .spawn()
+            .unwrap()
+    };
+    let sets: Vec<String> = sets.iter().map(ToString::to_string).collect();
+    let scene = scenes::find("fig5.8").unwrap();
+    let f = folder(
+        &out,
+        "fig5.8",
+        &resolve_values(scene, None, &sets, false).unwrap(),
+    );
+    let written = || {
+        (0..4)
+            .filter(|&k| point_path(&f, k).exists())
+            .collect::<Vec<usize>>()
+    };
+    let mut child = run();
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(120);
+    while written().is_empty() && std::time::Instant::now() < deadline {
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let kept = written();
+    assert!(
+        !kept.is_empty() && kept.len() < 4,
+        "killed with points {kept:?} written"
+    );
+    let stamps: Vec<_> = kept
+        .iter()
+        .map(|&k| std::fs::metadata(point_path(&f, k)).unwrap().modified().unwrap())
+        .collect();
+    let o = run().wait_with_output().unwrap();
+    assert!(o.status.success());
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    let expected = format!("4 of the 4 points, {} already done", kept.len());
+    assert!(stderr.contains(&expected), "{stderr}");
+    assert!(
+        stderr.contains(&format!("{} to compute", 4 - kept.len())),
+        "{stderr}"
+    );
+    assert_eq!(written(), vec![0, 1, 2, 3]);
+    for (&k, t) in kept.iter().zip(&stamps) {
+        let now = std::fs::metadata(point_path(&f, k)).unwrap().modified().unwrap();
+        assert_eq!(now, *t, "point {k} was written again");
+    }
+}
+
 #[test]
 fn a_missing_point_fails_the_merge_naming_it() {
     let dir = tempfile::tempdir().unwrap();
