@@ -19,6 +19,8 @@ use crate::render::{Format, data, plot, write_set};
 use crate::reproduction;
 use crate::scenes::{self, SceneDyn, chapter_title};
 
+pub mod shard;
+
 /// Run the command line in headless mode (also `--list` and `--describe`).
 ///
 /// # Errors
@@ -75,6 +77,16 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
             sets.push(format!("surface={}", path.display()));
         }
         let values = resolve_values(scene, cli.preset.as_deref(), &sets, cli.quick)?;
+        if let Some(part) = cli.shard {
+            println!("{}", shard::run_shard(scene, &values, part, &cli.out)?.display());
+            return Ok(ExitCode::SUCCESS);
+        }
+        if cli.merge {
+            for p in shard::merge(scene, &values, &cli.out, &formats)? {
+                println!("{}", p.display());
+            }
+            return Ok(ExitCode::SUCCESS);
+        }
         let written = export_scene(scene, &values, &cli.out, &formats, &progress_job(id))?;
         for p in written {
             println!("{}", p.display());
@@ -150,16 +162,22 @@ pub fn describe(id: &str) -> Result<String> {
     let scene = scenes::find(id)?;
     let info = scene.info();
     let defaults = scene.defaults();
-    let mut out = format!(
-        "{} — {}\n\n{}\n\nParameters (SI units; set with --set NAME=VALUE):\n",
-        info.id, info.title, info.caption
-    );
-    if info.sweep {
+    let mut out = format!("{} — {}\n\n{}\n\n", info.id, info.title, info.caption);
+    if let Some(sweep) = scene.sweep() {
+        let n = sweep.points(&defaults)?.len();
+        let quick = sweep.points(&scene.quick(&defaults)?)?.len();
+        out.push_str(&format!(
+            "A sweep of {n} independent points at these defaults ({quick} in quick form); the count \
+             follows the parameters. Run it in shards with --shard I/N --out DIR (a job array), then \
+             --merge --out DIR (see the README).\n\n"
+        ));
+    } else if info.sweep {
         out.push_str(
             "A sweep of many independent cycles: `--all` runs it in its quick form; export it \
              with --figure for the full grid.\n\n",
         );
     }
+    out.push_str("Parameters (SI units; set with --set NAME=VALUE):\n");
     out.push_str(&format!(
         "  {:<24} {:>14}  {:<8} {:<16} {}\n",
         "name", "default", "unit", "valid range", "meaning"

@@ -7,7 +7,9 @@
 //! same registry through the object-safe [`SceneDyn`].
 //!
 //! Adding a scene: implement [`Scene`] for a unit struct in the chapter's file under `scenes/`,
-//! add it to that file's `SCENES` list, and add `presets/<id>.toml`.
+//! add it to that file's `SCENES` list, and add `presets/<id>.toml`. A scene made of many
+//! independent points also implements [`sweep::Sweep`] and is listed as `Swept::<S>::NEW`, which
+//! lets it run in shards (a job array on a cluster) and be merged.
 
 use std::marker::PhantomData;
 
@@ -23,6 +25,7 @@ pub mod fig4;
 pub mod fig5;
 pub mod fig6;
 pub mod figc;
+pub mod sweep;
 
 /// A figure of the dissertation, computed.
 pub trait Scene: Send + Sync + 'static {
@@ -108,6 +111,11 @@ pub trait SceneDyn: Send + Sync {
     /// # Errors
     /// Validation errors, model errors, cancellation.
     fn run(&self, values: &ParamValues, job: &Job) -> Result<Figure>;
+    /// The sweep interface of a scene made of independent points ([`sweep::Sweep`]), which the
+    /// headless exporter runs in shards and merges; `None` for other scenes.
+    fn sweep(&self) -> Option<&dyn sweep::SweepDyn> {
+        None
+    }
 }
 
 /// The memory a run needs [bytes] and the parameters that set it, as the user writes them.
