@@ -278,7 +278,9 @@ pub fn contact_range(curve: &Curve, path: &Path, min_points: usize) -> Result<st
 /// The in-contact part of a cycle, found as AFM software finds a contact point, by the deviation
 /// from the baseline that is actually there, at each end of the file:
 /// - a baseline starts with [`MIN_BASELINE_ROWS`] rows at an end whose median force is small
-///   (below max(5σ, 2 % of the largest |P|), σ their robust noise level) and whose outermost
+///   (below max(5σ, 2 % of the largest |P|), σ their noise level: the larger of the noise
+///   about a robust line and of 1.4826 × the median deviation from their median, so that
+///   correlated noise counts in full) and whose outermost
 ///   row is within the tolerance below: forces are taken as zero out of contact, as the
 ///   models assume; an end in contact has none;
 /// - it grows row by row inwards while the force stays within max(6σ, 0.5 % of max |P|) of
@@ -355,10 +357,15 @@ fn baseline(f: impl Fn(usize) -> f64, n: usize, p_max: f64) -> Option<(usize, f6
         return None;
     }
     let head: Vec<f64> = (0..MIN_BASELINE_ROWS).map(&f).collect();
-    let sigma = noise_level(&head);
     let mut sorted = head.clone();
     sorted.sort_by(f64::total_cmp);
     let level = sorted[sorted.len() / 2];
+    // The larger of the noise about a robust line and of the spread about the median: on 10
+    // rows, correlated noise (a drift, a sawtooth) looks like a line and only the second sees
+    // it; for white noise both are σ.
+    let mut deviations: Vec<f64> = head.iter().map(|x| (x - level).abs()).collect();
+    deviations.sort_by(f64::total_cmp);
+    let sigma = noise_level(&head).max(1.4826 * deviations[deviations.len() / 2]);
     if level.abs() > (5.0 * sigma).max(0.02 * p_max) {
         return None;
     }

@@ -242,27 +242,40 @@ impl<S: Scene> SceneDyn for Registered<S> {
         if let Some(m) = S::memory_estimate(&p) {
             m.check(memory_limit())?;
         }
-        let defaults = self.defaults();
-        let mut figure = S::run(&p, job).map_err(|e| attribute_failure(S::ID, values, &defaults, e))?;
-        let nonfinite: Vec<&str> = figure
-            .results
-            .iter()
-            .filter(|(_, v)| !v.is_finite())
-            .map(|(n, _)| n.as_str())
-            .collect();
-        if !nonfinite.is_empty() {
-            let cause = Error::Unresolvable {
-                model: "results",
-                reason: format!(
-                    "{} not finite (the model leaves its double range)",
-                    nonfinite.join(", ")
-                ),
-            };
-            return Err(attribute_failure(S::ID, values, &defaults, cause));
-        }
-        figure.id = S::ID.to_string();
-        Ok(figure)
+        finish(S::ID, values, &self.defaults(), S::run(&p, job))
     }
+}
+
+/// The end of every run, sharded or not: a model's failure as [`attribute_failure`] makes it,
+/// non-finite results refused the same way, the figure's id set.
+///
+/// # Errors
+/// The run's error, attributed; non-finite results.
+pub fn finish(
+    id: &'static str,
+    values: &ParamValues,
+    defaults: &ParamValues,
+    run: Result<Figure>,
+) -> Result<Figure> {
+    let mut figure = run.map_err(|e| attribute_failure(id, values, defaults, e))?;
+    let nonfinite: Vec<&str> = figure
+        .results
+        .iter()
+        .filter(|(_, v)| !v.is_finite())
+        .map(|(n, _)| n.as_str())
+        .collect();
+    if !nonfinite.is_empty() {
+        let cause = Error::Unresolvable {
+            model: "results",
+            reason: format!(
+                "{} not finite (the model leaves its double range)",
+                nonfinite.join(", ")
+            ),
+        };
+        return Err(attribute_failure(id, values, defaults, cause));
+    }
+    figure.id = id.to_string();
+    Ok(figure)
 }
 
 /// A model's failure (or non-finite results) as the user can act on it: an error that already

@@ -113,7 +113,7 @@ impl<S> Swept<S> {
 impl<S: Sweep> Swept<S> {
     fn params(values: &ParamValues) -> Result<S::Params> {
         let p: S::Params = values.to_params()?;
-        S::validate(&p)?;
+        Registered::<S>::NEW.validate(values)?;
         Ok(p)
     }
 }
@@ -167,17 +167,17 @@ impl<S: Sweep> SweepDyn for Swept<S> {
         if let Some(m) = S::memory_estimate(&p) {
             m.check(memory_limit())?;
         }
-        let context = S::context(&p, job)?;
+        let defaults = self.defaults();
+        let attribute = |e| crate::scenes::attribute_failure(S::ID, values, &defaults, e);
+        let context = S::context(&p, job).map_err(attribute)?;
         ids.par_iter().try_for_each(|&id| {
             job.check()?;
-            visit(id, &|| S::run_point(&p, &context, id, job))
+            visit(id, &|| S::run_point(&p, &context, id, job).map_err(attribute))
         })
     }
 
     fn assemble(&self, values: &ParamValues, points: &[Vec<f64>], job: &Job) -> Result<Figure> {
         let p = Self::params(values)?;
-        let mut figure = S::assemble(&p, points, job)?;
-        figure.id = S::ID.to_string();
-        Ok(figure)
+        crate::scenes::finish(S::ID, values, &self.defaults(), S::assemble(&p, points, job))
     }
 }

@@ -81,17 +81,17 @@ fn cases(scene: &dyn adhesion::scenes::SceneDyn, combos: usize, seed: u64) -> Ve
         z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
         z ^ (z >> 31)
     };
-    (0..combos)
-        .map(|_| {
-            numeric
-                .iter()
-                .filter(|(_, e)| !e.is_empty())
-                .filter_map(|(s, e)| {
-                    (next() % 3 == 0).then(|| text(s, e[(next() % e.len() as u64) as usize]))
-                })
-                .collect()
-        })
-        .collect()
+    let mut out = Vec::with_capacity(combos);
+    for _ in 0..combos {
+        let mut case = Vec::new();
+        for (s, e) in numeric.iter().filter(|(_, e)| !e.is_empty()) {
+            if next() % 3 == 0 {
+                case.push(text(s, e[(next() % e.len() as u64) as usize]));
+            }
+        }
+        out.push(case);
+    }
+    out
 }
 
 /// Runs every scene (chapter 4 only when `chapter4`) on the cases of [`cases`], in quick mode,
