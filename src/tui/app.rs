@@ -38,6 +38,11 @@ pub enum Mode {
     Normal,
     /// The key help is shown; any key closes it.
     Help,
+    /// A filter of the scene list is being typed (`/`); the list narrows as it is typed.
+    Filter {
+        /// The filter text being typed.
+        edit: LineEdit,
+    },
     /// A file path is being typed.
     Prompt {
         /// What the path is for.
@@ -161,6 +166,7 @@ pub struct App {
     pub(crate) show_info: bool,
     pub(crate) status: Status,
     pub(crate) auto_run: bool,
+    pub(crate) filter: String,
     preset_dir: PathBuf,
     next_job: u64,
     quit: bool,
@@ -198,6 +204,7 @@ impl App {
                 error: false,
             },
             auto_run: false,
+            filter: String::new(),
             preset_dir: preset_dir.into(),
             next_job: 1,
             quit: false,
@@ -326,6 +333,25 @@ impl App {
                 self.mode = Mode::Normal;
                 return Vec::new();
             }
+            Mode::Filter { edit } => {
+                match key.code {
+                    KeyCode::Esc => {
+                        self.filter.clear();
+                        self.mode = Mode::Normal;
+                    }
+                    KeyCode::Enter => self.mode = Mode::Normal,
+                    KeyCode::Up => self.select_scene(-1),
+                    KeyCode::Down => self.select_scene(1),
+                    _ => {
+                        if edit.handle(key) {
+                            self.filter = edit.text().to_string();
+                            self.keep_selection_visible();
+                        }
+                    }
+                }
+                self.focus = Focus::Scenes;
+                return Vec::new();
+            }
             Mode::Prompt { kind, edit } => {
                 let kind = *kind;
                 match key.code {
@@ -392,6 +418,12 @@ impl App {
                 }
             }
             Action::Help => self.mode = Mode::Help,
+            Action::Filter => {
+                self.focus = Focus::Scenes;
+                self.mode = Mode::Filter {
+                    edit: LineEdit::new(self.filter.clone()),
+                };
+            }
             Action::Run => self.run(&mut effects),
             Action::Cancel => {
                 if let Some(run) = &mut self.running {
@@ -487,17 +519,60 @@ impl App {
         effects
     }
 
-    fn select_scene(&mut self, step: isize) {
-        if self.scenes.is_empty() {
-            return;
-        }
-        let last = self.scenes.len() as isize - 1;
-        let k = (self.selected as isize + step).clamp(0, last) as usize;
-        if k != self.selected {
-            self.selected = k;
-            self.panel = 0;
+    /// The filter of the scene list (empty: every scene).
+    pub fn filter(&self) -> &str {
+        &self.filter
+    }
+
+    /// Indices of the scenes the filter lets through (id or title contains every word of the
+    /// filter, ignoring case), in list order.
+    pub fn visible_scenes(&self) -> Vec<usize> {
+        let words: Vec<String> = self.filter.split_whitespace().map(str::to_lowercase).collect();
+        self.scenes
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| {
+                let info = s.info();
+                let text = format!("{} {}", info.id, info.title).to_lowercase();
+                words.iter().all(|w| text.contains(w.as_str()))
+            })
+            .map(|(k, _)| k)
+            .collect()
+    }
+
+    /// Select the first visible scene when the selected one is filtered out.
+    fn keep_selection_visible(&mut self) {
+        let visible = self.visible_scenes();
+        if !visible.contains(&self.selected)
+            && let Some(&k) = visible.first()
+        {
+            self.set_selected(k);
         }
     }
+
+    fn set_selected(&mut self, k: usize) {
+        if k != self.selected && k < self.scenes.len() {
+            self.selected = k;
+            self.panel = 0;
+            self.on_view_change();
+        }
+    }
+
+    fn select_scene(&mut self, step: isize) {
+        let visible = self.visible_scenes();
+        if visible.is_empty() {
+            return;
+        }
+        let at = visible.iter().position(|&k| k == self.selected);
+        let k = match at {
+            Some(i) => visible[(i as isize + step).clamp(0, visible.len() as isize - 1) as usize],
+            None => visible[0],
+        };
+        self.set_selected(k);
+    }
+
+    /// Called when the shown scene or panel changes (resets per-chart state).
+    fn on_view_change(&mut self) {}
 
     fn run(&mut self, effects: &mut Vec<Effect>) {
         let Some(form) = self.forms.get(self.selected) else {

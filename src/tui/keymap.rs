@@ -44,6 +44,8 @@ pub enum Action {
     Info,
     /// Switch automatic runs after every valid change on or off.
     AutoRun,
+    /// Type a filter for the scene list.
+    Filter,
 }
 
 /// One key binding: the keys, how the help writes them, the action, what it does.
@@ -72,6 +74,12 @@ pub const BINDINGS: &[Binding] = &[
         label: "↓ j",
         action: Action::Down,
         help: "next scene or parameter",
+    },
+    Binding {
+        keys: &[KeyCode::Char('/')],
+        label: "/",
+        action: Action::Filter,
+        help: "filter the scene list by id or title words (Enter keeps, Esc clears)",
     },
     Binding {
         keys: &[KeyCode::Tab, KeyCode::BackTab],

@@ -7,7 +7,7 @@ use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Position, Rect};
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Clear, Gauge, List, ListItem, ListState, Paragraph, Wrap};
+use ratatui::widgets::{Block, Clear, Gauge, Paragraph, Wrap};
 
 use super::app::{App, FigureState, FigureView, Focus, Mode, PromptKind, fmt_duration};
 use super::keymap::BINDINGS;
@@ -23,7 +23,7 @@ pub fn draw(frame: &mut Frame<'_>, app: &App) {
     let [main, status] = Layout::vertical([Constraint::Min(0), Constraint::Length(1)]).areas(frame.area());
     let left_width = (main.width * 2 / 5).clamp(30, 52).min(main.width);
     let [left, right] = Layout::horizontal([Constraint::Length(left_width), Constraint::Min(0)]).areas(main);
-    let entries = app.scenes.len() + chapter_count(app);
+    let entries = scene_rows(app).len().max(1);
     let list_height = (entries as u16 + 2).min(left.height / 2).max(3);
     let [list_area, form_area] =
         Layout::vertical([Constraint::Length(list_height), Constraint::Min(0)]).areas(left);
@@ -32,7 +32,7 @@ pub fn draw(frame: &mut Frame<'_>, app: &App) {
     draw_figure(frame, app, right);
     draw_status(frame, app, status);
     match &app.mode {
-        Mode::Normal => {}
+        Mode::Normal | Mode::Filter { .. } => {}
         Mode::Help => draw_help(frame, main),
         Mode::Prompt { kind, edit } => {
             let area = Rect {
@@ -57,12 +57,6 @@ pub fn draw(frame: &mut Frame<'_>, app: &App) {
     }
 }
 
-fn chapter_count(app: &App) -> usize {
-    let mut chapters: Vec<&str> = app.scenes.iter().map(|s| s.info().chapter).collect();
-    chapters.dedup();
-    chapters.len()
-}
-
 fn pane(title: String, focused: bool) -> Block<'static> {
     let style = if focused {
         Style::default().fg(ACCENT)
@@ -72,44 +66,135 @@ fn pane(title: String, focused: bool) -> Block<'static> {
     Block::bordered().title(title).border_style(style)
 }
 
-fn draw_scene_list(frame: &mut Frame<'_>, app: &App, area: Rect) {
-    let mut items = Vec::new();
-    let mut selected_item = 0;
+/// A row of the scene list: a chapter heading or a scene (index).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ListRow {
+    /// Chapter heading (chapter key).
+    Chapter(&'static str),
+    /// A scene, by index.
+    Scene(usize),
+}
+
+/// The rows of the scene list under the filter: each chapter with visible scenes, then them.
+pub fn scene_rows(app: &App) -> Vec<ListRow> {
+    let mut rows = Vec::new();
     let mut chapter = "";
-    for (k, s) in app.scenes.iter().enumerate() {
-        let info = s.info();
+    for k in app.visible_scenes() {
+        let info = app.scenes[k].info();
         if info.chapter != chapter {
             chapter = info.chapter;
-            items.push(ListItem::new(Line::styled(
-                format!("{chapter} {}", chapter_title(chapter)),
-                Style::default().fg(Color::Yellow).add_modifier(Modifier::BOLD),
-            )));
+            rows.push(ListRow::Chapter(chapter));
         }
-        if k == app.selected {
-            selected_item = items.len();
-        }
-        let running = app.running.as_ref().is_some_and(|r| r.scene == k);
-        let mark = if running { "▶" } else { " " };
-        items.push(ListItem::new(Line::from(vec![
-            Span::raw(format!(" {mark}")),
-            Span::styled(
-                format!("{:<13}", info.id),
-                Style::default().add_modifier(Modifier::BOLD),
-            ),
-            Span::raw(info.title),
-        ])));
+        rows.push(ListRow::Scene(k));
     }
-    let focused = app.focus == Focus::Scenes && app.mode == Mode::Normal;
+    rows
+}
+
+/// First row shown in a list of `height` rows so that row `selected` is visible.
+pub fn scroll_offset(selected: usize, height: usize) -> usize {
+    (selected + 1).saturating_sub(height.max(1))
+}
+
+/// Cut `text` to `width` characters, ending in `…` when cut.
+fn clip(text: &str, width: usize) -> String {
+    if text.chars().count() <= width {
+        text.to_string()
+    } else if width == 0 {
+        String::new()
+    } else {
+        let mut s: String = text.chars().take(width - 1).collect();
+        s.push('…');
+        s
+    }
+}
+
+fn draw_scene_list(frame: &mut Frame<'_>, app: &App, area: Rect) {
+    let filtering = matches!(app.mode, Mode::Filter { .. });
+    let focused = app.focus == Focus::Scenes && (app.mode == Mode::Normal || filtering);
+    let title = if app.filter.is_empty() && !filtering {
+        " Scenes (/ filters) ".to_string()
+    } else {
+        let n = app.visible_scenes().len();
+        format!(" Scenes /{} — {n} of {} ", app.filter, app.scenes.len())
+    };
+    let block = pane(title, focused);
+    let inner = block.inner(area);
+    frame.render_widget(block, area);
+    if let Mode::Filter { edit } = &app.mode {
+        // The typed filter sits in the title, after " Scenes /".
+        let x = area.x + 9 + edit.cursor() as u16;
+        if x < area.right() {
+            frame.set_cursor_position(Position::new(x, area.y));
+        }
+    }
+    if inner.height == 0 || inner.width == 0 {
+        return;
+    }
+    let rows = scene_rows(app);
+    if rows.is_empty() {
+        frame.render_widget(
+            Line::styled(
+                "no scene matches the filter (Esc clears)",
+                Style::default().fg(Color::DarkGray),
+            ),
+            inner,
+        );
+        return;
+    }
+    let id_width = rows
+        .iter()
+        .filter_map(|r| match r {
+            ListRow::Scene(k) => Some(app.scenes[*k].info().id.chars().count()),
+            ListRow::Chapter(_) => None,
+        })
+        .max()
+        .unwrap_or(0);
+    let width = inner.width as usize;
+    let selected_row = rows
+        .iter()
+        .position(|r| *r == ListRow::Scene(app.selected))
+        .unwrap_or(0);
+    let offset = scroll_offset(selected_row, inner.height as usize);
     let highlight = if focused {
         Style::default().bg(Color::Blue).fg(Color::White)
     } else {
         Style::default().add_modifier(Modifier::REVERSED)
     };
-    let list = List::new(items)
-        .block(pane(" Scenes ".into(), focused))
-        .highlight_style(highlight);
-    let mut state = ListState::default().with_selected(Some(selected_item));
-    frame.render_stateful_widget(list, area, &mut state);
+    let mut lines = Vec::new();
+    for (i, row) in rows.iter().enumerate().skip(offset).take(inner.height as usize) {
+        let line = match *row {
+            ListRow::Chapter(chapter) => Line::styled(
+                clip(&format!("{chapter} {}", chapter_title(chapter)), width),
+                Style::default().fg(Color::Yellow).add_modifier(Modifier::BOLD),
+            ),
+            ListRow::Scene(k) => {
+                let info = app.scenes[k].info();
+                let running = app.running.as_ref().is_some_and(|r| r.scene == k);
+                let mark = if running { "▶" } else { " " };
+                // Two columns: the id padded to the longest id shown, a gap, the title cut to
+                // what is left.
+                let id = clip(info.id, width.saturating_sub(2));
+                let title_width = width.saturating_sub(2 + id_width + 2);
+                let mut spans = vec![
+                    Span::raw(format!(" {mark}")),
+                    Span::styled(
+                        format!("{id:<id_width$}"),
+                        Style::default().add_modifier(Modifier::BOLD),
+                    ),
+                ];
+                if title_width > 0 {
+                    spans.push(Span::raw(format!("  {}", clip(info.title, title_width))));
+                }
+                let mut line = Line::from(spans);
+                if i == selected_row {
+                    line = line.style(highlight);
+                }
+                line
+            }
+        };
+        lines.push(line);
+    }
+    frame.render_widget(Paragraph::new(lines), inner);
 }
 
 fn draw_form(frame: &mut Frame<'_>, app: &App, area: Rect) {

@@ -21,3 +21,4 @@ mod reproduction;
 mod snapshots;
 mod surface;
 mod tui;
+mod workbench;
