@@ -6,11 +6,16 @@ use std::path::{Path, PathBuf};
 
 use ratatui::crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
+use std::cell::Cell;
+
+use super::chart::{CursorAt, DrawnLayout, HistoryEntry};
+use super::compare::Pin;
 use super::form::{Form, LineEdit};
 use super::keymap::{Action, action_for};
 use super::worker::{JobMsg, Outcome};
 use crate::figure::Figure;
 use crate::params::ParamValues;
+use crate::render::terminal::View;
 use crate::scenes::SceneDyn;
 
 /// Which pane the arrow keys move in.
@@ -38,6 +43,11 @@ pub enum Mode {
     Normal,
     /// The key help is shown; any key closes it.
     Help,
+    /// The run history is shown.
+    History {
+        /// The highlighted entry (0 is the newest).
+        selected: usize,
+    },
     /// A filter of the scene list is being typed (`/`); the list narrows as it is typed.
     Filter {
         /// The filter text being typed.
@@ -87,8 +97,10 @@ pub struct Running {
     pub scene: usize,
     /// Parameters of the run.
     pub values: ParamValues,
-    /// Fraction done, 0 to 1.
+    /// Fraction done, 0 to 1 (the largest reported, so the gauge never moves back).
     pub fraction: f64,
+    /// Seconds since the run started, as of the latest progress message.
+    pub elapsed_s: f64,
     /// Latest progress message.
     pub message: String,
     /// Whether cancellation was requested.
@@ -120,10 +132,15 @@ pub enum Effect {
         /// Run id.
         job: u64,
     },
-    /// Export the complete figure of scene `scene` (index).
+    /// Export the complete figure of scene `scene` (index) with its pinned runs.
     Export {
         /// Scene index.
         scene: usize,
+    },
+    /// Export entry `entry` of the run history (0 is the newest).
+    ExportHistory {
+        /// History index.
+        entry: usize,
     },
     /// Read a preset file into the form of scene `scene`.
     LoadPreset {
@@ -147,6 +164,7 @@ impl std::fmt::Debug for Effect {
             Effect::Start { job, scene, .. } => write!(f, "Start({job}, {})", scene.info().id),
             Effect::Cancel { job } => write!(f, "Cancel({job})"),
             Effect::Export { scene } => write!(f, "Export({scene})"),
+            Effect::ExportHistory { entry } => write!(f, "ExportHistory({entry})"),
             Effect::LoadPreset { scene, path } => write!(f, "LoadPreset({scene}, {})", path.display()),
             Effect::SavePreset { scene, path } => write!(f, "SavePreset({scene}, {})", path.display()),
         }
@@ -167,6 +185,13 @@ pub struct App {
     pub(crate) status: Status,
     pub(crate) auto_run: bool,
     pub(crate) filter: String,
+    pub(crate) pins: Vec<Vec<Pin>>,
+    pub(crate) cursor: Option<CursorAt>,
+    pub(crate) zoom: Option<View>,
+    pub(crate) zoom_mark: Option<(f64, f64)>,
+    pub(crate) drag: Option<((f64, f64), (f64, f64))>,
+    pub(crate) history: Vec<HistoryEntry>,
+    pub(crate) layout: Cell<DrawnLayout>,
     preset_dir: PathBuf,
     next_job: u64,
     quit: bool,
@@ -189,6 +214,7 @@ impl App {
     pub fn new(scenes: Vec<&'static dyn SceneDyn>, preset_dir: impl Into<PathBuf>) -> Self {
         let forms = scenes.iter().map(|s| Form::new(*s)).collect();
         let figures = scenes.iter().map(|_| None).collect();
+        let pins = scenes.iter().map(|_| Vec::new()).collect();
         Self {
             scenes,
             forms,
@@ -205,6 +231,13 @@ impl App {
             },
             auto_run: false,
             filter: String::new(),
+            pins,
+            cursor: None,
+            zoom: None,
+            zoom_mark: None,
+            drag: None,
+            history: Vec::new(),
+            layout: Cell::new(DrawnLayout::default()),
             preset_dir: preset_dir.into(),
             next_job: 1,
             quit: false,
@@ -331,6 +364,22 @@ impl App {
             Mode::Normal => {}
             Mode::Help => {
                 self.mode = Mode::Normal;
+                return Vec::new();
+            }
+            Mode::History { selected } => {
+                let n = self.history.len();
+                let k = *selected;
+                match key.code {
+                    KeyCode::Up | KeyCode::Char('k') => *selected = k.saturating_sub(1),
+                    KeyCode::Down | KeyCode::Char('j') => *selected = (k + 1).min(n.saturating_sub(1)),
+                    KeyCode::Enter => {
+                        self.mode = Mode::Normal;
+                        self.reopen(k);
+                    }
+                    KeyCode::Char('e') if k < n => return vec![Effect::ExportHistory { entry: k }],
+                    KeyCode::Esc | KeyCode::Char('h' | 'q') => self.mode = Mode::Normal,
+                    _ => {}
+                }
                 return Vec::new();
             }
             Mode::Filter { edit } => {
@@ -510,8 +559,39 @@ impl App {
                     effects.extend(self.after_change());
                 }
             }
-            Action::PrevPanel => self.panel = self.panel().saturating_sub(1),
-            Action::NextPanel => self.panel = self.panel() + 1,
+            Action::PrevPanel | Action::NextPanel => {
+                let before = self.panel();
+                self.panel = if action == Action::PrevPanel {
+                    before.saturating_sub(1)
+                } else {
+                    before + 1
+                };
+                if self.panel() != before {
+                    self.on_view_change();
+                }
+            }
+            Action::History => {
+                if self.history.is_empty() {
+                    self.set_status("no finished run yet: the history keeps the last 20 runs", false);
+                } else {
+                    self.mode = Mode::History { selected: 0 };
+                }
+            }
+            Action::Pin
+            | Action::Unpin
+            | Action::UnpinAll
+            | Action::Cursor
+            | Action::CursorPrev
+            | Action::CursorNext
+            | Action::CursorPrevFast
+            | Action::CursorNextFast
+            | Action::CursorCurve
+            | Action::NextMarker
+            | Action::PrevMarker
+            | Action::ZoomRect
+            | Action::ZoomIn
+            | Action::ZoomOut
+            | Action::ZoomReset => self.chart_action(action),
             Action::Info => self.show_info = !self.show_info,
         }
         // Keep the panel index within the figure.
@@ -571,8 +651,14 @@ impl App {
         self.set_selected(k);
     }
 
-    /// Called when the shown scene or panel changes (resets per-chart state).
-    fn on_view_change(&mut self) {}
+    /// Called when the shown scene or panel changes: the cursor and the zoom belong to one
+    /// panel.
+    pub(crate) fn on_view_change(&mut self) {
+        self.cursor = None;
+        self.zoom = None;
+        self.zoom_mark = None;
+        self.drag = None;
+    }
 
     fn run(&mut self, effects: &mut Vec<Effect>) {
         let Some(form) = self.forms.get(self.selected) else {
@@ -595,6 +681,7 @@ impl App {
             scene: self.selected,
             values: values.clone(),
             fraction: 0.0,
+            elapsed_s: 0.0,
             message: "starting".into(),
             cancelling: false,
         });
@@ -614,9 +701,14 @@ impl App {
         let id = self.scenes[scene].info().id;
         match msg {
             JobMsg::Progress {
-                fraction, message, ..
+                fraction,
+                message,
+                elapsed_s,
+                ..
             } => {
-                run.fraction = fraction;
+                // Parallel parts of a run may report out of order: the gauge only advances.
+                run.fraction = run.fraction.max(fraction);
+                run.elapsed_s = elapsed_s;
                 run.message = message;
             }
             JobMsg::Preview { figure, .. } => {
@@ -633,11 +725,13 @@ impl App {
                 let run = self.running.take();
                 match outcome {
                     Outcome::Done(figure) => {
+                        let values = run
+                            .map(|r| r.values)
+                            .unwrap_or_else(|| self.forms[scene].values().clone());
+                        self.remember(scene, &figure, &values, run_time_s);
                         self.figures[scene] = Some(FigureView {
                             figure: *figure,
-                            values: run
-                                .map(|r| r.values)
-                                .unwrap_or_else(|| self.forms[scene].values().clone()),
+                            values,
                             run_time_s: Some(run_time_s),
                             state: FigureState::Complete,
                         });

@@ -10,9 +10,11 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Gauge, Paragraph, Wrap};
 
 use super::app::{App, FigureState, FigureView, Focus, Mode, PromptKind, fmt_duration};
+use super::chart::history_line;
 use super::keymap::BINDINGS;
 use crate::params::{ParamKind, fmt_float};
-use crate::render::terminal::render_panel;
+use crate::render::labels::{fmt_quantity, result_unit};
+use crate::render::terminal::{ChartOptions, render_chart};
 use crate::scenes::chapter_title;
 
 const ACCENT: Color = Color::Cyan;
@@ -34,6 +36,7 @@ pub fn draw(frame: &mut Frame<'_>, app: &App) {
     match &app.mode {
         Mode::Normal | Mode::Filter { .. } => {}
         Mode::Help => draw_help(frame, main),
+        Mode::History { selected } => draw_history(frame, app, *selected, main),
         Mode::Prompt { kind, edit } => {
             let area = Rect {
                 x: main.x,
@@ -155,6 +158,10 @@ fn draw_scene_list(frame: &mut Frame<'_>, app: &App, area: Rect) {
         .position(|r| *r == ListRow::Scene(app.selected))
         .unwrap_or(0);
     let offset = scroll_offset(selected_row, inner.height as usize);
+    let mut layout = app.layout.get();
+    layout.list = inner;
+    layout.list_offset = offset;
+    app.layout.set(layout);
     let highlight = if focused {
         Style::default().bg(Color::Blue).fg(Color::White)
     } else {
@@ -233,7 +240,11 @@ fn draw_form(frame: &mut Frame<'_>, app: &App, area: Rect) {
         .saturating_sub(name_width + unit_width + 4)
         .max(4);
     let visible = rows_area.height as usize;
-    let offset = (form.selected() + 1).saturating_sub(visible);
+    let offset = scroll_offset(form.selected(), visible);
+    let mut layout = app.layout.get();
+    layout.form = rows_area;
+    layout.form_offset = offset;
+    app.layout.set(layout);
     let mut lines = Vec::new();
     for k in offset..form.len().min(offset + visible) {
         let spec = &form.specs()[k];
@@ -335,9 +346,12 @@ fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect) {
     frame.render_widget(block, area);
     let panels = view.map_or(0, |v| v.figure.panels.len());
     let tabs_height = u16::from(panels > 1);
-    let [tabs_area, body, gauge_area] = Layout::vertical([
+    let readout = app.readout();
+    let readout_height = u16::from(readout.is_some() || app.zoom().is_some());
+    let [tabs_area, body, readout_area, gauge_area] = Layout::vertical([
         Constraint::Length(tabs_height),
         Constraint::Min(0),
+        Constraint::Length(readout_height),
         Constraint::Length(1),
     ])
     .areas(inner);
@@ -368,15 +382,163 @@ fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect) {
         }
         frame.render_widget(Line::from(spans), tabs_area);
     }
+    let mut geometry = None;
     match view {
         Some(v) if !app.show_info && !v.figure.panels.is_empty() => {
-            if let Some(panel) = v.figure.panels.get(app.panel()) {
-                render_panel(panel, body, frame.buffer_mut());
+            let (chart_area, results_area) = split_results(app, body);
+            if let Some(drawn) = app.drawn() {
+                let options = ChartOptions {
+                    view: app.zoom(),
+                    cursor: readout.as_ref().map(|r| r.point),
+                    selection: app.selection(),
+                };
+                geometry = render_chart(&drawn.panel, &options, chart_area, frame.buffer_mut());
+                let mut layout = app.layout.get();
+                layout.chart_area = chart_area;
+                app.layout.set(layout);
+            }
+            if let Some(area) = results_area {
+                draw_results(frame, app, Some(v), area);
             }
         }
         _ => draw_info(frame, app, view, body),
     }
+    let mut layout = app.layout.get();
+    layout.chart = geometry;
+    app.layout.set(layout);
+    if readout_height > 0 {
+        let mut spans = Vec::new();
+        if let Some(r) = &readout {
+            spans.push(Span::styled(
+                format!("◆ {}", r.name),
+                Style::default().fg(Color::White),
+            ));
+            spans.push(Span::raw(format!("  {}  {}", r.x, r.y)));
+        }
+        if app.zoom().is_some() {
+            spans.push(Span::styled(
+                "  · zoomed (0 resets)",
+                Style::default().fg(Color::DarkGray),
+            ));
+        }
+        frame.render_widget(Line::from(spans), readout_area);
+    }
     draw_gauge(frame, app, view, gauge_area);
+}
+
+/// Width of the results panel beside the chart.
+const RESULTS_WIDTH: u16 = 40;
+
+/// The chart's area and, where there is room, the results panel's: beside the chart when the
+/// figure pane is wide, under it when it is tall, none on small terminals.
+fn split_results(app: &App, body: Rect) -> (Rect, Option<Rect>) {
+    let declared = app.scene().map_or(0, |s| s.info().results.len());
+    let shown = app.figure(app.selected).map_or(0, |v| v.figure.results.len());
+    let n = declared.max(shown) as u16;
+    if n == 0 {
+        return (body, None);
+    }
+    if body.width >= 60 + RESULTS_WIDTH {
+        let [chart, results] =
+            Layout::horizontal([Constraint::Min(0), Constraint::Length(RESULTS_WIDTH)]).areas(body);
+        (chart, Some(results))
+    } else if body.height >= 20 {
+        let h = (n + 2).min(body.height / 3);
+        let [chart, results] = Layout::vertical([Constraint::Min(0), Constraint::Length(h)]).areas(body);
+        (chart, Some(results))
+    } else {
+        (body, None)
+    }
+}
+
+/// The scene's results with units: the values of the shown run (partial while it runs), the
+/// declared names still to come dimmed.
+fn draw_results(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, area: Rect) {
+    let partial = view.is_some_and(|v| v.state != FigureState::Complete);
+    let title = if partial {
+        " Results (partial) "
+    } else {
+        " Results "
+    };
+    let block = Block::bordered()
+        .title(title)
+        .border_style(Style::default().fg(Color::DarkGray));
+    let inner = block.inner(area);
+    frame.render_widget(block, area);
+    let mut rows: Vec<(String, Option<f64>)> = view
+        .map(|v| {
+            v.figure
+                .results
+                .iter()
+                .map(|(n, x)| (n.clone(), Some(*x)))
+                .collect()
+        })
+        .unwrap_or_default();
+    if let Some(scene) = app.scene() {
+        for (name, _) in scene.info().results {
+            if !rows.iter().any(|(n, _)| n == name) {
+                rows.push(((*name).to_string(), None));
+            }
+        }
+    }
+    let width = inner.width as usize;
+    let lines: Vec<Line<'_>> = rows
+        .iter()
+        .map(|(name, value)| {
+            let (short, unit) = result_unit(name);
+            let text = match value {
+                Some(v) if name.ends_with("_count") => format!("{v:.0}"),
+                Some(v) => fmt_quantity(*v, unit),
+                None => "…".into(),
+            };
+            let name_width = width.saturating_sub(text.chars().count() + 1);
+            let line = format!("{:<name_width$} {text}", clip(short, name_width));
+            if value.is_some() {
+                Line::from(line)
+            } else {
+                Line::styled(line, Style::default().fg(Color::DarkGray))
+            }
+        })
+        .collect();
+    frame.render_widget(Paragraph::new(lines), inner);
+}
+
+fn draw_history(frame: &mut Frame<'_>, app: &App, selected: usize, area: Rect) {
+    let mut lines: Vec<Line<'_>> = app
+        .history()
+        .iter()
+        .enumerate()
+        .map(|(k, e)| {
+            let style = if k == selected {
+                Style::default().bg(Color::Blue).fg(Color::White)
+            } else {
+                Style::default()
+            };
+            Line::styled(format!(" {}", history_line(app, e)), style)
+        })
+        .collect();
+    lines.push(Line::from(""));
+    lines.push(Line::styled(
+        " ↑ ↓ choose · Enter reopens (no rerun) · e exports · Esc closes",
+        Style::default().fg(Color::DarkGray),
+    ));
+    let width = 96.min(area.width);
+    let height = (lines.len() as u16 + 2).min(area.height);
+    let rect = Rect {
+        x: area.x + (area.width - width) / 2,
+        y: area.y + (area.height - height) / 2,
+        width,
+        height,
+    };
+    frame.render_widget(Clear, rect);
+    frame.render_widget(
+        Paragraph::new(lines).block(
+            Block::bordered()
+                .title(format!(" Run history — last {} runs ", app.history().len()))
+                .border_style(Style::default().fg(ACCENT)),
+        ),
+        rect,
+    );
 }
 
 fn draw_info(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, area: Rect) {
@@ -394,7 +556,8 @@ fn draw_info(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, area: 
                 Style::default().add_modifier(Modifier::BOLD),
             ));
             for (name, value) in &v.figure.results {
-                lines.push(Line::from(format!("  {name:<36} {}", fmt_float(*value))));
+                let unit = result_unit(name).1;
+                lines.push(Line::from(format!("  {name:<36} {} {unit}", fmt_float(*value))));
             }
             for note in &v.figure.notes {
                 lines.push(Line::styled(
@@ -416,7 +579,12 @@ fn draw_gauge(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, area:
             } else {
                 run.message.as_str()
             };
-            let label = format!("{id} {:>3.0}% {message}  (Esc cancels)", run.fraction * 100.0);
+            let label = format!(
+                "{id} {:>3.0}% {message}{}  (Esc cancels)",
+                // Whole percent, never 100 % before the run ends.
+                (run.fraction * 100.0).floor().min(99.0),
+                time_left(run.fraction, run.elapsed_s)
+            );
             let gauge = Gauge::default()
                 .gauge_style(Style::default().fg(ACCENT).bg(Color::Black))
                 .ratio(run.fraction.clamp(0.0, 1.0))
@@ -439,6 +607,22 @@ fn draw_gauge(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, area:
     }
 }
 
+/// ` · 12 s, about 30 s left` once a run has taken a second and done 2 % of its work.
+pub fn time_left(fraction: f64, elapsed_s: f64) -> String {
+    if elapsed_s < 1.0 {
+        return String::new();
+    }
+    if fraction < 0.02 {
+        return format!(" · {}", fmt_duration(elapsed_s));
+    }
+    let left = elapsed_s * (1.0 - fraction) / fraction;
+    format!(
+        " · {}, about {} left",
+        fmt_duration(elapsed_s),
+        fmt_duration(left)
+    )
+}
+
 fn draw_status(frame: &mut Frame<'_>, app: &App, area: Rect) {
     let hint = " ? help · q quit ";
     let [text_area, hint_area] =
@@ -456,7 +640,7 @@ fn draw_status(frame: &mut Frame<'_>, app: &App, area: Rect) {
 }
 
 fn draw_help(frame: &mut Frame<'_>, area: Rect) {
-    let mut lines: Vec<Line<'_>> = BINDINGS
+    let keys: Vec<Line<'_>> = BINDINGS
         .iter()
         .map(|b| {
             Line::from(vec![
@@ -465,6 +649,7 @@ fn draw_help(frame: &mut Frame<'_>, area: Rect) {
             ])
         })
         .collect();
+    let mut lines = Vec::new();
     lines.push(Line::from(""));
     lines.push(Line::styled(
         " While editing a value: type, ← → Home End, Backspace Del, Ctrl-U clears;",
@@ -478,8 +663,23 @@ fn draw_help(frame: &mut Frame<'_>, area: Rect) {
         " * marks a value changed from the dissertation's default.",
         Style::default().fg(Color::DarkGray),
     ));
-    let width = 84.min(area.width);
-    let height = (lines.len() as u16 + 2).min(area.height);
+    lines.push(Line::styled(
+        " Mouse: click a scene, a parameter or a point; drag on the chart zooms, right click and 0",
+        Style::default().fg(Color::DarkGray),
+    ));
+    lines.push(Line::styled(
+        " show it whole; the wheel scrolls the lists and zooms the chart.",
+        Style::default().fg(Color::DarkGray),
+    ));
+    // One column when it fits, else the keys in two columns side by side.
+    let one_column = keys.len() + lines.len() + 2 <= usize::from(area.height);
+    let width = if one_column { 86 } else { 172 }.min(area.width);
+    let key_rows = if one_column {
+        keys.len()
+    } else {
+        keys.len().div_ceil(2)
+    };
+    let height = ((key_rows + lines.len()) as u16 + 2).min(area.height);
     let rect = Rect {
         x: area.x + (area.width - width) / 2,
         y: area.y + (area.height - height) / 2,
@@ -487,12 +687,21 @@ fn draw_help(frame: &mut Frame<'_>, area: Rect) {
         height,
     };
     frame.render_widget(Clear, rect);
-    frame.render_widget(
-        Paragraph::new(lines).block(
-            Block::bordered()
-                .title(" Keys — any key closes ")
-                .border_style(Style::default().fg(ACCENT)),
-        ),
-        rect,
-    );
+    let block = Block::bordered()
+        .title(" Keys — any key closes ")
+        .border_style(Style::default().fg(ACCENT));
+    let inner = block.inner(rect);
+    frame.render_widget(block, rect);
+    let [keys_area, notes_area] =
+        Layout::vertical([Constraint::Length(key_rows as u16), Constraint::Min(0)]).areas(inner);
+    if one_column {
+        frame.render_widget(Paragraph::new(keys), keys_area);
+    } else {
+        let [a, b] = Layout::horizontal([Constraint::Ratio(1, 2), Constraint::Ratio(1, 2)]).areas(keys_area);
+        let mut keys = keys;
+        let second = keys.split_off(key_rows);
+        frame.render_widget(Paragraph::new(keys), a);
+        frame.render_widget(Paragraph::new(second), b);
+    }
+    frame.render_widget(Paragraph::new(lines), notes_area);
 }

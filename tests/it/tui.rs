@@ -147,7 +147,7 @@ pub(crate) fn type_text(s: &mut Session, text: &str) {
     }
 }
 
-fn clear_line(s: &mut Session) {
+pub(crate) fn clear_line(s: &mut Session) {
     s.key(KeyEvent::new(KeyCode::Char('u'), KeyModifiers::CONTROL));
 }
 
