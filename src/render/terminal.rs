@@ -339,7 +339,7 @@ pub fn render_chart(
                 .style(TuiStyle::default().fg(Color::Gray)),
         )
         .legend_position(Some(LegendPosition::TopRight))
-        .hidden_legend_constraints((Constraint::Ratio(1, 2), Constraint::Ratio(1, 2)));
+        .hidden_legend_constraints((Constraint::Ratio(2, 3), Constraint::Ratio(2, 3)));
     chart.render(area, buf);
     let layout = chart_layout(area, y_width as u16)?;
     let geometry = ChartGeometry {

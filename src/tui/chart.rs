@@ -19,7 +19,7 @@ use crate::render::terminal::{ChartGeometry, View, shown_range};
 /// Runs the history keeps.
 pub const HISTORY_LEN: usize = 20;
 /// Longest legend label of a pinned run, in characters.
-pub const PIN_LABEL_WIDTH: usize = 44;
+pub const PIN_LABEL_WIDTH: usize = 36;
 /// Points the fast cursor keys skip.
 const FAST_STEP: isize = 20;
 

@@ -649,28 +649,29 @@ fn draw_help(frame: &mut Frame<'_>, area: Rect) {
             ])
         })
         .collect();
-    let mut lines = Vec::new();
-    lines.push(Line::from(""));
-    lines.push(Line::styled(
-        " While editing a value: type, ← → Home End, Backspace Del, Ctrl-U clears;",
-        Style::default().fg(Color::DarkGray),
-    ));
-    lines.push(Line::styled(
-        " invalid values turn red (✗) and block running; the last valid values are kept;",
-        Style::default().fg(Color::DarkGray),
-    ));
-    lines.push(Line::styled(
-        " * marks a value changed from the dissertation's default.",
-        Style::default().fg(Color::DarkGray),
-    ));
-    lines.push(Line::styled(
-        " Mouse: click a scene, a parameter or a point; drag on the chart zooms, right click and 0",
-        Style::default().fg(Color::DarkGray),
-    ));
-    lines.push(Line::styled(
-        " show it whole; the wheel scrolls the lists and zooms the chart.",
-        Style::default().fg(Color::DarkGray),
-    ));
+    let lines = vec![
+        Line::from(""),
+        Line::styled(
+            " While editing a value: type, ← → Home End, Backspace Del, Ctrl-U clears;",
+            Style::default().fg(Color::DarkGray),
+        ),
+        Line::styled(
+            " invalid values turn red (✗) and block running; the last valid values are kept;",
+            Style::default().fg(Color::DarkGray),
+        ),
+        Line::styled(
+            " * marks a value changed from the dissertation's default.",
+            Style::default().fg(Color::DarkGray),
+        ),
+        Line::styled(
+            " Mouse: click a scene, a parameter or a point; drag on the chart zooms, right click and 0",
+            Style::default().fg(Color::DarkGray),
+        ),
+        Line::styled(
+            " show it whole; the wheel scrolls the lists and zooms the chart.",
+            Style::default().fg(Color::DarkGray),
+        ),
+    ];
     // One column when it fits, else the keys in two columns side by side.
     let one_column = keys.len() + lines.len() + 2 <= usize::from(area.height);
     let width = if one_column { 86 } else { 172 }.min(area.width);
