@@ -277,6 +277,23 @@ pub fn write_figure(
     out: &Path,
     formats: &[Format],
 ) -> Result<Vec<PathBuf>> {
+    write_figure_with_runs(fig, caption, values, run_time_s, &[], out, formats)
+}
+
+/// [`write_figure`] for a figure that also draws earlier runs (pinned in the terminal UI): the
+/// JSON lists each of them with its parameters under `pinned_runs`.
+///
+/// # Errors
+/// Rendering and I/O errors; on error no new file is left behind.
+pub fn write_figure_with_runs(
+    fig: &Figure,
+    caption: &str,
+    values: &ParamValues,
+    run_time_s: f64,
+    runs: &[data::RunRecord<'_>],
+    out: &Path,
+    formats: &[Format],
+) -> Result<Vec<PathBuf>> {
     let path = |f: Format| out.join(format!("{}.{}", fig.id, f.extension()));
     // Render every format in memory first: a failure there writes nothing.
     let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
@@ -285,7 +302,7 @@ pub fn write_figure(
             Format::Png => plot::png_bytes(fig)?,
             Format::Svg => plot::svg_string(fig)?.into_bytes(),
             Format::Csv => data::csv(fig).into_bytes(),
-            Format::Json => data::json(fig, caption, values, run_time_s).into_bytes(),
+            Format::Json => data::json_with_runs(fig, caption, values, run_time_s, runs).into_bytes(),
         };
         files.push((path(f), bytes));
     }

@@ -1052,9 +1052,14 @@ fn coupling_study(
         linear: crate::numerics::newton::LinearSolver::Iterative,
         ..Default::default()
     };
+    // Each coupling reports its fraction of steps; the run's progress is their mean, so the
+    // gauge reaches 100 % only when the slowest (most strongly coupled) cycle is done.
+    let fractions = std::sync::Mutex::new(vec![0.0; p.couplings.len()]);
+    let n_couplings = p.couplings.len();
     p.couplings
         .par_iter()
-        .map(|&mult| {
+        .enumerate()
+        .map(|(slot, &mult)| {
             let a = crate::models::spring_array::SpringArray::new(
                 p.springs_x,
                 p.springs_y,
@@ -1065,9 +1070,22 @@ fn coupling_study(
             let c =
                 crate::models::spring_array::coupled_cycle(&a, window.0, window.1, p.steps, &opts, |f| {
                     job.check()?;
-                    if mult == p.couplings[0] {
-                        job.progress(f, "coupled cycle");
-                    }
+                    let mean = match fractions.lock() {
+                        Ok(mut all) => {
+                            all[slot] = f;
+                            all.iter().sum::<f64>() / n_couplings as f64
+                        }
+                        // Another coupling panicked holding the lock; its error will surface.
+                        Err(_) => f,
+                    };
+                    let steps = (mean * (2 * p.steps * n_couplings) as f64).round();
+                    job.progress(
+                        mean,
+                        &format!(
+                            "coupled cycles: {steps:.0}/{} steps of {n_couplings} couplings",
+                            2 * p.steps * n_couplings
+                        ),
+                    );
                     Ok(())
                 })?;
             Ok((mult, c))

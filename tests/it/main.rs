@@ -22,3 +22,4 @@ mod shards;
 mod snapshots;
 mod surface;
 mod tui;
+mod workbench;
