@@ -63,6 +63,17 @@ pub struct Cli {
     )]
     pub format: Vec<String>,
 
+    /// Compute only shard I of N of a sweep scene (the points whose id is I modulo N, I from 0),
+    /// one file per point in a folder under --out; points already there are skipped, so a rerun
+    /// resumes. One task of a job array (--shard $SLURM_ARRAY_TASK_ID/N); needs --figure.
+    #[arg(long, value_name = "I/N", conflicts_with = "merge")]
+    pub shard: Option<crate::headless::shard::Shard>,
+
+    /// Assemble a sweep computed with --shard from its folder under --out (same --figure,
+    /// --preset, --set and --quick) and export the figure as an unsharded run does.
+    #[arg(long)]
+    pub merge: bool,
+
     /// Reduced resolution (the tests' quick mode): same physics, fewer points.
     #[arg(long)]
     pub quick: bool,
@@ -138,6 +149,8 @@ pub fn check_options(cli: &Cli) -> crate::error::Result<()> {
     used(!cli.set.is_empty(), "--set", &["--figure"])?;
     used(s.surface.is_some(), "--surface", &["--figure"])?;
     used(cli.quick, "--quick", &["--figure", "--all"])?;
+    used(cli.shard.is_some(), "--shard", &["--figure"])?;
+    used(cli.merge, "--merge", &["--figure"])?;
     used(s.pixel_size.is_some(), "--pixel-size", &["--analyze-surface"])?;
     used(s.periodic, "--periodic", &["--analyze-surface"])?;
     used(s.remove_tilt, "--remove-tilt", &["--analyze-surface"])?;

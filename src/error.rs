@@ -92,6 +92,17 @@ pub enum Error {
         /// Why, with the numbers involved.
         reason: String,
     },
+    /// A scene's run failed inside its model, or gave non-finite results, at the parameters
+    /// the user changed: the message names them (with their defaults) before the model's reason.
+    #[error("{scene} with {at}: {cause}")]
+    AtParameters {
+        /// The scene id.
+        scene: &'static str,
+        /// The changed parameters as `` `name` = value (default d) ``, most changed first.
+        at: String,
+        /// The model's reason, with its numbers shortened to 6 significant digits.
+        cause: String,
+    },
     /// The run was cancelled through its [`crate::job::Job`].
     #[error("cancelled")]
     Cancelled,

@@ -145,6 +145,8 @@ fn split_row(line: &str) -> Vec<&str> {
 /// unknown unit, a row with too few cells, a cell that is not a finite number, or no data rows.
 pub fn parse_curve(text: &str, path: &Path) -> Result<Curve> {
     let err = |line: usize, msg: String| Error::data_file(path, line, msg);
+    // Line ends: LF, CRLF or CR alone (old Mac exports); one line number per line in each.
+    let text = crate::params::normalise_line_ends(text);
     let mut rows = text
         .lines()
         .enumerate()
@@ -247,26 +249,93 @@ pub fn read_curve(path: &Path) -> Result<Curve> {
     parse_curve(&text, path)
 }
 
-/// The in-contact part of a cycle: the rows from the first to the last whose force stands out
-/// of the zero-force noise of the approach and retract segments. The noise level σ is
-/// estimated by `noise_level` on the first and on the last tenth of the rows, and the smaller
-/// of the two counts (one end may hold the contact curve, as when a cycle stops soon after the
-/// pull-off). A force counts as non-zero above max(8σ, 1 % of the largest |P|). Returns the
-/// index range.
+/// Fewest rows a baseline may have: shorter end segments are not taken as baselines.
+pub const MIN_BASELINE_ROWS: usize = 10;
+
+/// How the in-contact rows of a curve were found (written to `fit.json`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ContactDetection {
+    /// The estimator, in words.
+    pub method: String,
+    /// Rows of the zero-force baseline found at the start of the file (0: none, the file starts
+    /// in contact).
+    pub baseline_rows_start: usize,
+    /// Rows of the baseline found at the end of the file.
+    pub baseline_rows_end: usize,
+    /// Noise level σ of the baseline(s) [N] (0 without a baseline).
+    pub noise_n: f64,
+    /// A row between the baselines is in contact from the first to the last whose |P| exceeds
+    /// this [N]: max(8σ, 1 % of the largest |P|).
+    pub threshold_n: f64,
+}
+
+/// The in-contact part of a cycle ([`detect_contact`] without its description).
+///
+/// # Errors
+/// As [`detect_contact`].
+pub fn contact_range(curve: &Curve, path: &Path, min_points: usize) -> Result<std::ops::Range<usize>> {
+    detect_contact(curve, path, min_points).map(|(r, _)| r)
+}
+
+/// The in-contact part of a cycle, found as AFM software finds a contact point, by the deviation
+/// from the baseline that is actually there, at each end of the file:
+/// - a baseline starts with [`MIN_BASELINE_ROWS`] rows at an end whose median force is small
+///   (below max(5σ, 2 % of the largest |P|), σ their noise level: the larger of the noise
+///   about a robust line and of 1.4826 × the median deviation from their median, so that
+///   correlated noise counts in full) and whose outermost
+///   row is within the tolerance below: forces are taken as zero out of contact, as the
+///   models assume; an end in contact has none;
+/// - it grows row by row inwards while the force stays within max(6σ, 0.5 % of max |P|) of
+///   that median, and ends before the first of three successive rows outside (a single noise
+///   spike does not end it; the jump at pull-in or pull-off, or the onset of contact, does);
+/// - the in-contact rows are those between the baselines from the first to the last whose
+///   |P| exceeds max(8σ, 1 % of max |P|), with σ the smaller of the baselines' noise levels
+///   (0 without a baseline: then the whole file is the contact part).
+///
+/// Baselines of 10 rows suffice; the jumps are never mistaken for noise, since σ comes from
+/// the baseline rows alone.
 ///
 /// # Errors
 /// [`Error::DataFile`] when fewer than `min_points` rows are in contact.
-pub fn contact_range(curve: &Curve, path: &Path, min_points: usize) -> Result<std::ops::Range<usize>> {
-    let n = curve.force.len();
-    let tenth = (n / 10).max(2).min(n);
-    let noise = noise_level(&curve.force[..tenth]).min(noise_level(&curve.force[n - tenth..]));
-    let p_max = curve.force.iter().fold(0.0f64, |m, p| m.max(p.abs()));
+pub fn detect_contact(
+    curve: &Curve,
+    path: &Path,
+    min_points: usize,
+) -> Result<(std::ops::Range<usize>, ContactDetection)> {
+    let f = &curve.force;
+    let n = f.len();
+    let p_max = f.iter().fold(0.0f64, |m, p| m.max(p.abs()));
+    let start = baseline(|k| f[k], n, p_max);
+    let end = baseline(|k| f[n - 1 - k], n, p_max);
+    // Baselines shorter than the minimum are not trusted (their σ would be noise itself).
+    let start = start.filter(|b| b.0 >= MIN_BASELINE_ROWS);
+    let end = end.filter(|b| b.0 >= MIN_BASELINE_ROWS);
+    let (len_s, len_e) = (start.map_or(0, |b| b.0), end.map_or(0, |b| b.0));
+    let noise = match (start, end) {
+        (Some(a), Some(b)) => a.1.min(b.1),
+        (Some(a), None) | (None, Some(a)) => a.1,
+        (None, None) => 0.0,
+    };
     let threshold = (8.0 * noise).max(0.01 * p_max);
-    let first = curve.force.iter().position(|p| p.abs() > threshold);
-    let last = curve.force.iter().rposition(|p| p.abs() > threshold);
+    let inner = len_s..n.saturating_sub(len_e).max(len_s);
+    let first = inner.clone().find(|&k| f[k].abs() > threshold);
+    let last = inner.clone().rev().find(|&k| f[k].abs() > threshold);
     let range = match (first, last) {
         (Some(a), Some(b)) => a..b + 1,
         _ => 0..0,
+    };
+    let method = match (len_s > 0, len_e > 0) {
+        (true, true) => "deviation from the zero-force baselines at both ends",
+        (true, false) => "deviation from the zero-force baseline at the start (the file ends in contact)",
+        (false, true) => "deviation from the zero-force baseline at the end (the file starts in contact)",
+        (false, false) => "no baseline (the whole file in contact): force above 1 % of its largest |P|",
+    };
+    let detection = ContactDetection {
+        method: method.into(),
+        baseline_rows_start: len_s,
+        baseline_rows_end: len_e,
+        noise_n: noise,
+        threshold_n: threshold,
     };
     if range.len() < min_points {
         let line = curve.lines.get(range.start).copied().unwrap_or(0);
@@ -279,7 +348,47 @@ pub fn contact_range(curve: &Curve, path: &Path, min_points: usize) -> Result<st
             ),
         ));
     }
-    Ok(range)
+    Ok((range, detection))
+}
+
+/// The zero-force baseline at one end of a curve: `f(k)` is the k-th force from that end
+/// inwards, `n` the rows. Returns its length and noise level, or `None` if the end is in
+/// contact (see [`detect_contact`]).
+fn baseline(f: impl Fn(usize) -> f64, n: usize, p_max: f64) -> Option<(usize, f64)> {
+    if n < 2 * MIN_BASELINE_ROWS {
+        return None;
+    }
+    let head: Vec<f64> = (0..MIN_BASELINE_ROWS).map(&f).collect();
+    let mut sorted = head.clone();
+    sorted.sort_by(f64::total_cmp);
+    let level = sorted[sorted.len() / 2];
+    // The larger of the noise about a robust line and of the spread about the median: on 10
+    // rows, correlated noise (a drift, a sawtooth) looks like a line and only the second sees
+    // it; for white noise both are σ.
+    let mut deviations: Vec<f64> = head.iter().map(|x| (x - level).abs()).collect();
+    deviations.sort_by(f64::total_cmp);
+    let sigma = noise_level(&head).max(1.4826 * deviations[deviations.len() / 2]);
+    if level.abs() > (5.0 * sigma).max(0.02 * p_max) {
+        return None;
+    }
+    let tol = (6.0 * sigma).max(0.005 * p_max);
+    if (f(0) - level).abs() > tol {
+        // The outermost row stands out: the file ends (or starts) in contact.
+        return None;
+    }
+    let (mut len, mut outside) = (1, 0);
+    for k in 1..n {
+        if (f(k) - level).abs() > tol {
+            outside += 1;
+            if outside == 3 {
+                break;
+            }
+        } else {
+            len = k + 1;
+            outside = 0;
+        }
+    }
+    Some((len, sigma))
 }
 
 /// Robust noise level of a segment that is a straight line plus noise: the larger of
@@ -364,6 +473,11 @@ pub struct FitReport {
     pub points_used: usize,
     /// First and last file line used.
     pub lines_used: (usize, usize),
+    /// How the in-contact rows were found.
+    pub contact_detection: ContactDetection,
+    /// Why the fitted values may not mean what they seem (also printed on stderr), e.g. a
+    /// standard error as large as the value.
+    pub warnings: Vec<String>,
     /// Levenberg-Marquardt iterations.
     pub iterations: usize,
     /// Cantilever stiffness k_s [N/m], if given.
@@ -378,6 +492,50 @@ pub struct FitReport {
     pub measured_pull_off_force_n: f64,
     /// Measured most negative force [N].
     pub measured_min_force_n: f64,
+}
+
+/// The in-contact rows must be able to determine w and ℰ: the depth and the force vary, and
+/// the deepest rows indent (positive depth) under compression (positive force), as every model
+/// here has it (a sign flipped in one column breaks this).
+///
+/// # Errors
+/// [`Error::DataFile`] naming the lines and what to check.
+fn check_meaningful_data(h: &[f64], p: &[f64], path: &Path, lines: (usize, usize)) -> Result<()> {
+    let span = |v: &[f64]| {
+        let (lo, hi) = v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+            (a.min(*x), b.max(*x))
+        });
+        hi - lo
+    };
+    let at = |what: String| {
+        Error::data_file(
+            path,
+            lines.0,
+            format!("in-contact lines {}-{}: {what}", lines.0, lines.1),
+        )
+    };
+    if span(h) <= 0.0 {
+        return Err(at("the depth does not vary, so no modulus can be fitted".into()));
+    }
+    if span(p) <= 0.0 {
+        return Err(at("the force does not vary, so nothing can be fitted".into()));
+    }
+    // At the deepest tenth of the indentation every model is in compression.
+    let h_max = h.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let mut deep: Vec<f64> = h
+        .iter()
+        .zip(p)
+        .filter(|(hh, _)| **hh >= 0.9 * h_max)
+        .map(|(_, pp)| *pp)
+        .collect();
+    deep.sort_by(f64::total_cmp);
+    if h_max <= 0.0 || deep[deep.len() / 2] <= 0.0 {
+        return Err(at(
+            "the deepest rows are not in compression (positive depth is indentation, positive force compression): is the sign of one column flipped?"
+                .into(),
+        ));
+    }
+    Ok(())
 }
 
 /// Fit w and ℰ to the in-contact rows of a curve (appendix A.4).
@@ -412,9 +570,10 @@ pub fn fit_curve(
         (None, Some(_)) => FitModel::MachineStiffness,
         (None, None) => FitModel::Jkr,
     };
-    let range = contact_range(curve, path, 10)?;
+    let (range, contact_detection) = detect_contact(curve, path, 10)?;
     let h = &curve.depth[range.clone()];
     let p = &curve.force[range.clone()];
+    check_meaningful_data(h, p, path, (curve.lines[range.start], curve.lines[range.end - 1]))?;
     let pi = std::f64::consts::PI;
     // Start: the force minimum is between −(5/9)P̂ and −P̂; the deepest point is nearly Hertzian.
     let p_min = p.iter().copied().fold(f64::INFINITY, f64::min);
@@ -485,6 +644,35 @@ pub fn fit_curve(
     let sol = levenberg_marquardt(&residuals, Some(&jacobian), &x0, LmOptions::default())?;
     let (w, e) = (sol.x[0].exp(), sol.x[1].exp());
     let rms = sol.residual_norm * p_scale / (h.len() as f64).sqrt();
+    let (w_err, e_err) = (w * sol.std_errors[0], e * sol.std_errors[1]);
+    if ![w, e, w_err, e_err, rms].iter().all(|v| v.is_finite()) {
+        return Err(Error::data_file(
+            path,
+            0,
+            format!(
+                "the fit has no finite answer (w = {}, E = {}, standard errors {}, {}): the data do not determine w and E",
+                crate::params::fmt_sig(w),
+                crate::params::fmt_sig(e),
+                crate::params::fmt_sig(w_err),
+                crate::params::fmt_sig(e_err)
+            ),
+        ));
+    }
+    let mut warnings = Vec::new();
+    for (name, v, err) in [("work of adhesion", w, w_err), ("modulus", e, e_err)] {
+        if err > 0.5 * v {
+            warnings.push(format!(
+                "the {name} is not determined by these data: its standard error is {} % of its value",
+                crate::params::fmt_sig((100.0 * err / v).round())
+            ));
+        }
+    }
+    if rms > 0.2 * p_scale {
+        warnings.push(format!(
+            "the model does not describe these data: the rms force residual is {:.0} % of the largest |P|",
+            100.0 * rms / p_scale
+        ));
+    }
     let x_for = |k: f64| Experiment::new(TipGeometry::Sphere { radius }, e, w, k);
     let jkr_pred = predictions(&x_for(1.0)?)?;
     let jkr = InstabilityReport {
@@ -515,16 +703,18 @@ pub fn fit_curve(
         model,
         work_of_adhesion_j_per_m2: Estimate {
             value: w,
-            std_error: w * sol.std_errors[0],
+            std_error: w_err,
         },
         plane_strain_modulus_pa: Estimate {
             value: e,
-            std_error: e * sol.std_errors[1],
+            std_error: e_err,
         },
         rms_residual_n: rms,
         points_total: curve.depth.len(),
         points_used: range.len(),
         lines_used: (curve.lines[range.start], curve.lines[range.end - 1]),
+        contact_detection,
+        warnings,
         iterations: sol.iterations,
         spring_constant_n_per_m: spring_constant,
         alpha,
@@ -597,6 +787,13 @@ pub fn fit_figure(curve: &Curve, report: &FitReport) -> Result<Figure> {
         report.points_used,
         report.points_total
     ));
+    fig.note(format!(
+        "in-contact rows found by {}",
+        report.contact_detection.method
+    ));
+    for w in &report.warnings {
+        fig.note(format!("warning: {w}"));
+    }
     Ok(fig)
 }
 
@@ -636,6 +833,9 @@ pub fn command(args: &FitArgs, out: &Path) -> Result<Vec<PathBuf>> {
         .ok_or_else(|| Error::invalid("tip-radius", "", "--fit needs --tip-radius (metres)"))?;
     let curve = read_curve(path)?;
     let report = fit_curve(&curve, path, radius, args.spring_constant, args.model)?;
+    for w in &report.warnings {
+        eprintln!("warning: {}: {w}", path.display());
+    }
     let fig = fit_figure(&curve, &report)?;
     let json = serde_json::to_string_pretty(&report).expect("the report has finite numbers and string keys");
     let files = [

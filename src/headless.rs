@@ -19,6 +19,8 @@ use crate::render::{Format, data, plot, write_set};
 use crate::reproduction;
 use crate::scenes::{self, SceneDyn, chapter_title};
 
+pub mod shard;
+
 /// Run the command line in headless mode (also `--list` and `--describe`).
 ///
 /// # Errors
@@ -75,6 +77,16 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
             sets.push(format!("surface={}", path.display()));
         }
         let values = resolve_values(scene, cli.preset.as_deref(), &sets, cli.quick)?;
+        if let Some(part) = cli.shard {
+            println!("{}", shard::run_shard(scene, &values, part, &cli.out)?.display());
+            return Ok(ExitCode::SUCCESS);
+        }
+        if cli.merge {
+            for p in shard::merge(scene, &values, &cli.out, &formats)? {
+                println!("{}", p.display());
+            }
+            return Ok(ExitCode::SUCCESS);
+        }
         let written = export_scene(scene, &values, &cli.out, &formats, &progress_job(id))?;
         for p in written {
             println!("{}", p.display());
@@ -237,16 +249,22 @@ pub fn describe(id: &str) -> Result<String> {
     let scene = scenes::find(id)?;
     let info = scene.info();
     let defaults = scene.defaults();
-    let mut out = format!(
-        "{} — {}\n\n{}\n\nParameters (SI units; set with --set NAME=VALUE):\n",
-        info.id, info.title, info.caption
-    );
-    if info.sweep {
+    let mut out = format!("{} — {}\n\n{}\n\n", info.id, info.title, info.caption);
+    if let Some(sweep) = scene.sweep() {
+        let n = sweep.points(&defaults)?.len();
+        let quick = sweep.points(&scene.quick(&defaults)?)?.len();
+        out.push_str(&format!(
+            "A sweep of {n} independent points at these defaults ({quick} in quick form); the count \
+             follows the parameters. Run it in shards with --shard I/N --out DIR (a job array), then \
+             --merge --out DIR (see the README).\n\n"
+        ));
+    } else if info.sweep {
         out.push_str(
             "A sweep of many independent cycles: `--all` runs it in its quick form; export it \
              with --figure for the full grid.\n\n",
         );
     }
+    out.push_str("Parameters (SI units; set with --set NAME=VALUE):\n");
     out.push_str(&format!(
         "  {:<24} {:>14}  {:<8} {:<16} {}\n",
         "name", "default", "unit", "valid range", "meaning"
@@ -346,6 +364,23 @@ pub fn write_figure(
     out: &Path,
     formats: &[Format],
 ) -> Result<Vec<PathBuf>> {
+    write_figure_with_runs(fig, caption, values, run_time_s, &[], out, formats)
+}
+
+/// [`write_figure`] for a figure that also draws earlier runs (pinned in the terminal UI): the
+/// JSON lists each of them with its parameters under `pinned_runs`.
+///
+/// # Errors
+/// Rendering and I/O errors; on error no new file is left behind.
+pub fn write_figure_with_runs(
+    fig: &Figure,
+    caption: &str,
+    values: &ParamValues,
+    run_time_s: f64,
+    runs: &[data::RunRecord<'_>],
+    out: &Path,
+    formats: &[Format],
+) -> Result<Vec<PathBuf>> {
     let path = |f: Format| out.join(format!("{}.{}", fig.id, f.extension()));
     // Render every format in memory first: a failure there writes nothing.
     let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
@@ -354,7 +389,7 @@ pub fn write_figure(
             Format::Png => plot::png_bytes(fig)?,
             Format::Svg => plot::svg_string(fig)?.into_bytes(),
             Format::Csv => data::csv(fig).into_bytes(),
-            Format::Json => data::json(fig, caption, values, run_time_s).into_bytes(),
+            Format::Json => data::json_with_runs(fig, caption, values, run_time_s, runs).into_bytes(),
         };
         files.push((path(f), bytes));
     }

@@ -15,7 +15,7 @@
 //!
 //! | layer | module | what |
 //! |---|---|---|
-//! | front ends | [`tui`], [`headless`], [`cli`] | terminal UI with a background worker; exports |
+//! | front ends | [`tui`], [`headless`], [`cli`] | terminal UI with a background worker; exports; sharded sweeps |
 //! | scenes | [`scenes`] | one scene per dissertation figure: params, caption, `run` |
 //! | output | [`figure`], [`render`] | backend-free figure; PNG/SVG, CSV/JSON, terminal chart |
 //! | models | [`models`] | one module per theory, equations only |

@@ -212,7 +212,9 @@ impl ParamSpec {
                 }
                 toml::Value::Array(items)
             }
-            ParamKind::Text => toml::Value::String(text.into()),
+            // Text parameters are file names: surrounding blanks are never meant ("   " is
+            // no file, as "" is none), from the command line, the form or a preset alike.
+            ParamKind::Text => toml::Value::String(t.into()),
         };
         self.check(&value)?;
         Ok(value)
@@ -343,6 +345,81 @@ pub fn fmt_sig(x: f64) -> String {
     }
 }
 
+/// A message with every long number in it (more than 10 digits, like the hundreds of digits
+/// of `{}` on 1e300) rewritten by [`fmt_sig`]; identifiers such as `fig3.8` and short numbers
+/// stay as they are.
+pub fn compact_numbers(text: &str) -> String {
+    let b = text.as_bytes();
+    let mut out = String::with_capacity(text.len());
+    let mut i = 0;
+    while i < b.len() {
+        let starts = b[i].is_ascii_digit() || (b[i] == b'-' && b.get(i + 1).is_some_and(u8::is_ascii_digit));
+        let after_word = i > 0 && (b[i - 1].is_ascii_alphanumeric() || b[i - 1] == b'_' || b[i - 1] == b'.');
+        if !starts || after_word {
+            let c = text[i..].chars().next().unwrap_or(' ');
+            out.push(c);
+            i += c.len_utf8();
+            continue;
+        }
+        let mut j = i + usize::from(b[i] == b'-');
+        let mut digits = 0;
+        let mut seen_dot = false;
+        while j < b.len() && (b[j].is_ascii_digit() || (b[j] == b'.' && !seen_dot)) {
+            seen_dot |= b[j] == b'.';
+            digits += usize::from(b[j].is_ascii_digit());
+            j += 1;
+        }
+        if j < b.len() && (b[j] == b'e' || b[j] == b'E') {
+            let mut k = j + 1;
+            if k < b.len() && (b[k] == b'-' || b[k] == b'+') {
+                k += 1;
+            }
+            if k < b.len() && b[k].is_ascii_digit() {
+                while k < b.len() && b[k].is_ascii_digit() {
+                    k += 1;
+                }
+                j = k;
+            }
+        }
+        let token = text[i..j].trim_end_matches('.');
+        let end = i + token.len();
+        match token.parse::<f64>() {
+            Ok(x) if digits > 10 => out.push_str(&fmt_sig(x)),
+            _ => out.push_str(token),
+        }
+        i = end;
+    }
+    out
+}
+
+/// Text from a file as every reader here takes it: a UTF-8 byte-order mark skipped, CRLF and
+/// CR alone turned into LF (so that each line keeps its number), whatever wrote the file.
+pub fn normalise_line_ends(text: &str) -> String {
+    text.trim_start_matches('\u{feff}')
+        .replace("\r\n", "\n")
+        .replace('\r', "\n")
+}
+
+/// A TOML syntax error with its line and the key of that line: "line 3 (`radius`): invalid
+/// float" (the parser's own message names neither for some errors, such as a duplicate key).
+fn toml_error_at(text: &str, e: &toml::de::Error) -> String {
+    let message = escape_for_message(e.message().trim(), 200);
+    let Some(span) = e.span() else {
+        return message;
+    };
+    let start = span.start.min(text.len());
+    let line_no = text[..start].matches('\n').count() + 1;
+    let line = text.lines().nth(line_no - 1).unwrap_or("");
+    let key = line
+        .split_once('=')
+        .map(|(k, _)| k.trim().trim_matches('"'))
+        .filter(|k| !k.is_empty());
+    match key {
+        Some(k) => format!("line {line_no} (`{}`): {message}", escape_for_message(k, 40)),
+        None => format!("line {line_no}: {message}"),
+    }
+}
+
 /// The text of a TOML value as the user would type it (the inverse of [`ParamSpec::parse`]).
 pub fn value_text(value: &toml::Value) -> String {
     match value {
@@ -469,6 +546,7 @@ impl ParamValues {
                         })
                         .collect(),
                 ),
+                (ParamKind::Text, toml::Value::String(text)) => toml::Value::String(text.trim().into()),
                 _ => value.clone(),
             };
             spec.check(&value)?;
@@ -488,7 +566,9 @@ impl ParamValues {
             message,
         };
         let text = std::fs::read_to_string(path).map_err(|e| preset_err(e.to_string()))?;
-        let table: toml::Table = toml::from_str(&text).map_err(|e| preset_err(e.message().to_string()))?;
+        // As the data files: a UTF-8 byte-order mark is skipped, CRLF and CR alone end lines.
+        let text = normalise_line_ends(&text);
+        let table: toml::Table = toml::from_str(&text).map_err(|e| preset_err(toml_error_at(&text, &e)))?;
         self.apply_table(&table).map_err(|e| preset_err(e.to_string()))
     }
 

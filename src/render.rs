@@ -5,6 +5,7 @@
 
 pub mod axes;
 pub mod data;
+pub mod labels;
 pub mod plot;
 pub mod terminal;
 pub mod text;

@@ -7,7 +7,9 @@
 //! same registry through the object-safe [`SceneDyn`].
 //!
 //! Adding a scene: implement [`Scene`] for a unit struct in the chapter's file under `scenes/`,
-//! add it to that file's `SCENES` list, and add `presets/<id>.toml`.
+//! add it to that file's `SCENES` list, and add `presets/<id>.toml`. A scene made of many
+//! independent points also implements [`sweep::Sweep`] and is listed as `Swept::<S>::NEW`, which
+//! lets it run in shards (a job array on a cluster) and be merged.
 
 use std::marker::PhantomData;
 
@@ -23,6 +25,7 @@ pub mod fig4;
 pub mod fig5;
 pub mod fig6;
 pub mod figc;
+pub mod sweep;
 
 /// A figure of the dissertation, computed.
 pub trait Scene: Send + Sync + 'static {
@@ -108,6 +111,11 @@ pub trait SceneDyn: Send + Sync {
     /// # Errors
     /// Validation errors, model errors, cancellation.
     fn run(&self, values: &ParamValues, job: &Job) -> Result<Figure>;
+    /// The sweep interface of a scene made of independent points ([`sweep::Sweep`]), which the
+    /// headless exporter runs in shards and merges; `None` for other scenes.
+    fn sweep(&self) -> Option<&dyn sweep::SweepDyn> {
+        None
+    }
 }
 
 /// The memory a run needs [bytes] and the parameters that set it, as the user writes them.
@@ -219,7 +227,7 @@ impl<S: Scene> SceneDyn for Registered<S> {
 
     fn validate(&self, values: &ParamValues) -> Result<()> {
         let p: S::Params = values.to_params()?;
-        S::validate(&p)
+        S::validate(&p).map_err(|e| attribute_failure(S::ID, values, &self.defaults(), e))
     }
 
     fn quick(&self, values: &ParamValues) -> Result<ParamValues> {
@@ -230,14 +238,141 @@ impl<S: Scene> SceneDyn for Registered<S> {
 
     fn run(&self, values: &ParamValues, job: &Job) -> Result<Figure> {
         let p: S::Params = values.to_params()?;
-        S::validate(&p)?;
+        self.validate(values)?;
         if let Some(m) = S::memory_estimate(&p) {
             m.check(memory_limit())?;
         }
-        let mut figure = S::run(&p, job)?;
-        figure.id = S::ID.to_string();
-        Ok(figure)
+        finish(S::ID, values, &self.defaults(), S::run(&p, job))
     }
+}
+
+/// The end of every run, sharded or not: a model's failure as [`attribute_failure`] makes it,
+/// non-finite results refused the same way, the figure's id set.
+///
+/// # Errors
+/// The run's error, attributed; non-finite results.
+pub fn finish(
+    id: &'static str,
+    values: &ParamValues,
+    defaults: &ParamValues,
+    run: Result<Figure>,
+) -> Result<Figure> {
+    let mut figure = run.map_err(|e| attribute_failure(id, values, defaults, e))?;
+    let nonfinite: Vec<&str> = figure
+        .results
+        .iter()
+        .filter(|(_, v)| !v.is_finite())
+        .map(|(n, _)| n.as_str())
+        .collect();
+    if !nonfinite.is_empty() {
+        let cause = Error::Unresolvable {
+            model: "results",
+            reason: format!(
+                "{} not finite (the model leaves its double range)",
+                nonfinite.join(", ")
+            ),
+        };
+        return Err(attribute_failure(id, values, defaults, cause));
+    }
+    figure.id = id.to_string();
+    Ok(figure)
+}
+
+/// A model's failure (or non-finite results) as the user can act on it: an error that already
+/// names one of the scene's parameters, a cancellation and file errors pass unchanged; any
+/// other, which names internal quantities (`no sign change on [..]`, `m0`, a Newton residual),
+/// is prefixed by the parameters the user changed, most changed first (by the ratio to the
+/// default), with their defaults, and its numbers are cut to 6 significant digits.
+pub fn attribute_failure(
+    scene: &'static str,
+    values: &ParamValues,
+    defaults: &ParamValues,
+    error: Error,
+) -> Error {
+    if matches!(
+        error,
+        Error::Cancelled
+            | Error::File { .. }
+            | Error::DataFile { .. }
+            | Error::Io(_)
+            | Error::Render { .. }
+            | Error::AtParameters { .. }
+    ) {
+        return error;
+    }
+    let message = error.to_string();
+    if values
+        .specs
+        .iter()
+        .any(|s| message.contains(&format!("`{}`", s.name)))
+    {
+        return error;
+    }
+    Error::AtParameters {
+        scene,
+        at: changed_parameters(values, defaults),
+        cause: crate::params::compact_numbers(&message),
+    }
+}
+
+/// The (at most three) parameters that differ most from their defaults, as
+/// `name = value (default d)`; "its default parameters" when none differs.
+fn changed_parameters(values: &ParamValues, defaults: &ParamValues) -> String {
+    fn numbers(v: &toml::Value) -> Vec<f64> {
+        match v {
+            toml::Value::Float(x) => vec![*x],
+            toml::Value::Integer(i) => vec![*i as f64],
+            toml::Value::Array(a) => a.iter().flat_map(numbers).collect(),
+            _ => Vec::new(),
+        }
+    }
+    // How far a value moved: the largest |ln(x/d)| over its numbers (infinite across zero or
+    // a sign change); 0.5 for a changed non-numeric value.
+    let distance = |v: &toml::Value, d: &toml::Value| -> f64 {
+        let (a, b) = (numbers(v), numbers(d));
+        if a.is_empty() || a.len() != b.len() {
+            return 0.5;
+        }
+        a.iter()
+            .zip(&b)
+            .map(|(x, y)| {
+                if x == y {
+                    0.0
+                } else if x * y > 0.0 {
+                    (x / y).ln().abs()
+                } else {
+                    f64::INFINITY
+                }
+            })
+            .fold(0.0, f64::max)
+    };
+    let mut changed: Vec<(f64, String)> = values
+        .specs
+        .iter()
+        .zip(&values.values)
+        .zip(&defaults.values)
+        .filter(|((_, v), d)| v != d)
+        .map(|((s, v), d)| {
+            let text = |v: &toml::Value| match v {
+                toml::Value::Float(x) => crate::params::fmt_sig(*x),
+                other => crate::params::escape_for_message(&crate::params::value_text(other), 40),
+            };
+            (
+                distance(v, d),
+                format!("`{}` = {} (default {})", s.name, text(v), text(d)),
+            )
+        })
+        .collect();
+    if changed.is_empty() {
+        return "its default parameters".into();
+    }
+    changed.sort_by(|a, b| b.0.total_cmp(&a.0));
+    changed
+        .into_iter()
+        .take(3)
+        .map(|(_, t)| t)
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// Every scene, in chapter order (chapters 1-6, then the appendices; a scene registered in

@@ -5,6 +5,8 @@
 //! - [`form`]: the parameter form of one scene (text per field, last valid set, validation);
 //! - [`keymap`]: keys to actions, also the key help;
 //! - [`app`]: the state machine (keys and run messages in, effects out; no I/O);
+//! - [`chart`]: the chart as an instrument (cursor, markers, zoom, history, mouse);
+//! - [`compare`]: pinned runs drawn over the current one;
 //! - [`view`]: drawing the state into any ratatui backend;
 //! - [`worker`]: background runs on threads, messages over a channel;
 //! - [`session`]: the state plus the worker, carrying out effects (runs, exports, presets);
@@ -15,6 +17,8 @@
 //! a worker thread is caught there and reported as a failed run instead).
 
 pub mod app;
+pub mod chart;
+pub mod compare;
 pub mod form;
 pub mod keymap;
 pub mod session;
@@ -38,8 +42,14 @@ struct TerminalGuard;
 
 impl Drop for TerminalGuard {
     fn drop(&mut self) {
+        release_mouse();
         ratatui::restore();
     }
+}
+
+/// Stop mouse reporting (crossterm's `DisableMouseCapture`); harmless when it was never on.
+fn release_mouse() {
+    let _ = ratatui::crossterm::execute!(std::io::stdout(), event::DisableMouseCapture);
 }
 
 /// Start the terminal UI over every scene; exports go to `output/`, presets are offered from
@@ -58,9 +68,13 @@ pub fn run() -> anyhow::Result<ExitCode> {
         // Worker threads catch their panics and report them as failed runs; only a panic of
         // the drawing thread restores the terminal and prints.
         if std::thread::current().id() == ui_thread {
+            release_mouse();
             restore_and_report(info);
         }
     }));
+    // Clicks and the wheel where the terminal reports them; every action stays on a key.
+    ratatui::crossterm::execute!(std::io::stdout(), event::EnableMouseCapture)
+        .context("turning on mouse reporting")?;
     // Draw only when something changed: a key, a resize, a message of the worker.
     let mut dirty = true;
     loop {
@@ -74,6 +88,10 @@ pub fn run() -> anyhow::Result<ExitCode> {
             match event::read().context("reading the terminal")? {
                 Event::Key(key) if key.kind != KeyEventKind::Release => {
                     session.key(key);
+                    dirty = true;
+                }
+                Event::Mouse(ev) => {
+                    session.mouse(ev);
                     dirty = true;
                 }
                 Event::Resize(..) => dirty = true,

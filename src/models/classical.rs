@@ -62,13 +62,15 @@ impl SphereContact {
 
     /// Radius scale a₀ = (π R² w / E*)^(1/3) [m].
     pub fn a0(&self) -> f64 {
-        (std::f64::consts::PI * self.radius.powi(2) * self.work_of_adhesion / self.modulus).cbrt()
+        // Cube roots first: the scale stays finite wherever it is a double (no R²w overflow).
+        let (r, w, e) = self.cube_roots();
+        std::f64::consts::PI.cbrt() * r * r * w / e
     }
 
     /// Depth scale h₀ = (π² R w² / E*²)^(1/3) [m].
     pub fn h0(&self) -> f64 {
-        let pi = std::f64::consts::PI;
-        (pi * pi * self.radius * self.work_of_adhesion.powi(2) / self.modulus.powi(2)).cbrt()
+        let (r, w, e) = self.cube_roots();
+        std::f64::consts::PI.cbrt().powi(2) * r * (w / e).powi(2)
     }
 
     /// Force scale P₀ = π w R [N].
@@ -78,7 +80,18 @@ impl SphereContact {
 
     /// Energy scale of (1.6), (R⁴ w⁵ / E*²)^(1/3) [J].
     pub fn energy_scale_1_6(&self) -> f64 {
-        (self.radius.powi(4) * self.work_of_adhesion.powi(5) / self.modulus.powi(2)).cbrt()
+        let (r, w, e) = self.cube_roots();
+        r.powi(4) * w * (w / e).powi(2) * w.powi(2)
+    }
+
+    /// (R^(1/3), w^(1/3), E*^(1/3)): the scales are products of these, computed without
+    /// forming R⁴w⁵ (which leaves the double range long before the scale does).
+    fn cube_roots(&self) -> (f64, f64, f64) {
+        (
+            self.radius.cbrt(),
+            self.work_of_adhesion.cbrt(),
+            self.modulus.cbrt(),
+        )
     }
 
     /// Hertz depth and force at contact radius `a` [m].
@@ -170,7 +183,8 @@ impl SphereContact {
     /// [`Error::InvalidParameter`] unless ζ₀ > 0.
     pub fn tabor_parameter(&self, zeta0: f64) -> Result<f64> {
         check_positive("equilibrium_separation", zeta0)?;
-        Ok((self.radius * self.work_of_adhesion.powi(2) / (self.modulus.powi(2) * zeta0.powi(3))).cbrt())
+        let (r, w, e) = self.cube_roots();
+        Ok(r * (w / e).powi(2) / zeta0)
     }
 
     /// Convert a non-dimensional JKR state to SI.
@@ -182,6 +196,9 @@ impl SphereContact {
         }
     }
 }
+
+/// DMT adhesive force in units of πwR: P_F = −2πwR at a = 0, Eq. (1.7).
+pub const DMT_ADHESIVE_FORCE_NORM: f64 = -2.0;
 
 /// The constant of (1.6), exact: (π^(5/3) + 3(2π)^(5/3))/10 = 7.0924...
 pub const JKR_HYSTERESIS_CONSTANT: f64 = 7.092_195_971_863_96;

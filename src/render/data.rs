@@ -175,6 +175,61 @@ pub fn json(fig: &Figure, caption: &str, params: &ParamValues, run_time_s: f64) 
     serde_json::to_string_pretty(&record).expect("the record has only string keys and finite-or-null numbers")
 }
 
+/// An earlier run drawn in the same figure (a pinned run of the terminal UI).
+#[derive(Debug, Clone, Copy)]
+pub struct RunRecord<'a> {
+    /// Its legend label (what differs from the current run).
+    pub label: &'a str,
+    /// Its parameters.
+    pub params: &'a ParamValues,
+    /// Its named results.
+    pub results: &'a [(String, f64)],
+    /// Its wall time in seconds.
+    pub run_time_s: f64,
+}
+
+/// [`json`] with the earlier runs drawn in the figure under `pinned_runs`: label, parameters
+/// (name, value, unit), results and run time of each.
+pub fn json_with_runs(
+    fig: &Figure,
+    caption: &str,
+    params: &ParamValues,
+    run_time_s: f64,
+    runs: &[RunRecord<'_>],
+) -> String {
+    let text = json(fig, caption, params, run_time_s);
+    if runs.is_empty() {
+        return text;
+    }
+    let Ok(serde_json::Value::Object(mut record)) = serde_json::from_str::<serde_json::Value>(&text) else {
+        return text;
+    };
+    let number =
+        |v: f64| serde_json::Number::from_f64(v).map_or(serde_json::Value::Null, serde_json::Value::Number);
+    let runs: Vec<serde_json::Value> = runs
+        .iter()
+        .map(|r| {
+            let parameters: Vec<serde_json::Value> = r
+                .params
+                .specs
+                .iter()
+                .zip(&r.params.values)
+                .map(|(s, v)| serde_json::json!({ "name": s.name, "value": json_value(v), "unit": s.unit }))
+                .collect();
+            let results: serde_json::Map<String, serde_json::Value> =
+                r.results.iter().map(|(n, v)| (n.clone(), number(*v))).collect();
+            serde_json::json!({
+                "label": r.label,
+                "parameters": parameters,
+                "results": results,
+                "run_time_s": number(r.run_time_s),
+            })
+        })
+        .collect();
+    record.insert("pinned_runs".into(), serde_json::Value::Array(runs));
+    serde_json::to_string_pretty(&record).unwrap_or(text)
+}
+
 /// One parsed CSV row: panel, series, style, x, y.
 pub type CsvRow = (usize, String, String, f64, f64);
 

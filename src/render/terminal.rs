@@ -10,7 +10,8 @@ use ratatui::symbols::Marker as TuiMarker;
 use ratatui::text::Line;
 use ratatui::widgets::{Axis as TuiAxis, Chart, Dataset, GraphType, LegendPosition, Widget};
 
-use super::axes::{format_number, padded_range, power_of_ten};
+use super::axes::padded_range;
+use super::labels::{AxisLabels, axis_labels};
 use crate::figure::{FieldKind, MarkerShape, Panel, Scale, Style};
 
 /// Terminal colour of palette index `k` (readable on dark and light backgrounds).
@@ -39,20 +40,119 @@ struct Set {
     kind: GraphType,
 }
 
-/// Render `panel` into `area` of `buf`.
-pub fn render_panel(panel: &Panel, area: Rect, buf: &mut Buffer) {
-    let Some(((xlo, xhi), (ylo, yhi))) = panel.data_bounds() else {
-        Line::from("no data").render(area, buf);
-        return;
-    };
-    let (xa, xb) = panel
+/// A rectangle in data units: (x range, y range).
+pub type View = ((f64, f64), (f64, f64));
+
+/// What is drawn besides the panel: the shown range (zoom), a cursor, a zoom rectangle.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ChartOptions {
+    /// The shown range in data units; `None` fits the data.
+    pub view: Option<View>,
+    /// A cursor (crosshair and block) at this point, in data units.
+    pub cursor: Option<(f64, f64)>,
+    /// A rectangle being chosen for zooming, in data units.
+    pub selection: Option<View>,
+}
+
+/// Where the plotting area of a drawn chart is and what it shows, to map screen cells to data
+/// (the mouse) and back.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ChartGeometry {
+    /// The cells the curves are drawn in.
+    pub graph: Rect,
+    /// Shown x range in drawing coordinates (log10 on a log axis).
+    pub x: [f64; 2],
+    /// Shown y range in drawing coordinates.
+    pub y: [f64; 2],
+    /// Whether x is logarithmic.
+    pub xlog: bool,
+    /// Whether y is logarithmic.
+    pub ylog: bool,
+}
+
+impl ChartGeometry {
+    /// The data point at the centre of cell (`column`, `row`), if the cell is in the graph.
+    pub fn to_data(&self, column: u16, row: u16) -> Option<(f64, f64)> {
+        let g = self.graph;
+        if !(g.x..g.right()).contains(&column) || !(g.y..g.bottom()).contains(&row) {
+            return None;
+        }
+        let fx = (f64::from(column - g.x) + 0.5) / f64::from(g.width.max(1));
+        let fy = (f64::from(g.bottom() - 1 - row) + 0.5) / f64::from(g.height.max(1));
+        let x = self.x[0] + fx * (self.x[1] - self.x[0]);
+        let y = self.y[0] + fy * (self.y[1] - self.y[0]);
+        let un = |v: f64, log: bool| if log { 10f64.powf(v) } else { v };
+        Some((un(x, self.xlog), un(y, self.ylog)))
+    }
+
+    /// A data point's position as a fraction of the graph's width and height (0 to 1 inside).
+    pub fn fraction(&self, p: (f64, f64)) -> (f64, f64) {
+        let tr = |v: f64, log: bool| if log { v.log10() } else { v };
+        (
+            (tr(p.0, self.xlog) - self.x[0]) / (self.x[1] - self.x[0]),
+            (tr(p.1, self.ylog) - self.y[0]) / (self.y[1] - self.y[0]),
+        )
+    }
+
+    /// The size of one cell in data units near `p` (the chart's resolution there).
+    pub fn resolution(&self, p: (f64, f64)) -> (f64, f64) {
+        let dx = (self.x[1] - self.x[0]) / f64::from(self.graph.width.max(1));
+        let dy = (self.y[1] - self.y[0]) / f64::from(self.graph.height.max(1));
+        let res = |v: f64, d: f64, log: bool| {
+            if log { v.abs() * (10f64.powf(d) - 1.0) } else { d }
+        };
+        (res(p.0, dx, self.xlog), res(p.1, dy, self.ylog))
+    }
+}
+
+/// The shown range of `panel` in data units: the view where given, else the panel's fixed
+/// ranges or its padded data bounds. `None` when there is nothing to draw.
+pub fn shown_range(panel: &Panel, view: Option<View>) -> Option<View> {
+    if let Some(v) = view {
+        return Some(v);
+    }
+    let ((xlo, xhi), (ylo, yhi)) = panel.data_bounds()?;
+    let x = panel
         .x
         .range
         .unwrap_or_else(|| padded_range(xlo, xhi, panel.x.scale));
-    let (ya, yb) = panel
+    let y = panel
         .y
         .range
         .unwrap_or_else(|| padded_range(ylo, yhi, panel.y.scale));
+    Some((x, y))
+}
+
+/// The tick labels and titles of both axes for `panel` drawn into `area` with `view`.
+pub fn chart_labels(panel: &Panel, view: Option<View>, area: Rect) -> Option<(AxisLabels, AxisLabels)> {
+    let ((xa, xb), (ya, yb)) = shown_range(panel, view)?;
+    let x_target = usize::from(area.width / 12).clamp(2, 8);
+    let y_target = usize::from(area.height.saturating_sub(3) / 3).clamp(2, 6);
+    Some((
+        axis_labels(&panel.x, xa, xb, x_target),
+        axis_labels(&panel.y, ya, yb, y_target),
+    ))
+}
+
+/// Render `panel` into `area` of `buf`.
+pub fn render_panel(panel: &Panel, area: Rect, buf: &mut Buffer) {
+    render_chart(panel, &ChartOptions::default(), area, buf);
+}
+
+/// Render `panel` with `options` into `area` of `buf`; returns where the graph went.
+pub fn render_chart(
+    panel: &Panel,
+    options: &ChartOptions,
+    area: Rect,
+    buf: &mut Buffer,
+) -> Option<ChartGeometry> {
+    let (Some(((xa, xb), (ya, yb))), Some((x_labels, y_labels))) = (
+        shown_range(panel, options.view),
+        chart_labels(panel, options.view, area),
+    ) else {
+        Line::from("no data").render(area, buf);
+        return None;
+    };
     let xlog = panel.x.scale == Scale::Log;
     let ylog = panel.y.scale == Scale::Log;
     let tx = |v: f64| if xlog { v.log10() } else { v };
@@ -169,6 +269,36 @@ pub fn render_panel(panel: &Panel, area: Rect, buf: &mut Buffer) {
         }
     }
 
+    if let Some(c) = options.cursor.and_then(|c| map(&c)) {
+        // The crosshair under the curves, the point itself on top.
+        let line = |points: Vec<(f64, f64)>| Set {
+            name: None,
+            color: Color::DarkGray,
+            points,
+            marker: TuiMarker::Braille,
+            kind: GraphType::Line,
+        };
+        sets.insert(0, line(vec![(c.0, yb_[0]), (c.0, yb_[1])]));
+        sets.insert(0, line(vec![(xb_[0], c.1), (xb_[1], c.1)]));
+        sets.push(Set {
+            name: None,
+            color: Color::White,
+            points: vec![c],
+            marker: TuiMarker::Block,
+            kind: GraphType::Scatter,
+        });
+    }
+    if let Some(((x0, x1), (y0, y1))) = options.selection
+        && let (Some(a), Some(b)) = (map(&(x0, y0)), map(&(x1, y1)))
+    {
+        sets.push(Set {
+            name: None,
+            color: Color::Yellow,
+            points: vec![(a.0, a.1), (b.0, a.1), (b.0, b.1), (a.0, b.1), (a.0, a.1)],
+            marker: TuiMarker::Braille,
+            kind: GraphType::Line,
+        });
+    }
     let datasets: Vec<Dataset<'_>> = sets
         .iter()
         .map(|s| {
@@ -183,42 +313,138 @@ pub fn render_panel(panel: &Panel, area: Rect, buf: &mut Buffer) {
             d
         })
         .collect();
-    let labels = |b: [f64; 2], log: bool| -> Vec<Line<'static>> {
-        (0..3)
-            .map(|k| {
-                let v = b[0] + (b[1] - b[0]) * k as f64 / 2.0;
-                let text = if log {
-                    let r = v.round();
-                    if (v - r).abs() < 0.05 {
-                        power_of_ten(r as i64)
-                    } else {
-                        format_number(10f64.powf(v))
-                    }
-                } else {
-                    format_number(v)
-                };
-                Line::from(text)
-            })
-            .collect()
-    };
+    let y_width = y_labels
+        .ticks
+        .iter()
+        .map(|(_, l)| l.chars().count())
+        .max()
+        .unwrap_or(1)
+        .max(1);
+    // Blank labels reserve the room; the real ones go where their ticks are (ratatui spaces
+    // labels evenly between the bounds, which 1-2-5 ticks are not).
+    let blank = |w: usize| Line::from(" ".repeat(w));
     let chart = Chart::new(datasets)
         .x_axis(
             TuiAxis::default()
-                .title(panel.x.title())
+                .title(x_labels.title.clone())
                 .bounds(xb_)
-                .labels(labels(xb_, xlog))
+                .labels(vec![Line::from(""), blank(1)])
                 .style(TuiStyle::default().fg(Color::Gray)),
         )
         .y_axis(
             TuiAxis::default()
-                .title(panel.y.title())
+                .title(y_labels.title.clone())
                 .bounds(yb_)
-                .labels(labels(yb_, ylog))
+                .labels(vec![blank(y_width), blank(y_width)])
                 .style(TuiStyle::default().fg(Color::Gray)),
         )
         .legend_position(Some(LegendPosition::TopRight))
-        .hidden_legend_constraints((Constraint::Ratio(1, 2), Constraint::Ratio(1, 2)));
+        .hidden_legend_constraints((Constraint::Ratio(2, 3), Constraint::Ratio(2, 3)));
     chart.render(area, buf);
+    let layout = chart_layout(area, y_width as u16)?;
+    let geometry = ChartGeometry {
+        graph: layout.graph,
+        x: xb_,
+        y: yb_,
+        xlog,
+        ylog,
+    };
+    draw_ticks(buf, area, &layout, &geometry, &x_labels, &y_labels);
+    Some(geometry)
+}
+
+/// Where ratatui's chart puts its parts (its `Chart::layout`, for one-line x labels with an
+/// empty first label and y labels `y_label_width` wide).
+struct ChartLayout {
+    graph: Rect,
+    label_row: Option<u16>,
+    axis_row: Option<u16>,
+    axis_col: Option<u16>,
+}
+
+fn chart_layout(area: Rect, y_label_width: u16) -> Option<ChartLayout> {
+    if area.height == 0 || area.width == 0 {
+        return None;
+    }
+    let mut x = area.left();
+    let mut y = area.bottom() - 1;
+    let mut label_row = None;
+    if y > area.top() {
+        label_row = Some(y);
+        y -= 1;
+    }
+    x += y_label_width.min(area.width / 3);
+    let mut axis_row = None;
+    if y > area.top() {
+        axis_row = Some(y);
+        y -= 1;
+    }
+    let mut axis_col = None;
+    if x + 1 < area.right() {
+        axis_col = Some(x);
+        x += 1;
+    }
+    let width = area.right().saturating_sub(x);
+    let height = y.saturating_sub(area.top()) + 1;
+    (width > 0 && height > 0).then_some(ChartLayout {
+        graph: Rect::new(x, area.top(), width, height),
+        label_row,
+        axis_row,
+        axis_col,
+    })
+}
+
+/// Write the tick labels at their ticks and mark the ticks on the axis lines.
+fn draw_ticks(
+    buf: &mut Buffer,
+    area: Rect,
+    layout: &ChartLayout,
+    g: &ChartGeometry,
+    x_labels: &AxisLabels,
+    y_labels: &AxisLabels,
+) {
+    let style = TuiStyle::default().fg(Color::Gray);
+    let graph = layout.graph;
+    let inside = |frac: f64| (-1e-9..=1.0 + 1e-9).contains(&frac);
+    if let (Some(row), Some(axis_row)) = (layout.label_row, layout.axis_row) {
+        let mut free_from = area.left();
+        for (pos, label) in &x_labels.ticks {
+            let frac = (pos - g.x[0]) / (g.x[1] - g.x[0]);
+            if !inside(frac) {
+                continue;
+            }
+            let col = graph.left() + (frac * f64::from(graph.width - 1)).round() as u16;
+            let w = label.chars().count() as u16;
+            let start = col
+                .saturating_sub(w / 2)
+                .max(area.left())
+                .min(area.right().saturating_sub(w));
+            if start < free_from {
+                continue;
+            }
+            buf.set_string(start, row, label, style);
+            free_from = start + w + 1;
+            buf[(col, axis_row)].set_symbol("┴");
+        }
+    }
+    if let Some(col) = layout.axis_col {
+        let mut taken: Vec<u16> = Vec::new();
+        for (pos, label) in &y_labels.ticks {
+            let frac = (pos - g.y[0]) / (g.y[1] - g.y[0]);
+            if !inside(frac) {
+                continue;
+            }
+            let row = graph.bottom() - 1 - (frac * f64::from(graph.height - 1)).round() as u16;
+            if taken.contains(&row) {
+                continue;
+            }
+            taken.push(row);
+            let w = label.chars().count() as u16;
+            let start = col.saturating_sub(w).max(area.left());
+            buf.set_stringn(start, row, label, usize::from(col - start), style);
+            buf[(col, row)].set_symbol("┤");
+        }
+    }
 }
 
 /// Cut a polyline into dashes measured in fractions of the chart's span.

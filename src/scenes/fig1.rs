@@ -5,7 +5,10 @@ use super::{Registered, Scene, SceneDyn};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Figure, Marker, MarkerShape, Panel, Series, Style};
 use crate::job::Job;
-use crate::models::classical::{SphereContact, jkr_bar, jkr_hysteresis_constant_by_quadrature};
+use crate::models::classical::{
+    DMT_ADHESIVE_FORCE_NORM, JKR_HYSTERESIS_CONSTANT, SphereContact, jkr_bar,
+    jkr_hysteresis_constant_by_quadrature,
+};
 use crate::models::fuller_tabor::FullerTabor;
 use crate::params::Range;
 
@@ -221,8 +224,9 @@ impl Scene for Fig1_1 {
             ("jkr_adhesive_force_radius_norm", cpt.a),
             ("jkr_adhesive_force_depth_norm", cpt.h),
             ("jkr_adhesive_force_norm", cpt.p),
-            ("dmt_adhesive_force_norm", c.dmt_adhesive_force().p / c.p0()),
-            ("jkr_hysteresis_norm", c.jkr_hysteresis() / c.energy_scale_1_6()),
+            // Both in non-dimensional form, independent of the dimensional scales' range.
+            ("dmt_adhesive_force_norm", DMT_ADHESIVE_FORCE_NORM),
+            ("jkr_hysteresis_norm", JKR_HYSTERESIS_CONSTANT),
             (
                 "jkr_hysteresis_loop_norm",
                 jkr_hysteresis_constant_by_quadrature(1e-13)?,

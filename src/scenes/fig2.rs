@@ -1079,7 +1079,14 @@ impl Scene for Fig2_8Fit {
             FitModelChoice::Jkr => Some(crate::fit::FitModel::Jkr),
             FitModelChoice::MachineStiffness => Some(crate::fit::FitModel::MachineStiffness),
         };
-        let report = crate::fit::fit_curve(&curve, &path, p.tip_radius, k, model)?;
+        let report = crate::fit::fit_curve(&curve, &path, p.tip_radius, k, model).map_err(|e| match e {
+            // The demonstration is no file of the user's: its failure is the parameters'.
+            Error::DataFile { message, .. } if p.data_file.is_empty() => Error::Unresolvable {
+                model: "fit of the demonstration cycle",
+                reason: message,
+            },
+            e => e,
+        })?;
         let mut fig = crate::fit::fit_figure(&curve, &report)?;
         fig.id = Self::ID.into();
         fig.title = Self::TITLE.into();

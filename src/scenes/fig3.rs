@@ -1,6 +1,7 @@
 //! Chapter 3 scenes: Maugis-Dugdale equilibrium curves (Fig. 3.4), the energy loss per asperity
 //! and its empirical fit (Fig. 3.5), and the accuracy against cost of the loss evaluations.
 
+use super::sweep::{Sweep, Swept};
 use super::{Registered, Scene, SceneDyn};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Field, FieldKind, Figure, Marker, MarkerShape, Panel, Series, Style};
@@ -20,7 +21,7 @@ pub const SCENES: &[&dyn SceneDyn] = &[
     &Registered::<Fig3_4>::NEW,
     &Registered::<Fig3_5>::NEW,
     &Registered::<Fig3_5Accuracy>::NEW,
-    &Registered::<Fig3_8>::NEW,
+    &Swept::<Fig3_8>::NEW,
 ];
 
 /// The classical contact in the variables of chapter 3: R = 1, E* = 1, w = ℓ/π; chapter 1
@@ -983,6 +984,41 @@ impl Scene for Fig3_8 {
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        super::sweep::run::<Self>(p, job)
+    }
+}
+
+/// Fig. 3.8 is a sweep over the rows of its contour (c): point `j` is σ_rms number `j` of the
+/// grid, and its result is the loss per nominal area at every Z₀ of the grid (what
+/// [`Fig3_8Params::loss_grid`] computes row by row). Panels (a) and (b) are computed with the
+/// assembly.
+impl Sweep for Fig3_8 {
+    type Context = (Moments, f64);
+
+    fn context(p: &Self::Params, _job: &Job) -> Result<Self::Context> {
+        p.base_moments()
+    }
+
+    fn points(p: &Self::Params) -> Vec<String> {
+        crate::numerics::curve::linspace(p.sigma_min, p.sigma_max, p.grid_points)
+            .iter()
+            .map(|s| format!("σ_rms = {} nm", crate::params::fmt_sig(s * 1e9)))
+            .collect()
+    }
+
+    fn run_point(p: &Self::Params, base: &Self::Context, id: usize, job: &Job) -> Result<Vec<f64>> {
+        let n = p.grid_points;
+        let zs = crate::numerics::curve::linspace(p.range_min, p.range_max, n);
+        let sigma = crate::numerics::curve::linspace(p.sigma_min, p.sigma_max, n)[id];
+        zs.iter()
+            .map(|&z0| {
+                job.check()?;
+                p.model_on(*base, z0, sigma)?.loss_per_area(p.loss.method())
+            })
+            .collect()
+    }
+
+    fn assemble(p: &Self::Params, points: &[Vec<f64>], job: &Job) -> Result<Figure> {
         job.check()?;
         let method = p.loss.method();
         let jkr = JkrNominalArea::new(p.tip_radius, p.modulus, p.jkr_work_of_adhesion)?;
@@ -1091,7 +1127,10 @@ impl Scene for Fig3_8 {
         }
         job.progress(0.1, "contour");
 
-        let (zs, ss, values) = p.loss_grid(method, p.grid_points, job)?;
+        let n = p.grid_points;
+        let zs = crate::numerics::curve::linspace(p.range_min, p.range_max, n);
+        let ss = crate::numerics::curve::linspace(p.sigma_min, p.sigma_max, n);
+        let values: Vec<f64> = points.concat();
         let mut field = Field::heat(
             "Loss per area",
             "J/m²",

@@ -17,6 +17,7 @@ mod sweeps;
 use std::f64::consts::PI;
 
 use super::fig3::draw_md;
+use super::sweep::Swept;
 use super::{Registered, Scene, SceneDyn};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Figure, Marker, MarkerShape, Panel, Series, Style};
@@ -39,8 +40,8 @@ pub const SCENES: &[&dyn SceneDyn] = &[
     &Registered::<Fig4_7>::NEW,
     &Registered::<Fig4_8>::NEW,
     &Registered::<roughness::Fig4_9a>::NEW,
-    &Registered::<sweeps::Fig4_9b>::NEW,
-    &Registered::<sweeps::Fig4_10>::NEW,
+    &Swept::<sweeps::Fig4_9b>::NEW,
+    &Swept::<sweeps::Fig4_10>::NEW,
     &Registered::<roughness::Fig4_11>::NEW,
     &Registered::<roughness::Fig4_12>::NEW,
 ];

@@ -1,13 +1,14 @@
 //! Chapter 5 scenes: fibril stiffness (Fig. 5.2b), the single-spring model (Figs. 5.3-5.5),
 //! and the spring arrays on random rough surfaces (Figs. 5.7-5.11).
 
+use super::sweep::{Sweep, Swept};
 use super::{Registered, Scene, SceneDyn};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Figure, Marker, MarkerShape, Panel, Series, Style};
 use crate::job::Job;
 use crate::models::fibril::{K_CR_BAR, SingleSpring, SpringState, tilted_fibril_stiffness};
 use crate::numerics::curve::{linspace, logspace};
-use crate::params::Range;
+use crate::params::{Range, fmt_sig};
 
 /// The scenes of this chapter, in figure order.
 pub const SCENES: &[&dyn SceneDyn] = &[
@@ -16,8 +17,8 @@ pub const SCENES: &[&dyn SceneDyn] = &[
     &Registered::<Fig5_4>::NEW,
     &Registered::<Fig5_5>::NEW,
     &Registered::<Fig5_7>::NEW,
-    &Registered::<Fig5_8>::NEW,
-    &Registered::<Fig5_9>::NEW,
+    &Swept::<Fig5_8>::NEW,
+    &Swept::<Fig5_9>::NEW,
     &Registered::<Fig5_10>::NEW,
     &Registered::<Fig5_11>::NEW,
     &Registered::<Fig5_10Accuracy>::NEW,
@@ -773,33 +774,63 @@ impl Scene for Fig5_8 {
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        super::sweep::run::<Self>(p, job)
+    }
+}
+
+/// Fig. 5.8 is a sweep over (stiffness exponent, roughness): point `c·R + i` is exponent `c`
+/// and roughness `i` (R roughness values), averaged over the samples of the unit surfaces
+/// `seed .. seed + samples`, the same surfaces at every point (common random numbers, as in
+/// Sec. 5.5.2). A point's result is the adhesion efficiency of each sample.
+impl Sweep for Fig5_8 {
+    type Context = Vec<Vec<f64>>;
+
+    fn context(p: &Self::Params, job: &Job) -> Result<Self::Context> {
+        unit_surfaces(p.springs, p.springs, p.correlation_length, p.samples, p.seed, job)
+    }
+
+    fn points(p: &Self::Params) -> Vec<String> {
+        let sigmas = logspace(p.roughness_min, p.roughness_max, p.roughness_points);
+        p.stiffness_exponents
+            .iter()
+            .flat_map(|ne| {
+                sigmas
+                    .iter()
+                    .map(move |s| format!("n = {ne}, σ_rms/σ = {}", fmt_sig(*s)))
+            })
+            .collect()
+    }
+
+    fn run_point(p: &Self::Params, unit: &Self::Context, id: usize, job: &Job) -> Result<Vec<f64>> {
         let n = p.springs;
+        let sigmas = logspace(p.roughness_min, p.roughness_max, p.roughness_points);
+        let (ne, sigma) = (
+            p.stiffness_exponents[id / sigmas.len()],
+            sigmas[id % sigmas.len()],
+        );
+        let k_e = k_bar_of_n(ne);
+        let window = cycle_window(k_e, sigma, p.depth_sigmas, p.end_sigmas)?;
+        let cycles = uncoupled_samples(unit, sigma, k_e, p.steps, p.oversample, window, job)?;
+        Ok(cycles
+            .iter()
+            .map(|cy| crate::models::spring_array::adhesion_efficiency(cy, n * n))
+            .collect())
+    }
+
+    fn assemble(p: &Self::Params, points: &[Vec<f64>], job: &Job) -> Result<Figure> {
         let sigmas = logspace(p.roughness_min, p.roughness_max, p.roughness_points);
         let mut panel = Panel::new(
             Axis::log("Roughness σ_rms/σ", ""),
             Axis::linear("Adhesion efficiency α_F", ""),
         );
         let mut fig = Figure::new(Self::ID, Self::TITLE);
-        let total = (p.stiffness_exponents.len() * sigmas.len()) as f64;
-        let unit = unit_surfaces(n, n, p.correlation_length, p.samples, p.seed, job)?;
-        let mut done = 0.0;
         let mut deviations = Vec::with_capacity(p.stiffness_exponents.len());
         for (c, &ne) in p.stiffness_exponents.iter().enumerate() {
-            let k_e = k_bar_of_n(ne);
             let mut pts = Vec::new();
             let mut bars = Vec::new();
             let mut dev2 = 0.0;
-            for &sigma in &sigmas {
-                job.check()?;
-                job.progress(done / total, &format!("n = {ne}, σ_rms/σ = {sigma:.1}"));
-                done += 1.0;
-                let window = cycle_window(k_e, sigma, p.depth_sigmas, p.end_sigmas)?;
-                let cycles = uncoupled_samples(&unit, sigma, k_e, p.steps, p.oversample, window, job)?;
-                let e: Vec<f64> = cycles
-                    .iter()
-                    .map(|cy| crate::models::spring_array::adhesion_efficiency(cy, n * n))
-                    .collect();
-                let (m, sd) = mean_std(&e);
+            for (i, &sigma) in sigmas.iter().enumerate() {
+                let (m, sd) = mean_std(&points[c * sigmas.len() + i]);
                 pts.push((sigma, m));
                 bars.push((sigma, m - sd));
                 bars.push((sigma, m + sd));
@@ -898,24 +929,55 @@ impl Scene for Fig5_9 {
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        super::sweep::run::<Self>(p, job)
+    }
+}
+
+/// Fig. 5.9 is a sweep over (roughness, correlation length): point `c·L + l` is roughness `c`
+/// and correlation length `l` (L lengths), on the unit surfaces of seeds `seed .. seed + samples`
+/// at that length. A point's result is the adhesion efficiency of each sample.
+impl Sweep for Fig5_9 {
+    type Context = ();
+
+    fn context(_p: &Self::Params, _job: &Job) -> Result<()> {
+        Ok(())
+    }
+
+    fn points(p: &Self::Params) -> Vec<String> {
+        p.roughness
+            .iter()
+            .flat_map(|s| {
+                p.correlation_lengths
+                    .iter()
+                    .map(move |lc| format!("σ_rms/σ = {s}, L_c/(100 µm) = {lc}"))
+            })
+            .collect()
+    }
+
+    fn run_point(p: &Self::Params, _context: &(), id: usize, job: &Job) -> Result<Vec<f64>> {
         let n = p.springs;
         let k_e = k_bar_of_n(p.stiffness_exponent);
+        let nl = p.correlation_lengths.len();
+        let (sigma, lc) = (p.roughness[id / nl], p.correlation_lengths[id % nl]);
+        let window = cycle_window(k_e, sigma, p.depth_sigmas, p.end_sigmas)?;
+        let unit = unit_surfaces(n, n, lc, p.samples, p.seed, job)?;
+        let cycles = uncoupled_samples(&unit, sigma, k_e, p.steps, p.oversample, window, job)?;
+        Ok(cycles
+            .iter()
+            .map(|cy| crate::models::spring_array::adhesion_efficiency(cy, n * n))
+            .collect())
+    }
+
+    fn assemble(p: &Self::Params, points: &[Vec<f64>], job: &Job) -> Result<Figure> {
         let mut fig = Figure::new(Self::ID, Self::TITLE);
         let mut spread = 0.0f64;
         let labels = ["(a)", "(b)", "(c)", "(d)"];
+        let nl = p.correlation_lengths.len();
         for (c, &sigma) in p.roughness.iter().enumerate() {
             let mut pts = Vec::new();
             let mut bars = Vec::new();
-            for &lc in &p.correlation_lengths {
-                job.check()?;
-                let window = cycle_window(k_e, sigma, p.depth_sigmas, p.end_sigmas)?;
-                let unit = unit_surfaces(n, n, lc, p.samples, p.seed, job)?;
-                let cycles = uncoupled_samples(&unit, sigma, k_e, p.steps, p.oversample, window, job)?;
-                let e: Vec<f64> = cycles
-                    .iter()
-                    .map(|cy| crate::models::spring_array::adhesion_efficiency(cy, n * n))
-                    .collect();
-                let (m, sd) = mean_std(&e);
+            for (l, &lc) in p.correlation_lengths.iter().enumerate() {
+                let (m, sd) = mean_std(&points[c * nl + l]);
                 pts.push((lc, m));
                 bars.push((lc, m - sd));
                 bars.push((lc, m + sd));
@@ -990,9 +1052,14 @@ fn coupling_study(
         linear: crate::numerics::newton::LinearSolver::Iterative,
         ..Default::default()
     };
+    // Each coupling reports its fraction of steps; the run's progress is their mean, so the
+    // gauge reaches 100 % only when the slowest (most strongly coupled) cycle is done.
+    let fractions = std::sync::Mutex::new(vec![0.0; p.couplings.len()]);
+    let n_couplings = p.couplings.len();
     p.couplings
         .par_iter()
-        .map(|&mult| {
+        .enumerate()
+        .map(|(slot, &mult)| {
             let a = crate::models::spring_array::SpringArray::new(
                 p.springs_x,
                 p.springs_y,
@@ -1003,9 +1070,22 @@ fn coupling_study(
             let c =
                 crate::models::spring_array::coupled_cycle(&a, window.0, window.1, p.steps, &opts, |f| {
                     job.check()?;
-                    if mult == p.couplings[0] {
-                        job.progress(f, "coupled cycle");
-                    }
+                    let mean = match fractions.lock() {
+                        Ok(mut all) => {
+                            all[slot] = f;
+                            all.iter().sum::<f64>() / n_couplings as f64
+                        }
+                        // Another coupling panicked holding the lock; its error will surface.
+                        Err(_) => f,
+                    };
+                    let steps = (mean * (2 * p.steps * n_couplings) as f64).round();
+                    job.progress(
+                        mean,
+                        &format!(
+                            "coupled cycles: {steps:.0}/{} steps of {n_couplings} couplings",
+                            2 * p.steps * n_couplings
+                        ),
+                    );
                     Ok(())
                 })?;
             Ok((mult, c))

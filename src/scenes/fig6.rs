@@ -10,6 +10,7 @@
 use std::f64::consts::FRAC_PI_2;
 use std::path::Path;
 
+use super::sweep::{Sweep, Swept};
 use super::{Registered, Scene, SceneDyn};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Field, FieldKind, Figure, Marker, MarkerShape, Panel, Series, Style};
@@ -24,9 +25,9 @@ use crate::params::Range;
 /// The chapter's scenes, in figure order.
 pub const SCENES: &[&dyn SceneDyn] = &[
     &Registered::<Fig6_2>::NEW,
-    &Registered::<Fig6_3>::NEW,
+    &Swept::<Fig6_3>::NEW,
     &Registered::<Fig6_4>::NEW,
-    &Registered::<Fig6_5>::NEW,
+    &Swept::<Fig6_5>::NEW,
     &Registered::<Fig6Limits>::NEW,
 ];
 
@@ -49,7 +50,7 @@ pub fn load_profile(path: &Path) -> Result<Profile> {
         std::fs::read_to_string(path).map_err(|e| Error::data_file(path, 0, format!("cannot read: {e}")))?;
     let mut points = Vec::new();
     let mut header_seen = false;
-    for (k, raw) in text.lines().enumerate() {
+    for (k, raw) in crate::params::normalise_line_ends(&text).lines().enumerate() {
         let line = raw.split('#').next().unwrap_or("").trim();
         if line.is_empty() {
             continue;
@@ -368,30 +369,67 @@ const MAP_RESULTS: &[(&str, &str)] = &[
     ),
 ];
 
-/// Run a map scene (Fig. 6.3 or 6.5).
-fn run_map(
+/// One point of a map scene (Fig. 6.3 or 6.5): the column of aspect ratio number `i` of both
+/// maps (F_max/(Ebh), then w_e/w, at every angle of the grid; NaN at inadmissible angles), then
+/// the extrema over θ at that A: θ and value of the largest and smallest F_max, θ of the
+/// smallest w_e, θ and value of the largest w_e (the three w_e entries NaN at A = 0).
+fn map_point(p: &PeelMapParams, profile: &Profile, i: usize, job: &Job) -> Result<Vec<f64>> {
+    let w = p.work_of_adhesion_norm;
+    let a = linspace(0.0, p.aspect_ratio_max, p.aspect_ratio_points)[i];
+    let t_grid = linspace(0.0, std::f64::consts::PI, p.angle_points);
+    let ny = t_grid.len();
+    let mut out = vec![f64::NAN; 2 * ny + 7];
+    let force = |a: f64, t: f64| WavyPeeling::new(profile, a, t, w).map(|q| q.max_force());
+    let work = |a: f64, t: f64| WavyPeeling::new(profile, a, t, w).map(|q| q.effective_work() / w);
+    let (lo, hi) = profile.admissible_angles(a);
+    for (j, &t) in t_grid.iter().enumerate() {
+        if t >= lo && t <= hi {
+            out[j] = force(a, t)?;
+            out[ny + j] = work(a, t)?;
+        }
+    }
+    job.check()?;
+    let fa = |t: f64| force(a, t.clamp(lo, hi)).unwrap_or(f64::NAN);
+    let wa = |t: f64| work(a, t.clamp(lo, hi)).unwrap_or(f64::NAN);
+    let (t_fmax, v_fmax) = extremum_over(fa, lo, hi, p.angle_points, true);
+    let (t_fmin, v_fmin) = extremum_over(fa, lo, hi, p.angle_points, false);
+    out[2 * ny..2 * ny + 4].copy_from_slice(&[t_fmax, v_fmax, t_fmin, v_fmin]);
+    // At A = 0 the effective work is w for every angle: no extremum to draw.
+    if a > 0.0 {
+        let (t_wmin, _) = extremum_over(wa, lo, hi, p.angle_points, false);
+        let (t_wmax, v_wmax) = extremum_over(wa, lo, hi, p.angle_points, true);
+        out[2 * ny + 4..].copy_from_slice(&[t_wmin, t_wmax, v_wmax]);
+    }
+    Ok(out)
+}
+
+/// The labels of the points of a map scene: one per aspect ratio.
+fn map_points(p: &PeelMapParams) -> Vec<String> {
+    linspace(0.0, p.aspect_ratio_max, p.aspect_ratio_points)
+        .iter()
+        .map(|a| format!("A = {}", crate::params::fmt_sig(*a)))
+        .collect()
+}
+
+/// Assemble a map scene (Fig. 6.3 or 6.5) from its points ([`map_point`]).
+fn assemble_map(
     p: &PeelMapParams,
     builtin: &Profile,
     fit: fn(f64) -> f64,
     fit_eq: &str,
+    points: &[Vec<f64>],
     job: &Job,
 ) -> Result<Figure> {
     let profile = profile_of(&p.profile_file, builtin)?;
-    let w = p.work_of_adhesion_norm;
     let a_grid = linspace(0.0, p.aspect_ratio_max, p.aspect_ratio_points);
     let t_grid = linspace(0.0, std::f64::consts::PI, p.angle_points);
     let (nx, ny) = (a_grid.len(), t_grid.len());
     let mut fmax = vec![f64::NAN; nx * ny];
     let mut wratio = vec![f64::NAN; nx * ny];
-    let force = |a: f64, t: f64| WavyPeeling::new(&profile, a, t, w).map(|q| q.max_force());
-    let work = |a: f64, t: f64| WavyPeeling::new(&profile, a, t, w).map(|q| q.effective_work() / w);
-    for (i, &a) in a_grid.iter().enumerate() {
-        let (lo, hi) = profile.admissible_angles(a);
-        for (j, &t) in t_grid.iter().enumerate() {
-            if t >= lo && t <= hi {
-                fmax[j * nx + i] = force(a, t)?;
-                wratio[j * nx + i] = work(a, t)?;
-            }
+    for (i, point) in points.iter().enumerate() {
+        for j in 0..ny {
+            fmax[j * nx + i] = point[j];
+            wratio[j * nx + i] = point[ny + j];
         }
     }
     job.check()?;
@@ -401,24 +439,18 @@ fn run_map(
     let (mut dev_fmax, mut dev_fmin, mut dev_wmin) = (0.0f64, 0.0f64, 0.0f64);
     let (mut opt_last, mut fit_last, mut wmax_last, mut fmax_all) = (0.0, 0.0, 0.0, 0.0f64);
     let mut table = Vec::new();
-    for &a in &a_grid {
-        job.check()?;
+    for (&a, point) in a_grid.iter().zip(points) {
         let (lo, hi) = profile.admissible_angles(a);
-        let fa = |t: f64| force(a, t.clamp(lo, hi)).unwrap_or(f64::NAN);
-        let wa = |t: f64| work(a, t.clamp(lo, hi)).unwrap_or(f64::NAN);
-        let (t_fmax, v_fmax) = extremum_over(fa, lo, hi, p.angle_points, true);
-        let (t_fmin, v_fmin) = extremum_over(fa, lo, hi, p.angle_points, false);
+        let [t_fmax, v_fmax, t_fmin, v_fmin, t_wmin, t_wmax, v_wmax] =
+            [0, 1, 2, 3, 4, 5, 6].map(|k| point[2 * ny + k]);
         lines[0].push((a, t_fmax));
         lines[1].push((a, t_fmin));
         fmax_all = fmax_all.max(v_fmax).max(v_fmin);
-        // At A = 0 the effective work is w for every angle: no extremum to draw.
         if a > 0.0 {
-            let (t_wmin, _) = extremum_over(wa, lo, hi, p.angle_points, false);
             lines[3].push((a, t_wmin));
             dev_fmax = dev_fmax.max((t_fmax - lo).abs());
             dev_fmin = dev_fmin.max((t_fmin - hi).abs());
             dev_wmin = dev_wmin.max((t_wmin - hi).abs());
-            let (t_wmax, v_wmax) = extremum_over(wa, lo, hi, p.angle_points, true);
             lines[2].push((a, t_wmax));
             let t_fit = fit(a);
             lines[4].push((a, t_fit));
@@ -546,7 +578,35 @@ impl Scene for Fig6_3 {
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        let mut fig = run_map(p, &Profile::Sinusoid, sinusoid_optimum_angle_fit, "(6.23)", job)?;
+        super::sweep::run::<Self>(p, job)
+    }
+}
+
+/// A sweep over the aspect ratio: point `i` is the column of A number `i` (`map_point`).
+impl Sweep for Fig6_3 {
+    type Context = Profile;
+
+    fn context(p: &Self::Params, _job: &Job) -> Result<Profile> {
+        profile_of(&p.profile_file, &Profile::Sinusoid)
+    }
+
+    fn points(p: &Self::Params) -> Vec<String> {
+        map_points(p)
+    }
+
+    fn run_point(p: &Self::Params, profile: &Profile, id: usize, job: &Job) -> Result<Vec<f64>> {
+        map_point(p, profile, id, job)
+    }
+
+    fn assemble(p: &Self::Params, points: &[Vec<f64>], job: &Job) -> Result<Figure> {
+        let mut fig = assemble_map(
+            p,
+            &Profile::Sinusoid,
+            sinusoid_optimum_angle_fit,
+            "(6.23)",
+            points,
+            job,
+        )?;
         fig.title = Self::TITLE.into();
         Ok(fig)
     }
@@ -604,7 +664,35 @@ impl Scene for Fig6_5 {
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        let mut fig = run_map(p, &Profile::Zigzag, zigzag_optimum_angle_fit, "(6.27)", job)?;
+        super::sweep::run::<Self>(p, job)
+    }
+}
+
+/// A sweep over the aspect ratio: point `i` is the column of A number `i` (`map_point`).
+impl Sweep for Fig6_5 {
+    type Context = Profile;
+
+    fn context(p: &Self::Params, _job: &Job) -> Result<Profile> {
+        profile_of(&p.profile_file, &Profile::Zigzag)
+    }
+
+    fn points(p: &Self::Params) -> Vec<String> {
+        map_points(p)
+    }
+
+    fn run_point(p: &Self::Params, profile: &Profile, id: usize, job: &Job) -> Result<Vec<f64>> {
+        map_point(p, profile, id, job)
+    }
+
+    fn assemble(p: &Self::Params, points: &[Vec<f64>], job: &Job) -> Result<Figure> {
+        let mut fig = assemble_map(
+            p,
+            &Profile::Zigzag,
+            zigzag_optimum_angle_fit,
+            "(6.27)",
+            points,
+            job,
+        )?;
         fig.title = Self::TITLE.into();
         Ok(fig)
     }

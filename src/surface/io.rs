@@ -69,6 +69,7 @@ pub fn parse_csv(text: &str, path: &Path, pixel_size: Option<f64>) -> Result<Hei
     let mut z = Vec::new();
     let mut nx = 0usize;
     let mut ny = 0usize;
+    let text = crate::params::normalise_line_ends(text);
     for (ln, line) in text.lines().enumerate() {
         let ln = ln + 1;
         let t = line.trim();

@@ -6,11 +6,16 @@ use std::path::{Path, PathBuf};
 
 use ratatui::crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
+use std::cell::Cell;
+
+use super::chart::{CursorAt, DrawnLayout, HistoryEntry};
+use super::compare::Pin;
 use super::form::{Form, LineEdit};
 use super::keymap::{Action, action_for};
 use super::worker::{JobMsg, Outcome};
 use crate::figure::Figure;
 use crate::params::ParamValues;
+use crate::render::terminal::View;
 use crate::scenes::SceneDyn;
 
 /// Which pane the arrow keys move in.
@@ -38,6 +43,16 @@ pub enum Mode {
     Normal,
     /// The key help is shown; any key closes it.
     Help,
+    /// The run history is shown.
+    History {
+        /// The highlighted entry (0 is the newest).
+        selected: usize,
+    },
+    /// A filter of the scene list is being typed (`/`); the list narrows as it is typed.
+    Filter {
+        /// The filter text being typed.
+        edit: LineEdit,
+    },
     /// A file path is being typed.
     Prompt {
         /// What the path is for.
@@ -82,8 +97,10 @@ pub struct Running {
     pub scene: usize,
     /// Parameters of the run.
     pub values: ParamValues,
-    /// Fraction done, 0 to 1.
+    /// Fraction done, 0 to 1 (the largest reported, so the gauge never moves back).
     pub fraction: f64,
+    /// Seconds since the run started, as of the latest progress message.
+    pub elapsed_s: f64,
     /// Latest progress message.
     pub message: String,
     /// Whether cancellation was requested.
@@ -115,10 +132,15 @@ pub enum Effect {
         /// Run id.
         job: u64,
     },
-    /// Export the complete figure of scene `scene` (index).
+    /// Export the complete figure of scene `scene` (index) with its pinned runs.
     Export {
         /// Scene index.
         scene: usize,
+    },
+    /// Export entry `entry` of the run history (0 is the newest).
+    ExportHistory {
+        /// History index.
+        entry: usize,
     },
     /// Read a preset file into the form of scene `scene`.
     LoadPreset {
@@ -142,6 +164,7 @@ impl std::fmt::Debug for Effect {
             Effect::Start { job, scene, .. } => write!(f, "Start({job}, {})", scene.info().id),
             Effect::Cancel { job } => write!(f, "Cancel({job})"),
             Effect::Export { scene } => write!(f, "Export({scene})"),
+            Effect::ExportHistory { entry } => write!(f, "ExportHistory({entry})"),
             Effect::LoadPreset { scene, path } => write!(f, "LoadPreset({scene}, {})", path.display()),
             Effect::SavePreset { scene, path } => write!(f, "SavePreset({scene}, {})", path.display()),
         }
@@ -161,6 +184,14 @@ pub struct App {
     pub(crate) show_info: bool,
     pub(crate) status: Status,
     pub(crate) auto_run: bool,
+    pub(crate) filter: String,
+    pub(crate) pins: Vec<Vec<Pin>>,
+    pub(crate) cursor: Option<CursorAt>,
+    pub(crate) zoom: Option<View>,
+    pub(crate) zoom_mark: Option<(f64, f64)>,
+    pub(crate) drag: Option<((f64, f64), (f64, f64))>,
+    pub(crate) history: Vec<HistoryEntry>,
+    pub(crate) layout: Cell<DrawnLayout>,
     preset_dir: PathBuf,
     next_job: u64,
     quit: bool,
@@ -183,6 +214,7 @@ impl App {
     pub fn new(scenes: Vec<&'static dyn SceneDyn>, preset_dir: impl Into<PathBuf>) -> Self {
         let forms = scenes.iter().map(|s| Form::new(*s)).collect();
         let figures = scenes.iter().map(|_| None).collect();
+        let pins = scenes.iter().map(|_| Vec::new()).collect();
         Self {
             scenes,
             forms,
@@ -198,6 +230,14 @@ impl App {
                 error: false,
             },
             auto_run: false,
+            filter: String::new(),
+            pins,
+            cursor: None,
+            zoom: None,
+            zoom_mark: None,
+            drag: None,
+            history: Vec::new(),
+            layout: Cell::new(DrawnLayout::default()),
             preset_dir: preset_dir.into(),
             next_job: 1,
             quit: false,
@@ -326,6 +366,41 @@ impl App {
                 self.mode = Mode::Normal;
                 return Vec::new();
             }
+            Mode::History { selected } => {
+                let n = self.history.len();
+                let k = *selected;
+                match key.code {
+                    KeyCode::Up | KeyCode::Char('k') => *selected = k.saturating_sub(1),
+                    KeyCode::Down | KeyCode::Char('j') => *selected = (k + 1).min(n.saturating_sub(1)),
+                    KeyCode::Enter => {
+                        self.mode = Mode::Normal;
+                        self.reopen(k);
+                    }
+                    KeyCode::Char('e') if k < n => return vec![Effect::ExportHistory { entry: k }],
+                    KeyCode::Esc | KeyCode::Char('h' | 'q') => self.mode = Mode::Normal,
+                    _ => {}
+                }
+                return Vec::new();
+            }
+            Mode::Filter { edit } => {
+                match key.code {
+                    KeyCode::Esc => {
+                        self.filter.clear();
+                        self.mode = Mode::Normal;
+                    }
+                    KeyCode::Enter => self.mode = Mode::Normal,
+                    KeyCode::Up => self.select_scene(-1),
+                    KeyCode::Down => self.select_scene(1),
+                    _ => {
+                        if edit.handle(key) {
+                            self.filter = edit.text().to_string();
+                            self.keep_selection_visible();
+                        }
+                    }
+                }
+                self.focus = Focus::Scenes;
+                return Vec::new();
+            }
             Mode::Prompt { kind, edit } => {
                 let kind = *kind;
                 match key.code {
@@ -392,6 +467,12 @@ impl App {
                 }
             }
             Action::Help => self.mode = Mode::Help,
+            Action::Filter => {
+                self.focus = Focus::Scenes;
+                self.mode = Mode::Filter {
+                    edit: LineEdit::new(self.filter.clone()),
+                };
+            }
             Action::Run => self.run(&mut effects),
             Action::Cancel => {
                 if let Some(run) = &mut self.running {
@@ -478,8 +559,39 @@ impl App {
                     effects.extend(self.after_change());
                 }
             }
-            Action::PrevPanel => self.panel = self.panel().saturating_sub(1),
-            Action::NextPanel => self.panel = self.panel() + 1,
+            Action::PrevPanel | Action::NextPanel => {
+                let before = self.panel();
+                self.panel = if action == Action::PrevPanel {
+                    before.saturating_sub(1)
+                } else {
+                    before + 1
+                };
+                if self.panel() != before {
+                    self.on_view_change();
+                }
+            }
+            Action::History => {
+                if self.history.is_empty() {
+                    self.set_status("no finished run yet: the history keeps the last 20 runs", false);
+                } else {
+                    self.mode = Mode::History { selected: 0 };
+                }
+            }
+            Action::Pin
+            | Action::Unpin
+            | Action::UnpinAll
+            | Action::Cursor
+            | Action::CursorPrev
+            | Action::CursorNext
+            | Action::CursorPrevFast
+            | Action::CursorNextFast
+            | Action::CursorCurve
+            | Action::NextMarker
+            | Action::PrevMarker
+            | Action::ZoomRect
+            | Action::ZoomIn
+            | Action::ZoomOut
+            | Action::ZoomReset => self.chart_action(action),
             Action::Info => self.show_info = !self.show_info,
         }
         // Keep the panel index within the figure.
@@ -487,16 +599,65 @@ impl App {
         effects
     }
 
-    fn select_scene(&mut self, step: isize) {
-        if self.scenes.is_empty() {
-            return;
+    /// The filter of the scene list (empty: every scene).
+    pub fn filter(&self) -> &str {
+        &self.filter
+    }
+
+    /// Indices of the scenes the filter lets through (id or title contains every word of the
+    /// filter, ignoring case), in list order.
+    pub fn visible_scenes(&self) -> Vec<usize> {
+        let words: Vec<String> = self.filter.split_whitespace().map(str::to_lowercase).collect();
+        self.scenes
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| {
+                let info = s.info();
+                let text = format!("{} {}", info.id, info.title).to_lowercase();
+                words.iter().all(|w| text.contains(w.as_str()))
+            })
+            .map(|(k, _)| k)
+            .collect()
+    }
+
+    /// Select the first visible scene when the selected one is filtered out.
+    fn keep_selection_visible(&mut self) {
+        let visible = self.visible_scenes();
+        if !visible.contains(&self.selected)
+            && let Some(&k) = visible.first()
+        {
+            self.set_selected(k);
         }
-        let last = self.scenes.len() as isize - 1;
-        let k = (self.selected as isize + step).clamp(0, last) as usize;
-        if k != self.selected {
+    }
+
+    fn set_selected(&mut self, k: usize) {
+        if k != self.selected && k < self.scenes.len() {
             self.selected = k;
             self.panel = 0;
+            self.on_view_change();
         }
+    }
+
+    fn select_scene(&mut self, step: isize) {
+        let visible = self.visible_scenes();
+        if visible.is_empty() {
+            return;
+        }
+        let at = visible.iter().position(|&k| k == self.selected);
+        let k = match at {
+            Some(i) => visible[(i as isize + step).clamp(0, visible.len() as isize - 1) as usize],
+            None => visible[0],
+        };
+        self.set_selected(k);
+    }
+
+    /// Called when the shown scene or panel changes: the cursor and the zoom belong to one
+    /// panel.
+    pub(crate) fn on_view_change(&mut self) {
+        self.cursor = None;
+        self.zoom = None;
+        self.zoom_mark = None;
+        self.drag = None;
     }
 
     fn run(&mut self, effects: &mut Vec<Effect>) {
@@ -520,6 +681,7 @@ impl App {
             scene: self.selected,
             values: values.clone(),
             fraction: 0.0,
+            elapsed_s: 0.0,
             message: "starting".into(),
             cancelling: false,
         });
@@ -539,9 +701,14 @@ impl App {
         let id = self.scenes[scene].info().id;
         match msg {
             JobMsg::Progress {
-                fraction, message, ..
+                fraction,
+                message,
+                elapsed_s,
+                ..
             } => {
-                run.fraction = fraction;
+                // Parallel parts of a run may report out of order: the gauge only advances.
+                run.fraction = run.fraction.max(fraction);
+                run.elapsed_s = elapsed_s;
                 run.message = message;
             }
             JobMsg::Preview { figure, .. } => {
@@ -558,11 +725,13 @@ impl App {
                 let run = self.running.take();
                 match outcome {
                     Outcome::Done(figure) => {
+                        let values = run
+                            .map(|r| r.values)
+                            .unwrap_or_else(|| self.forms[scene].values().clone());
+                        self.remember(scene, &figure, &values, run_time_s);
                         self.figures[scene] = Some(FigureView {
                             figure: *figure,
-                            values: run
-                                .map(|r| r.values)
-                                .unwrap_or_else(|| self.forms[scene].values().clone()),
+                            values,
                             run_time_s: Some(run_time_s),
                             state: FigureState::Complete,
                         });

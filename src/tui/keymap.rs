@@ -44,6 +44,40 @@ pub enum Action {
     Info,
     /// Switch automatic runs after every valid change on or off.
     AutoRun,
+    /// Type a filter for the scene list.
+    Filter,
+    /// Keep the current run on the chart to compare later runs with it.
+    Pin,
+    /// Remove the most recently pinned run.
+    Unpin,
+    /// Remove every pinned run.
+    UnpinAll,
+    /// Show or hide the cursor on the chart.
+    Cursor,
+    /// Move the cursor to the previous point of its curve.
+    CursorPrev,
+    /// Move the cursor to the next point of its curve.
+    CursorNext,
+    /// Move the cursor 20 points back.
+    CursorPrevFast,
+    /// Move the cursor 20 points on.
+    CursorNextFast,
+    /// Move the cursor to the next curve.
+    CursorCurve,
+    /// Move the cursor to the next marker (pull-in, pull-off, adhesive force, ...).
+    NextMarker,
+    /// Move the cursor to the previous marker.
+    PrevMarker,
+    /// Mark a corner of a zoom rectangle at the cursor; the second mark zooms.
+    ZoomRect,
+    /// Zoom in by 2 about the cursor (or the centre).
+    ZoomIn,
+    /// Zoom out by 2.
+    ZoomOut,
+    /// Show the whole panel again.
+    ZoomReset,
+    /// Show the run history.
+    History,
 }
 
 /// One key binding: the keys, how the help writes them, the action, what it does.
@@ -72,6 +106,12 @@ pub const BINDINGS: &[Binding] = &[
         label: "↓ j",
         action: Action::Down,
         help: "next scene or parameter",
+    },
+    Binding {
+        keys: &[KeyCode::Char('/')],
+        label: "/",
+        action: Action::Filter,
+        help: "filter the scene list by id or title words (Enter keeps, Esc clears)",
     },
     Binding {
         keys: &[KeyCode::Tab, KeyCode::BackTab],
@@ -144,6 +184,102 @@ pub const BINDINGS: &[Binding] = &[
         label: "→ ]",
         action: Action::NextPanel,
         help: "next panel of the figure",
+    },
+    Binding {
+        keys: &[KeyCode::Char('p')],
+        label: "p",
+        action: Action::Pin,
+        help: "pin the run: later runs draw over it; its legend names what differs",
+    },
+    Binding {
+        keys: &[KeyCode::Char('u')],
+        label: "u",
+        action: Action::Unpin,
+        help: "unpin the most recently pinned run",
+    },
+    Binding {
+        keys: &[KeyCode::Char('U')],
+        label: "U",
+        action: Action::UnpinAll,
+        help: "unpin every run of the scene",
+    },
+    Binding {
+        keys: &[KeyCode::Char('c')],
+        label: "c",
+        action: Action::Cursor,
+        help: "cursor on the chart: x, y with units and the curve of the nearest point",
+    },
+    Binding {
+        keys: &[KeyCode::Char(',')],
+        label: ",",
+        action: Action::CursorPrev,
+        help: "cursor to the previous point of its curve",
+    },
+    Binding {
+        keys: &[KeyCode::Char('.')],
+        label: ".",
+        action: Action::CursorNext,
+        help: "cursor to the next point of its curve",
+    },
+    Binding {
+        keys: &[KeyCode::Char('<')],
+        label: "<",
+        action: Action::CursorPrevFast,
+        help: "cursor 20 points back",
+    },
+    Binding {
+        keys: &[KeyCode::Char('>')],
+        label: ">",
+        action: Action::CursorNextFast,
+        help: "cursor 20 points on",
+    },
+    Binding {
+        keys: &[KeyCode::Char(';')],
+        label: ";",
+        action: Action::CursorCurve,
+        help: "cursor to the next curve (nearest point)",
+    },
+    Binding {
+        keys: &[KeyCode::Char('m')],
+        label: "m",
+        action: Action::NextMarker,
+        help: "cursor to the next marker (pull-in, pull-off, adhesive force)",
+    },
+    Binding {
+        keys: &[KeyCode::Char('M')],
+        label: "M",
+        action: Action::PrevMarker,
+        help: "cursor to the previous marker",
+    },
+    Binding {
+        keys: &[KeyCode::Char('z')],
+        label: "z",
+        action: Action::ZoomRect,
+        help: "zoom: z marks a corner at the cursor, z again zooms to the rectangle",
+    },
+    Binding {
+        keys: &[KeyCode::Char('+'), KeyCode::Char('=')],
+        label: "+",
+        action: Action::ZoomIn,
+        help: "zoom in by 2 about the cursor",
+    },
+    Binding {
+        keys: &[KeyCode::Char('-')],
+        label: "-",
+        action: Action::ZoomOut,
+        help: "zoom out by 2",
+    },
+    Binding {
+        keys: &[KeyCode::Char('0'), KeyCode::Char('Z')],
+        label: "0 Z",
+        action: Action::ZoomReset,
+        help: "whole panel again (undo zoom)",
+    },
+    Binding {
+        keys: &[KeyCode::Char('h')],
+        label: "h",
+        action: Action::History,
+        help: "run history: reopen (Enter) or export (e) a past run without rerunning",
     },
     Binding {
         keys: &[KeyCode::Char('i')],

@@ -6,12 +6,16 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use ratatui::Frame;
-use ratatui::crossterm::event::KeyEvent;
+use ratatui::crossterm::event::{KeyEvent, MouseEvent};
 
 use super::app::{App, Effect};
+use super::compare::overlay_figure;
 use super::view;
 use super::worker::Worker;
-use crate::headless::{preset_header, write_figure};
+use crate::figure::Figure;
+use crate::headless::{preset_header, write_figure_with_runs};
+use crate::params::ParamValues;
+use crate::render::data::RunRecord;
 use crate::render::{Format, write_atomic};
 use crate::scenes::SceneDyn;
 
@@ -50,6 +54,13 @@ impl Session {
     /// Handle a key and carry out what it asks for.
     pub fn key(&mut self, key: KeyEvent) {
         for effect in self.app.update(key) {
+            self.apply(effect);
+        }
+    }
+
+    /// Handle a mouse event and carry out what it asks for.
+    pub fn mouse(&mut self, ev: MouseEvent) {
+        for effect in self.app.on_mouse(ev) {
             self.apply(effect);
         }
     }
@@ -100,20 +111,67 @@ impl Session {
             Effect::Start { job, scene, values } => self.worker.start(job, scene, values),
             Effect::Cancel { job } => self.worker.cancel(job),
             Effect::Export { scene } => self.export(scene),
+            Effect::ExportHistory { entry } => {
+                if let Some(e) = self.app.history().get(entry).cloned() {
+                    self.write(e.scene, &e.figure, &e.values, e.run_time_s, &[]);
+                }
+            }
             Effect::LoadPreset { scene, path } => self.load_preset(scene, &path),
             Effect::SavePreset { scene, path } => self.save_preset(scene, &path),
         }
     }
 
+    /// Export the shown figure of scene `k`; with pinned runs, the figure with every pinned
+    /// run drawn over it and the JSON with each run's parameters.
     fn export(&mut self, k: usize) {
-        let (Some(view), Some(scene)) = (self.app.figure(k), self.app.scenes().get(k)) else {
+        let Some(view) = self.app.figure(k) else {
             return;
         };
-        let written = write_figure(
-            &view.figure,
+        let pins = self.app.pins(k);
+        let values = view.values.clone();
+        let run_time_s = view.run_time_s.unwrap_or(0.0);
+        if pins.is_empty() {
+            let figure = view.figure.clone();
+            self.write(k, &figure, &values, run_time_s, &[]);
+            return;
+        }
+        let labels: Vec<String> = pins
+            .iter()
+            .enumerate()
+            .map(|(i, p)| super::compare::pin_label(i + 1, p, &values, usize::MAX))
+            .collect();
+        let figure = overlay_figure(&view.figure, pins, &labels);
+        let pins = pins.to_vec();
+        let runs: Vec<RunRecord<'_>> = pins
+            .iter()
+            .zip(&labels)
+            .map(|(p, label)| RunRecord {
+                label,
+                params: &p.values,
+                results: &p.figure.results,
+                run_time_s: p.run_time_s,
+            })
+            .collect();
+        self.write(k, &figure, &values, run_time_s, &runs);
+    }
+
+    fn write(
+        &mut self,
+        k: usize,
+        figure: &Figure,
+        values: &ParamValues,
+        run_time_s: f64,
+        runs: &[RunRecord<'_>],
+    ) {
+        let Some(scene) = self.app.scenes().get(k) else {
+            return;
+        };
+        let written = write_figure_with_runs(
+            figure,
             scene.info().caption,
-            &view.values,
-            view.run_time_s.unwrap_or(0.0),
+            values,
+            run_time_s,
+            runs,
             &self.out_dir,
             &Format::ALL,
         );
@@ -123,7 +181,16 @@ impl Session {
                     .iter()
                     .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
                     .collect();
-                let text = format!("exported to {}: {}", self.out_dir.display(), names.join(", "));
+                let extra = if runs.is_empty() {
+                    String::new()
+                } else {
+                    format!(" (with {} pinned run(s))", runs.len())
+                };
+                let text = format!(
+                    "exported to {}: {}{extra}",
+                    self.out_dir.display(),
+                    names.join(", ")
+                );
                 self.app.set_status(text, false);
             }
             Err(e) => self.app.set_status(format!("export failed: {e}"), true),

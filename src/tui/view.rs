@@ -7,12 +7,14 @@ use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Position, Rect};
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Clear, Gauge, List, ListItem, ListState, Paragraph, Wrap};
+use ratatui::widgets::{Block, Clear, Gauge, Paragraph, Wrap};
 
 use super::app::{App, FigureState, FigureView, Focus, Mode, PromptKind, fmt_duration};
+use super::chart::history_line;
 use super::keymap::BINDINGS;
 use crate::params::{ParamKind, fmt_float};
-use crate::render::terminal::render_panel;
+use crate::render::labels::{fmt_quantity, result_unit};
+use crate::render::terminal::{ChartOptions, render_chart};
 use crate::scenes::chapter_title;
 
 const ACCENT: Color = Color::Cyan;
@@ -23,7 +25,7 @@ pub fn draw(frame: &mut Frame<'_>, app: &App) {
     let [main, status] = Layout::vertical([Constraint::Min(0), Constraint::Length(1)]).areas(frame.area());
     let left_width = (main.width * 2 / 5).clamp(30, 52).min(main.width);
     let [left, right] = Layout::horizontal([Constraint::Length(left_width), Constraint::Min(0)]).areas(main);
-    let entries = app.scenes.len() + chapter_count(app);
+    let entries = scene_rows(app).len().max(1);
     let list_height = (entries as u16 + 2).min(left.height / 2).max(3);
     let [list_area, form_area] =
         Layout::vertical([Constraint::Length(list_height), Constraint::Min(0)]).areas(left);
@@ -32,8 +34,9 @@ pub fn draw(frame: &mut Frame<'_>, app: &App) {
     draw_figure(frame, app, right);
     draw_status(frame, app, status);
     match &app.mode {
-        Mode::Normal => {}
+        Mode::Normal | Mode::Filter { .. } => {}
         Mode::Help => draw_help(frame, main),
+        Mode::History { selected } => draw_history(frame, app, *selected, main),
         Mode::Prompt { kind, edit } => {
             let area = Rect {
                 x: main.x,
@@ -57,12 +60,6 @@ pub fn draw(frame: &mut Frame<'_>, app: &App) {
     }
 }
 
-fn chapter_count(app: &App) -> usize {
-    let mut chapters: Vec<&str> = app.scenes.iter().map(|s| s.info().chapter).collect();
-    chapters.dedup();
-    chapters.len()
-}
-
 fn pane(title: String, focused: bool) -> Block<'static> {
     let style = if focused {
         Style::default().fg(ACCENT)
@@ -72,44 +69,139 @@ fn pane(title: String, focused: bool) -> Block<'static> {
     Block::bordered().title(title).border_style(style)
 }
 
-fn draw_scene_list(frame: &mut Frame<'_>, app: &App, area: Rect) {
-    let mut items = Vec::new();
-    let mut selected_item = 0;
+/// A row of the scene list: a chapter heading or a scene (index).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ListRow {
+    /// Chapter heading (chapter key).
+    Chapter(&'static str),
+    /// A scene, by index.
+    Scene(usize),
+}
+
+/// The rows of the scene list under the filter: each chapter with visible scenes, then them.
+pub fn scene_rows(app: &App) -> Vec<ListRow> {
+    let mut rows = Vec::new();
     let mut chapter = "";
-    for (k, s) in app.scenes.iter().enumerate() {
-        let info = s.info();
+    for k in app.visible_scenes() {
+        let info = app.scenes[k].info();
         if info.chapter != chapter {
             chapter = info.chapter;
-            items.push(ListItem::new(Line::styled(
-                format!("{chapter} {}", chapter_title(chapter)),
-                Style::default().fg(Color::Yellow).add_modifier(Modifier::BOLD),
-            )));
+            rows.push(ListRow::Chapter(chapter));
         }
-        if k == app.selected {
-            selected_item = items.len();
-        }
-        let running = app.running.as_ref().is_some_and(|r| r.scene == k);
-        let mark = if running { "▶" } else { " " };
-        items.push(ListItem::new(Line::from(vec![
-            Span::raw(format!(" {mark}")),
-            Span::styled(
-                format!("{:<13}", info.id),
-                Style::default().add_modifier(Modifier::BOLD),
-            ),
-            Span::raw(info.title),
-        ])));
+        rows.push(ListRow::Scene(k));
     }
-    let focused = app.focus == Focus::Scenes && app.mode == Mode::Normal;
+    rows
+}
+
+/// First row shown in a list of `height` rows so that row `selected` is visible.
+pub fn scroll_offset(selected: usize, height: usize) -> usize {
+    (selected + 1).saturating_sub(height.max(1))
+}
+
+/// Cut `text` to `width` characters, ending in `…` when cut.
+fn clip(text: &str, width: usize) -> String {
+    if text.chars().count() <= width {
+        text.to_string()
+    } else if width == 0 {
+        String::new()
+    } else {
+        let mut s: String = text.chars().take(width - 1).collect();
+        s.push('…');
+        s
+    }
+}
+
+fn draw_scene_list(frame: &mut Frame<'_>, app: &App, area: Rect) {
+    let filtering = matches!(app.mode, Mode::Filter { .. });
+    let focused = app.focus == Focus::Scenes && (app.mode == Mode::Normal || filtering);
+    let title = if app.filter.is_empty() && !filtering {
+        " Scenes (/ filters) ".to_string()
+    } else {
+        let n = app.visible_scenes().len();
+        format!(" Scenes /{} — {n} of {} ", app.filter, app.scenes.len())
+    };
+    let block = pane(title, focused);
+    let inner = block.inner(area);
+    frame.render_widget(block, area);
+    if let Mode::Filter { edit } = &app.mode {
+        // The typed filter sits in the title, after " Scenes /".
+        let x = area.x + 9 + edit.cursor() as u16;
+        if x < area.right() {
+            frame.set_cursor_position(Position::new(x, area.y));
+        }
+    }
+    if inner.height == 0 || inner.width == 0 {
+        return;
+    }
+    let rows = scene_rows(app);
+    if rows.is_empty() {
+        frame.render_widget(
+            Line::styled(
+                "no scene matches the filter (Esc clears)",
+                Style::default().fg(Color::DarkGray),
+            ),
+            inner,
+        );
+        return;
+    }
+    let id_width = rows
+        .iter()
+        .filter_map(|r| match r {
+            ListRow::Scene(k) => Some(app.scenes[*k].info().id.chars().count()),
+            ListRow::Chapter(_) => None,
+        })
+        .max()
+        .unwrap_or(0);
+    let width = inner.width as usize;
+    let selected_row = rows
+        .iter()
+        .position(|r| *r == ListRow::Scene(app.selected))
+        .unwrap_or(0);
+    let offset = scroll_offset(selected_row, inner.height as usize);
+    let mut layout = app.layout.get();
+    layout.list = inner;
+    layout.list_offset = offset;
+    app.layout.set(layout);
     let highlight = if focused {
         Style::default().bg(Color::Blue).fg(Color::White)
     } else {
         Style::default().add_modifier(Modifier::REVERSED)
     };
-    let list = List::new(items)
-        .block(pane(" Scenes ".into(), focused))
-        .highlight_style(highlight);
-    let mut state = ListState::default().with_selected(Some(selected_item));
-    frame.render_stateful_widget(list, area, &mut state);
+    let mut lines = Vec::new();
+    for (i, row) in rows.iter().enumerate().skip(offset).take(inner.height as usize) {
+        let line = match *row {
+            ListRow::Chapter(chapter) => Line::styled(
+                clip(&format!("{chapter} {}", chapter_title(chapter)), width),
+                Style::default().fg(Color::Yellow).add_modifier(Modifier::BOLD),
+            ),
+            ListRow::Scene(k) => {
+                let info = app.scenes[k].info();
+                let running = app.running.as_ref().is_some_and(|r| r.scene == k);
+                let mark = if running { "▶" } else { " " };
+                // Two columns: the id padded to the longest id shown, a gap, the title cut to
+                // what is left.
+                let id = clip(info.id, width.saturating_sub(2));
+                let title_width = width.saturating_sub(2 + id_width + 2);
+                let mut spans = vec![
+                    Span::raw(format!(" {mark}")),
+                    Span::styled(
+                        format!("{id:<id_width$}"),
+                        Style::default().add_modifier(Modifier::BOLD),
+                    ),
+                ];
+                if title_width > 0 {
+                    spans.push(Span::raw(format!("  {}", clip(info.title, title_width))));
+                }
+                let mut line = Line::from(spans);
+                if i == selected_row {
+                    line = line.style(highlight);
+                }
+                line
+            }
+        };
+        lines.push(line);
+    }
+    frame.render_widget(Paragraph::new(lines), inner);
 }
 
 fn draw_form(frame: &mut Frame<'_>, app: &App, area: Rect) {
@@ -148,7 +240,11 @@ fn draw_form(frame: &mut Frame<'_>, app: &App, area: Rect) {
         .saturating_sub(name_width + unit_width + 4)
         .max(4);
     let visible = rows_area.height as usize;
-    let offset = (form.selected() + 1).saturating_sub(visible);
+    let offset = scroll_offset(form.selected(), visible);
+    let mut layout = app.layout.get();
+    layout.form = rows_area;
+    layout.form_offset = offset;
+    app.layout.set(layout);
     let mut lines = Vec::new();
     for k in offset..form.len().min(offset + visible) {
         let spec = &form.specs()[k];
@@ -250,9 +346,12 @@ fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect) {
     frame.render_widget(block, area);
     let panels = view.map_or(0, |v| v.figure.panels.len());
     let tabs_height = u16::from(panels > 1);
-    let [tabs_area, body, gauge_area] = Layout::vertical([
+    let readout = app.readout();
+    let readout_height = u16::from(readout.is_some() || app.zoom().is_some());
+    let [tabs_area, body, readout_area, gauge_area] = Layout::vertical([
         Constraint::Length(tabs_height),
         Constraint::Min(0),
+        Constraint::Length(readout_height),
         Constraint::Length(1),
     ])
     .areas(inner);
@@ -283,15 +382,163 @@ fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect) {
         }
         frame.render_widget(Line::from(spans), tabs_area);
     }
+    let mut geometry = None;
     match view {
         Some(v) if !app.show_info && !v.figure.panels.is_empty() => {
-            if let Some(panel) = v.figure.panels.get(app.panel()) {
-                render_panel(panel, body, frame.buffer_mut());
+            let (chart_area, results_area) = split_results(app, body);
+            if let Some(drawn) = app.drawn() {
+                let options = ChartOptions {
+                    view: app.zoom(),
+                    cursor: readout.as_ref().map(|r| r.point),
+                    selection: app.selection(),
+                };
+                geometry = render_chart(&drawn.panel, &options, chart_area, frame.buffer_mut());
+                let mut layout = app.layout.get();
+                layout.chart_area = chart_area;
+                app.layout.set(layout);
+            }
+            if let Some(area) = results_area {
+                draw_results(frame, app, Some(v), area);
             }
         }
         _ => draw_info(frame, app, view, body),
     }
+    let mut layout = app.layout.get();
+    layout.chart = geometry;
+    app.layout.set(layout);
+    if readout_height > 0 {
+        let mut spans = Vec::new();
+        if let Some(r) = &readout {
+            spans.push(Span::styled(
+                format!("◆ {}", r.name),
+                Style::default().fg(Color::White),
+            ));
+            spans.push(Span::raw(format!("  {}  {}", r.x, r.y)));
+        }
+        if app.zoom().is_some() {
+            spans.push(Span::styled(
+                "  · zoomed (0 resets)",
+                Style::default().fg(Color::DarkGray),
+            ));
+        }
+        frame.render_widget(Line::from(spans), readout_area);
+    }
     draw_gauge(frame, app, view, gauge_area);
+}
+
+/// Width of the results panel beside the chart.
+const RESULTS_WIDTH: u16 = 40;
+
+/// The chart's area and, where there is room, the results panel's: beside the chart when the
+/// figure pane is wide, under it when it is tall, none on small terminals.
+fn split_results(app: &App, body: Rect) -> (Rect, Option<Rect>) {
+    let declared = app.scene().map_or(0, |s| s.info().results.len());
+    let shown = app.figure(app.selected).map_or(0, |v| v.figure.results.len());
+    let n = declared.max(shown) as u16;
+    if n == 0 {
+        return (body, None);
+    }
+    if body.width >= 60 + RESULTS_WIDTH {
+        let [chart, results] =
+            Layout::horizontal([Constraint::Min(0), Constraint::Length(RESULTS_WIDTH)]).areas(body);
+        (chart, Some(results))
+    } else if body.height >= 20 {
+        let h = (n + 2).min(body.height / 3);
+        let [chart, results] = Layout::vertical([Constraint::Min(0), Constraint::Length(h)]).areas(body);
+        (chart, Some(results))
+    } else {
+        (body, None)
+    }
+}
+
+/// The scene's results with units: the values of the shown run (partial while it runs), the
+/// declared names still to come dimmed.
+fn draw_results(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, area: Rect) {
+    let partial = view.is_some_and(|v| v.state != FigureState::Complete);
+    let title = if partial {
+        " Results (partial) "
+    } else {
+        " Results "
+    };
+    let block = Block::bordered()
+        .title(title)
+        .border_style(Style::default().fg(Color::DarkGray));
+    let inner = block.inner(area);
+    frame.render_widget(block, area);
+    let mut rows: Vec<(String, Option<f64>)> = view
+        .map(|v| {
+            v.figure
+                .results
+                .iter()
+                .map(|(n, x)| (n.clone(), Some(*x)))
+                .collect()
+        })
+        .unwrap_or_default();
+    if let Some(scene) = app.scene() {
+        for (name, _) in scene.info().results {
+            if !rows.iter().any(|(n, _)| n == name) {
+                rows.push(((*name).to_string(), None));
+            }
+        }
+    }
+    let width = inner.width as usize;
+    let lines: Vec<Line<'_>> = rows
+        .iter()
+        .map(|(name, value)| {
+            let (short, unit) = result_unit(name);
+            let text = match value {
+                Some(v) if name.ends_with("_count") => format!("{v:.0}"),
+                Some(v) => fmt_quantity(*v, unit),
+                None => "…".into(),
+            };
+            let name_width = width.saturating_sub(text.chars().count() + 1);
+            let line = format!("{:<name_width$} {text}", clip(short, name_width));
+            if value.is_some() {
+                Line::from(line)
+            } else {
+                Line::styled(line, Style::default().fg(Color::DarkGray))
+            }
+        })
+        .collect();
+    frame.render_widget(Paragraph::new(lines), inner);
+}
+
+fn draw_history(frame: &mut Frame<'_>, app: &App, selected: usize, area: Rect) {
+    let mut lines: Vec<Line<'_>> = app
+        .history()
+        .iter()
+        .enumerate()
+        .map(|(k, e)| {
+            let style = if k == selected {
+                Style::default().bg(Color::Blue).fg(Color::White)
+            } else {
+                Style::default()
+            };
+            Line::styled(format!(" {}", history_line(app, e)), style)
+        })
+        .collect();
+    lines.push(Line::from(""));
+    lines.push(Line::styled(
+        " ↑ ↓ choose · Enter reopens (no rerun) · e exports · Esc closes",
+        Style::default().fg(Color::DarkGray),
+    ));
+    let width = 96.min(area.width);
+    let height = (lines.len() as u16 + 2).min(area.height);
+    let rect = Rect {
+        x: area.x + (area.width - width) / 2,
+        y: area.y + (area.height - height) / 2,
+        width,
+        height,
+    };
+    frame.render_widget(Clear, rect);
+    frame.render_widget(
+        Paragraph::new(lines).block(
+            Block::bordered()
+                .title(format!(" Run history — last {} runs ", app.history().len()))
+                .border_style(Style::default().fg(ACCENT)),
+        ),
+        rect,
+    );
 }
 
 fn draw_info(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, area: Rect) {
@@ -309,7 +556,8 @@ fn draw_info(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, area: 
                 Style::default().add_modifier(Modifier::BOLD),
             ));
             for (name, value) in &v.figure.results {
-                lines.push(Line::from(format!("  {name:<36} {}", fmt_float(*value))));
+                let unit = result_unit(name).1;
+                lines.push(Line::from(format!("  {name:<36} {} {unit}", fmt_float(*value))));
             }
             for note in &v.figure.notes {
                 lines.push(Line::styled(
@@ -331,7 +579,12 @@ fn draw_gauge(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, area:
             } else {
                 run.message.as_str()
             };
-            let label = format!("{id} {:>3.0}% {message}  (Esc cancels)", run.fraction * 100.0);
+            let label = format!(
+                "{id} {:>3.0}% {message}{}  (Esc cancels)",
+                // Whole percent, never 100 % before the run ends.
+                (run.fraction * 100.0).floor().min(99.0),
+                time_left(run.fraction, run.elapsed_s)
+            );
             let gauge = Gauge::default()
                 .gauge_style(Style::default().fg(ACCENT).bg(Color::Black))
                 .ratio(run.fraction.clamp(0.0, 1.0))
@@ -354,6 +607,22 @@ fn draw_gauge(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, area:
     }
 }
 
+/// ` · 12 s, about 30 s left` once a run has taken a second and done 2 % of its work.
+pub fn time_left(fraction: f64, elapsed_s: f64) -> String {
+    if elapsed_s < 1.0 {
+        return String::new();
+    }
+    if fraction < 0.02 {
+        return format!(" · {}", fmt_duration(elapsed_s));
+    }
+    let left = elapsed_s * (1.0 - fraction) / fraction;
+    format!(
+        " · {}, about {} left",
+        fmt_duration(elapsed_s),
+        fmt_duration(left)
+    )
+}
+
 fn draw_status(frame: &mut Frame<'_>, app: &App, area: Rect) {
     let hint = " ? help · q quit ";
     let [text_area, hint_area] =
@@ -371,7 +640,7 @@ fn draw_status(frame: &mut Frame<'_>, app: &App, area: Rect) {
 }
 
 fn draw_help(frame: &mut Frame<'_>, area: Rect) {
-    let mut lines: Vec<Line<'_>> = BINDINGS
+    let keys: Vec<Line<'_>> = BINDINGS
         .iter()
         .map(|b| {
             Line::from(vec![
@@ -380,21 +649,38 @@ fn draw_help(frame: &mut Frame<'_>, area: Rect) {
             ])
         })
         .collect();
-    lines.push(Line::from(""));
-    lines.push(Line::styled(
-        " While editing a value: type, ← → Home End, Backspace Del, Ctrl-U clears;",
-        Style::default().fg(Color::DarkGray),
-    ));
-    lines.push(Line::styled(
-        " invalid values turn red (✗) and block running; the last valid values are kept;",
-        Style::default().fg(Color::DarkGray),
-    ));
-    lines.push(Line::styled(
-        " * marks a value changed from the dissertation's default.",
-        Style::default().fg(Color::DarkGray),
-    ));
-    let width = 84.min(area.width);
-    let height = (lines.len() as u16 + 2).min(area.height);
+    let lines = vec![
+        Line::from(""),
+        Line::styled(
+            " While editing a value: type, ← → Home End, Backspace Del, Ctrl-U clears;",
+            Style::default().fg(Color::DarkGray),
+        ),
+        Line::styled(
+            " invalid values turn red (✗) and block running; the last valid values are kept;",
+            Style::default().fg(Color::DarkGray),
+        ),
+        Line::styled(
+            " * marks a value changed from the dissertation's default.",
+            Style::default().fg(Color::DarkGray),
+        ),
+        Line::styled(
+            " Mouse: click a scene, a parameter or a point; drag on the chart zooms, right click and 0",
+            Style::default().fg(Color::DarkGray),
+        ),
+        Line::styled(
+            " show it whole; the wheel scrolls the lists and zooms the chart.",
+            Style::default().fg(Color::DarkGray),
+        ),
+    ];
+    // One column when it fits, else the keys in two columns side by side.
+    let one_column = keys.len() + lines.len() + 2 <= usize::from(area.height);
+    let width = if one_column { 86 } else { 172 }.min(area.width);
+    let key_rows = if one_column {
+        keys.len()
+    } else {
+        keys.len().div_ceil(2)
+    };
+    let height = ((key_rows + lines.len()) as u16 + 2).min(area.height);
     let rect = Rect {
         x: area.x + (area.width - width) / 2,
         y: area.y + (area.height - height) / 2,
@@ -402,12 +688,21 @@ fn draw_help(frame: &mut Frame<'_>, area: Rect) {
         height,
     };
     frame.render_widget(Clear, rect);
-    frame.render_widget(
-        Paragraph::new(lines).block(
-            Block::bordered()
-                .title(" Keys — any key closes ")
-                .border_style(Style::default().fg(ACCENT)),
-        ),
-        rect,
-    );
+    let block = Block::bordered()
+        .title(" Keys — any key closes ")
+        .border_style(Style::default().fg(ACCENT));
+    let inner = block.inner(rect);
+    frame.render_widget(block, rect);
+    let [keys_area, notes_area] =
+        Layout::vertical([Constraint::Length(key_rows as u16), Constraint::Min(0)]).areas(inner);
+    if one_column {
+        frame.render_widget(Paragraph::new(keys), keys_area);
+    } else {
+        let [a, b] = Layout::horizontal([Constraint::Ratio(1, 2), Constraint::Ratio(1, 2)]).areas(keys_area);
+        let mut keys = keys;
+        let second = keys.split_off(key_rows);
+        frame.render_widget(Paragraph::new(keys), a);
+        frame.render_widget(Paragraph::new(second), b);
+    }
+    frame.render_widget(Paragraph::new(lines), notes_area);
 }

@@ -48,6 +48,8 @@ pub enum JobMsg {
         fraction: f64,
         /// Short message.
         message: String,
+        /// Seconds since the run started.
+        elapsed_s: f64,
     },
     /// The figure as far as it is computed.
     Preview {
@@ -113,6 +115,7 @@ impl Worker {
         let tx = self.tx.clone();
         let sink_tx = self.tx.clone();
         let last = Mutex::new((None::<Instant>, None::<Instant>));
+        let started = Instant::now();
         let sink = move |event: &JobEvent<'_>| {
             let now = Instant::now();
             let Ok(mut last) = last.lock() else { return };
@@ -127,6 +130,7 @@ impl Worker {
                         job,
                         fraction: *fraction,
                         message: (*message).to_string(),
+                        elapsed_s: now.duration_since(started).as_secs_f64(),
                     }
                 }
                 JobEvent::Preview(figure) => {

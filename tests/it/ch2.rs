@@ -481,6 +481,164 @@ mod fit {
         assert!(stderr.contains("bad.csv:3:"), "{stderr}");
         assert!(!out2.exists() || std::fs::read_dir(&out2).unwrap().next().is_none());
     }
+
+    /// The synthetic cycle of [`synthetic_csv`] cropped as AFM users crop curves: `before` rows
+    /// of zero-force approach before the pull-in and `after` rows of retract after the pull-off
+    /// (0: the file starts or ends in contact), 1 % force noise. Returns the curve and its
+    /// in-contact rows.
+    fn cropped_cycle(
+        before: usize,
+        after: usize,
+        seed: u64,
+    ) -> (adhesion::fit::Curve, std::ops::Range<usize>) {
+        let x = Experiment::new(TipGeometry::Sphere { radius: 1e-6 }, 2.0e6, 0.04, 0.5).unwrap();
+        let d_o = x.pull_off().unwrap().before.delta;
+        let mut c = simulate_cycle(&x, 1.5 * d_o, 3.0 * x.scales().h, 700).unwrap();
+        // Out of contact the tip follows the stage: the retract continues at zero force with
+        // the last depth step (the model's cycle ends soon after the pull-off).
+        let step = c.depth[c.depth.len() - 1] - c.depth[c.depth.len() - 2];
+        for _ in 0..60 {
+            let h = c.depth[c.depth.len() - 1] + step;
+            c.depth.push(h);
+            c.force.push(0.0);
+        }
+        let first = c.force.iter().position(|p| *p != 0.0).unwrap();
+        let last = c.force.iter().rposition(|p| *p != 0.0).unwrap();
+        let keep = first - before..last + 1 + after;
+        let p_max = c.force.iter().fold(0.0f64, |m, p| m.max(p.abs()));
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        let normal = Normal::new(0.0, 0.01 * p_max).unwrap();
+        let curve = adhesion::fit::Curve {
+            depth: c.depth[keep.clone()].to_vec(),
+            force: c.force[keep.clone()]
+                .iter()
+                .map(|p| p + normal.sample(&mut rng))
+                .collect(),
+            lines: (2..keep.len() + 2).collect(),
+        };
+        if std::env::var_os("ADHESION_WRITE_CROPPED_FIXTURE").is_some()
+            && (before, after, seed) == (40, 40, 2019)
+        {
+            let mut t = String::from(
+                "# Synthetic AFM cycle of the machine-stiffness model, cropped as users crop curves:\n\
+                 # 40 rows of approach before the pull-in, 40 rows of retract after the pull-off, 1 % force noise.\n\
+                 # R = 1 um, plane-strain modulus 2 MPa, w = 40 mJ/m^2, k_s = 0.5 N/m.\n\
+                 # Fit: adhesion --headless --fit tests/fixtures/curves/cropped_cycle.csv --tip-radius 1e-6 --spring-constant 0.5\n\
+                 depth_nm,force_nN\n",
+            );
+            for (h, p) in curve.depth.iter().zip(&curve.force) {
+                t.push_str(&format!("{:.4},{:.5}\n", h * 1e9, p * 1e9));
+            }
+            std::fs::write(
+                crate::common::root().join("tests/fixtures/curves/cropped_cycle.csv"),
+                t,
+            )
+            .unwrap();
+        }
+        (curve, before..before + last + 1 - first)
+    }
+
+    /// Short baselines (10, 20, 40 rows at either end, or at one end only), where a noise
+    /// level taken from a tenth of the rows would include the jumps and the contact: the
+    /// contact is found from the baseline that is there, every in-contact row is used, and the
+    /// fit recovers w and E within the round-trip test's tolerances (3 standard errors, each
+    /// under 2 %). fit.json says how the rows were found.
+    #[test]
+    fn short_baselines_at_either_or_one_end() {
+        use adhesion::fit::detect_contact;
+        let cases = [
+            (10, 10),
+            (20, 20),
+            (40, 40),
+            (10, 40),
+            (40, 10),
+            (40, 0),
+            (0, 40),
+            (10, 0),
+            (0, 10),
+        ];
+        for (k, (before, after)) in cases.into_iter().enumerate() {
+            let (curve, truth) = cropped_cycle(before, after, 11 + k as u64);
+            let path = Path::new("cropped.csv");
+            let (range, how) =
+                detect_contact(&curve, path, 10).unwrap_or_else(|e| panic!("{before}/{after}: {e}"));
+            assert!(
+                range.start.abs_diff(truth.start) <= 2 && range.end.abs_diff(truth.end) <= 2,
+                "{before}/{after}: rows {range:?} taken, {truth:?} in contact ({how:?})"
+            );
+            assert_eq!(
+                how.baseline_rows_start > 0,
+                before > 0,
+                "{before}/{after}: {how:?}"
+            );
+            assert_eq!(how.baseline_rows_end > 0, after > 0, "{before}/{after}: {how:?}");
+            let r = fit_curve(&curve, path, 1e-6, Some(0.5), None).unwrap();
+            let (w, e) = (r.work_of_adhesion_j_per_m2, r.plane_strain_modulus_pa);
+            assert!(
+                (w.value - 0.04).abs() < 3.0 * w.std_error,
+                "{before}/{after}: {r:#?}"
+            );
+            assert!(
+                (e.value - 2.0e6).abs() < 3.0 * e.std_error,
+                "{before}/{after}: {r:#?}"
+            );
+            assert!(w.std_error < 0.02 * w.value && e.std_error < 0.02 * e.value);
+            assert!(r.warnings.is_empty(), "{:?}", r.warnings);
+        }
+    }
+
+    /// The fixture of the issue's shape (40 rows of approach, 40 of retract) fits from the
+    /// command line, and fit.json records the baselines found.
+    #[test]
+    fn cropped_fixture_fits_from_the_command_line() {
+        // Written by `ADHESION_WRITE_CROPPED_FIXTURE=1 cargo test cropped_fixture` from cropped_cycle(40, 40, 2019).
+        let _ = cropped_cycle(40, 40, 2019);
+        let path = crate::common::root().join("tests/fixtures/curves/cropped_cycle.csv");
+        let curve = adhesion::fit::read_curve(&path).unwrap();
+        let r = fit_curve(&curve, &path, 1e-6, Some(0.5), None).unwrap();
+        assert!(
+            rel(r.work_of_adhesion_j_per_m2.value, 0.04) < 3.0 * r.work_of_adhesion_j_per_m2.std_error / 0.04
+        );
+        assert!(r.contact_detection.baseline_rows_start >= 38 && r.contact_detection.baseline_rows_end >= 38);
+        let json = serde_json::to_value(&r).unwrap();
+        assert!(
+            json["contact_detection"]["method"]
+                .as_str()
+                .unwrap()
+                .contains("both ends")
+        );
+    }
+
+    /// Non-physical data are refused with one line naming the file and what to check, or fitted
+    /// with a warning when the values are not determined: sign-flipped forces, constant forces,
+    /// all-zero depths; CR-only line ends are read as lines.
+    #[test]
+    fn non_physical_data_are_refused() {
+        let (curve, _) = cropped_cycle(40, 40, 5);
+        let path = Path::new("odd.csv");
+        let check = |c: &adhesion::fit::Curve, needle: &str| match fit_curve(c, path, 1e-6, None, None) {
+            Err(e @ Error::DataFile { .. }) => {
+                let m = e.to_string();
+                assert!(
+                    m.starts_with("odd.csv:") && m.contains(needle) && !m.contains('\n'),
+                    "{m}"
+                );
+            }
+            other => panic!("{needle}: {other:?}"),
+        };
+        let mut flipped = curve.clone();
+        flipped.force.iter_mut().for_each(|p| *p = -*p);
+        check(&flipped, "sign of one column flipped");
+        let mut constant = curve.clone();
+        constant.force.iter_mut().for_each(|p| *p = 1e-9);
+        check(&constant, "force does not vary");
+        let mut flat = curve.clone();
+        flat.depth.iter_mut().for_each(|h| *h = 0.0);
+        check(&flat, "depth does not vary");
+        let text = "depth_nm,force_nN\r1,2\r3,4\r";
+        let c = parse_curve(text, path).unwrap();
+        assert_eq!((c.depth.len(), c.lines.clone()), (2, vec![2, 3]));
+    }
 }
 
 /// The exact spherical profile (2.28): it tends to the paraboloid (2.30) as R/â → ∞, its

@@ -36,103 +36,206 @@ fn edges(kind: &ParamKind, min: Bound, max: Bound) -> Vec<f64> {
     v
 }
 
-/// Runs of the sweep: (runs, finite, errors naming a parameter, other outcomes as text, panics).
-fn sweep() -> (usize, usize, usize, Vec<String>, usize) {
-    let (mut runs, mut finite, mut named, mut bad, mut panics) = (0, 0, 0, Vec::new(), 0);
+/// The tally of a sweep: runs, finite results, one-line errors naming a parameter, other
+/// outcomes (as text), panics.
+#[derive(Default)]
+struct Tally {
+    runs: usize,
+    finite: usize,
+    named: usize,
+    bad: Vec<String>,
+    panics: usize,
+}
+
+/// The assignments of one run: one parameter at an edge (`combos == 0`), or random
+/// combinations where each numeric parameter is at an edge with probability 1/3.
+fn cases(scene: &dyn adhesion::scenes::SceneDyn, combos: usize, seed: u64) -> Vec<Vec<String>> {
+    let text = |spec: &adhesion::params::ParamSpec, x: f64| {
+        if matches!(spec.kind, ParamKind::Int) {
+            format!("{}={}", spec.name, x as i64)
+        } else {
+            format!("{}={x:e}", spec.name)
+        }
+    };
+    let numeric: Vec<_> = scene
+        .specs()
+        .into_iter()
+        .filter(|s| matches!(s.kind, ParamKind::Float | ParamKind::Int))
+        .map(|s| {
+            let e = edges(&s.kind, s.range.min, s.range.max);
+            (s, e)
+        })
+        .collect();
+    if combos == 0 {
+        return numeric
+            .iter()
+            .flat_map(|(s, e)| e.iter().map(|x| vec![text(s, *x)]))
+            .collect();
+    }
+    // A small deterministic generator (splitmix64): the same cases on every machine.
+    let mut state = seed ^ 0x9e37_79b9_7f4a_7c15;
+    let mut next = move || {
+        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    };
+    let mut out = Vec::with_capacity(combos);
+    for _ in 0..combos {
+        let mut case = Vec::new();
+        for (s, e) in numeric.iter().filter(|(_, e)| !e.is_empty()) {
+            if next() % 3 == 0 {
+                case.push(text(s, e[(next() % e.len() as u64) as usize]));
+            }
+        }
+        out.push(case);
+    }
+    out
+}
+
+/// Runs every scene (chapter 4 only when `chapter4`) on the cases of [`cases`], in quick mode,
+/// each cancelled after `bound`: tallies the outcomes.
+fn sweep(chapter4: bool, combos: usize, bound: std::time::Duration) -> Tally {
+    let mut t = Tally::default();
     for scene in scenes::all() {
         let id = scene.info().id;
-        if id.starts_with("fig4") {
+        if id.starts_with("fig4") != chapter4 {
             continue;
         }
         let base = scene.defaults();
-        for spec in scene.specs() {
-            if !matches!(spec.kind, ParamKind::Float | ParamKind::Int) {
-                continue;
-            }
-            for x in edges(&spec.kind, spec.range.min, spec.range.max) {
-                let text = if matches!(spec.kind, ParamKind::Int) {
-                    format!("{}={}", spec.name, x as i64)
-                } else {
-                    format!("{}={x:e}", spec.name)
-                };
-                let mut values = base.clone();
-                runs += 1;
-                let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                    values.set_assignment(&text)?;
-                    scene.validate(&values)?;
-                    let values = scene.quick(&values)?;
-                    let flag = Arc::new(AtomicBool::new(false));
-                    let timer = {
-                        let flag = flag.clone();
-                        std::thread::spawn(move || {
-                            std::thread::sleep(std::time::Duration::from_secs(20));
-                            flag.store(true, Ordering::Relaxed);
-                        })
-                    };
-                    drop(timer);
-                    let job = adhesion::job::Job::quiet().with_cancel_flag(flag);
-                    scene.run(&values, &job)
-                }));
-                match outcome {
-                    Err(_) => {
-                        panics += 1;
-                        bad.push(format!("{id} {text}: PANIC"));
+        let seed = id
+            .bytes()
+            .fold(0u64, |h, b| h.wrapping_mul(31).wrapping_add(u64::from(b)));
+        for case in cases(scene, combos, seed) {
+            let label = case.join(" ");
+            let mut values = base.clone();
+            t.runs += 1;
+            let started = std::time::Instant::now();
+            let bad_before = t.bad.len();
+            let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                for a in &case {
+                    values.set_assignment(a)?;
+                }
+                scene.validate(&values)?;
+                let values = scene.quick(&values)?;
+                let flag = Arc::new(AtomicBool::new(false));
+                {
+                    let flag = flag.clone();
+                    std::thread::spawn(move || {
+                        std::thread::sleep(bound);
+                        flag.store(true, Ordering::Relaxed);
+                    });
+                }
+                let job = adhesion::job::Job::quiet().with_cancel_flag(flag);
+                scene.run(&values, &job)
+            }));
+            match outcome {
+                Err(_) => {
+                    t.panics += 1;
+                    t.bad.push(format!("{id} {label}: PANIC"));
+                }
+                Ok(Ok(fig)) => {
+                    let nonfinite: Vec<&str> = fig
+                        .results
+                        .iter()
+                        .filter(|(_, v)| !v.is_finite())
+                        .map(|(n, _)| n.as_str())
+                        .collect();
+                    if nonfinite.is_empty() {
+                        t.finite += 1;
+                    } else {
+                        t.bad.push(format!("{id} {label}: non-finite {nonfinite:?}"));
                     }
-                    Ok(Ok(fig)) => {
-                        let nonfinite: Vec<&str> = fig
-                            .results
-                            .iter()
-                            .filter(|(_, v)| !v.is_finite())
-                            .map(|(n, _)| n.as_str())
-                            .collect();
-                        if nonfinite.is_empty() {
-                            finite += 1;
-                        } else {
-                            bad.push(format!("{id} {text}: non-finite {nonfinite:?}"));
-                        }
-                    }
-                    Ok(Err(e)) => {
-                        let msg = e.to_string();
-                        let names_user = scene
-                            .specs()
-                            .iter()
-                            .any(|s| msg.contains(&format!("`{}`", s.name)));
-                        if names_user && !msg.contains('\n') && msg.len() < 400 {
-                            named += 1;
-                        } else {
-                            bad.push(format!("{id} {text}: error `{msg}`"));
-                        }
+                }
+                Ok(Err(adhesion::error::Error::Cancelled)) => {
+                    t.bad
+                        .push(format!("{id} {label}: ran past {} s", bound.as_secs()));
+                }
+                Ok(Err(e)) => {
+                    let msg = e.to_string();
+                    let names_user = scene
+                        .specs()
+                        .iter()
+                        .any(|s| msg.contains(&format!("`{}`", s.name)));
+                    if names_user && !msg.contains('\n') && msg.len() < 400 {
+                        t.named += 1;
+                    } else {
+                        t.bad.push(format!("{id} {label}: error `{msg}`"));
                     }
                 }
             }
+            // Surveys (`--nocapture`) show each run as it ends: a stuck run is seen at once.
+            if std::env::var_os("ADHESION_SURVEY_VERBOSE").is_some() {
+                let verdict = t.bad.get(bad_before).map_or("ok", String::as_str);
+                eprintln!(
+                    "{:7.2} s  {id} {label}: {verdict}",
+                    started.elapsed().as_secs_f64()
+                );
+            }
         }
     }
-    (runs, finite, named, bad, panics)
+    t
 }
 
-// Every scene except chapter 4's (expensive; their quick mode runs in the presets test) at
-// each edge of each numeric range, one parameter at a time, in quick mode (about 340 runs, a
-// few seconds): none panics, and each run ends within its time bound (the job is cancelled
-// after 20 s).
-#[test]
-fn no_scene_panics_at_the_edges_of_its_ranges() {
-    let (runs, _, _, bad, panics) = sweep();
-    let list: Vec<&String> = bad.iter().filter(|b| b.ends_with("PANIC")).collect();
-    assert_eq!(panics, 0, "{panics} of {runs} runs panicked: {list:?}");
-    assert!(runs > 300, "only {runs} runs");
-}
-
-// The survey of the same sweep: prints every run that ends with non-finite results or with an
-// error that names no user parameter, and the counts.
-#[test]
-#[ignore = "survey: prints the runs that break the rules (seconds)"]
-fn survey_of_every_scene_at_the_edges_of_its_ranges() {
-    let (runs, finite, named, bad, panics) = sweep();
-    for b in &bad {
+fn print(t: &Tally) {
+    for b in &t.bad {
         println!("{b}");
     }
     println!(
-        "{runs} runs: {finite} finite, {named} one-line errors naming a parameter, {} other, {panics} panics",
-        bad.len()
+        "{} runs: {} finite, {} one-line errors naming a parameter, {} other, {} panics",
+        t.runs,
+        t.finite,
+        t.named,
+        t.bad.len(),
+        t.panics
     );
+}
+
+// Every scene except chapter 4's (expensive; they have their own sweeps below) at each edge
+// of each numeric range, one parameter at a time, in quick mode (about 340 runs, seconds):
+// every run ends with finite results or a one-line error naming one of the scene's parameters,
+// none panics, and none runs past its time bound.
+#[test]
+fn every_scene_at_the_edges_of_its_ranges_ends_finite_or_names_a_parameter() {
+    let t = sweep(false, 0, std::time::Duration::from_secs(20));
+    assert!(t.runs > 300, "only {} runs", t.runs);
+    assert!(
+        t.bad.is_empty(),
+        "{} of {} runs break the rules: {:#?}",
+        t.bad.len(),
+        t.runs,
+        t.bad
+    );
+}
+
+// The same rules for random combinations of edge values (each numeric parameter at an edge
+// with probability 1/3), 12 per scene: a few hundred runs.
+#[test]
+fn random_combinations_of_edge_values_end_finite_or_name_a_parameter() {
+    let t = sweep(false, 12, std::time::Duration::from_secs(20));
+    assert!(t.runs > 300, "only {} runs", t.runs);
+    assert!(
+        t.bad.is_empty(),
+        "{} of {} runs break the rules: {:#?}",
+        t.bad.len(),
+        t.runs,
+        t.bad
+    );
+}
+
+// Survey: many more random combinations, every scene but chapter 4's; prints the runs that
+// break the rules.
+#[test]
+#[ignore = "survey: 200 random edge combinations per scene (minutes)"]
+fn survey_of_random_edge_combinations() {
+    print(&sweep(false, 200, std::time::Duration::from_secs(20)));
+}
+
+// Survey: chapter 4's scenes at the edges, one at a time and in random combinations.
+#[test]
+#[ignore = "survey: chapter 4's scenes at the edges of their ranges (many minutes)"]
+fn survey_of_chapter_4_at_the_edges() {
+    print(&sweep(true, 0, std::time::Duration::from_secs(30)));
+    print(&sweep(true, 10, std::time::Duration::from_secs(30)));
 }

@@ -515,3 +515,171 @@ fn echoed_input_is_escaped_and_truncated_and_numbers_are_short() {
     );
     assert_one_line_error(&o, &["`exponent` = 1e300:"]);
 }
+
+// Item 9: a run inside the declared ranges ends with finite results or one line naming the
+// parameter; non-dimensional results do not overflow with the dimensional scales.
+#[test]
+fn extreme_values_give_finite_results_or_name_the_parameter() {
+    let dir = tempfile::tempdir().unwrap();
+    for modulus in ["1e308", "1e-320"] {
+        let set = format!("modulus={modulus}");
+        let o = adhesion_in(
+            dir.path(),
+            &["--headless", "--figure", "fig1.1", "--set", &set, "--out", "o"],
+        );
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.path().join("o/fig1.1.json")).unwrap())
+                .unwrap();
+        let results = json["results"].as_object().unwrap();
+        for (name, v) in results {
+            assert!(v.as_f64().is_some_and(f64::is_finite), "{modulus}: {name} = {v}");
+        }
+        assert_eq!(results["dmt_adhesive_force_norm"].as_f64(), Some(-2.0));
+    }
+    let o = adhesion_in(
+        dir.path(),
+        &[
+            "--headless",
+            "--quick",
+            "--figure",
+            "fig3.7d",
+            "--set",
+            "exponent=1e-300",
+            "--out",
+            "p",
+        ],
+    );
+    assert_one_line_error(&o, &["`exponent` = 1e-300", "not finite"]);
+    assert!(!dir.path().join("p").join("fig3.7d.json").exists());
+}
+
+// Item 13: a failure inside a model names the user's parameter and its value, and no number
+// in the message has more than 6 significant digits.
+#[test]
+fn model_failures_name_the_parameter_with_short_numbers() {
+    let dir = tempfile::tempdir().unwrap();
+    for (fig, set, needle) in [
+        (
+            "fig3.8",
+            "tip_radius=1e300",
+            "`tip_radius` = 1e300 (default 2.5e-5)",
+        ),
+        ("fig3.8", "psd_rms=1e300", "`psd_rms` = 1e300"),
+        ("fig5.4", "u_min=-1e300", "`u_min` = -1e300"),
+        ("fig3.4", "chi_b=1e300", "`chi_b` = 1e300"),
+    ] {
+        let o = adhesion_in(
+            dir.path(),
+            &[
+                "--headless",
+                "--quick",
+                "--figure",
+                fig,
+                "--set",
+                set,
+                "--out",
+                "o",
+            ],
+        );
+        assert_one_line_error(&o, &[needle]);
+        let msg = String::from_utf8_lossy(&o.stderr);
+        let longest = msg
+            .split(|c: char| !(c.is_ascii_digit() || c == '.'))
+            .map(|t| t.chars().filter(char::is_ascii_digit).count())
+            .max()
+            .unwrap_or(0);
+        assert!(longest <= 7, "{fig} {set}: a number of {longest} digits in {msg}");
+    }
+}
+
+// Item 16: preset syntax errors give the line and the key.
+#[test]
+fn preset_syntax_errors_give_line_and_key() {
+    let dir = tempfile::tempdir().unwrap();
+    for (text, needle) in [
+        (
+            "radius = 1e-6\nradius = 2e-6\n",
+            "line 2 (`radius`): duplicate key",
+        ),
+        ("points = 400\nmodulus = 1e6x\n", "line 2 (`modulus`)"),
+    ] {
+        std::fs::write(dir.path().join("p.toml"), text).unwrap();
+        let o = adhesion_in(
+            dir.path(),
+            &[
+                "--headless",
+                "--figure",
+                "fig1.1",
+                "--preset",
+                "p.toml",
+                "--out",
+                "o",
+            ],
+        );
+        assert_one_line_error(&o, &["p.toml", needle]);
+    }
+}
+
+// Item 17: every text reader takes a byte-order mark and CR or CRLF line ends alike, and a
+// blank file name is no file, for every file parameter.
+#[test]
+fn byte_order_marks_line_ends_and_blank_file_names_are_handled_alike() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path();
+    // A height map with a BOM and CR line ends.
+    let mut map = String::from("\u{feff}# lx=1e-6 ly=1e-6\r");
+    for (k, z) in random_heights(16, 16, 3).chunks(16).enumerate() {
+        let row: Vec<String> = z.iter().map(|v| format!("{v:e}")).collect();
+        map.push_str(&row.join(","));
+        map.push(if k % 2 == 0 { '\r' } else { '\n' });
+    }
+    std::fs::write(p.join("map.csv"), &map).unwrap();
+    let plain = adhesion_in(
+        p,
+        &[
+            "--headless",
+            "--analyze-surface",
+            "map.csv",
+            "--pixel-size",
+            "1e-8",
+        ],
+    );
+    assert!(
+        plain.status.success(),
+        "{}",
+        String::from_utf8_lossy(&plain.stderr)
+    );
+    // A preset with a BOM and CRLF.
+    std::fs::write(p.join("b.toml"), "\u{feff}radius = 2e-5\r\npoints = 50\r\n").unwrap();
+    let o = adhesion_in(
+        p,
+        &[
+            "--headless",
+            "--figure",
+            "fig1.1",
+            "--preset",
+            "b.toml",
+            "--out",
+            "o",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // A blank data file is the demonstration, as a blank profile file is the built-in profile.
+    let o = adhesion_in(
+        p,
+        &[
+            "--headless",
+            "--quick",
+            "--figure",
+            "fig2.8-fit",
+            "--set",
+            "data_file=   ",
+            "--out",
+            "q",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json = std::fs::read_to_string(p.join("q/fig2.8-fit.json")).unwrap();
+    assert!(json.contains("demonstration"), "{json}");
+}

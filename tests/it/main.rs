@@ -18,6 +18,8 @@ mod layering;
 mod reference_ch1;
 mod registry;
 mod reproduction;
+mod shards;
 mod snapshots;
 mod surface;
 mod tui;
+mod workbench;

@@ -21,7 +21,7 @@ use ratatui::buffer::Buffer;
 use ratatui::crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 
 /// Upper bound on any wait for the worker (runs here take milliseconds).
-const WAIT: Duration = Duration::from_secs(20);
+pub(crate) const WAIT: Duration = Duration::from_secs(20);
 
 adhesion::param_choice! {
     /// What the probe scene's run does.
@@ -39,7 +39,7 @@ adhesion::scene_params! {
 }
 
 /// A scene for the UI tests: two panels, a preview, and runs that wait for cancellation.
-struct Probe;
+pub(crate) struct Probe;
 
 fn sine(amplitude: f64, n: usize) -> Vec<(f64, f64)> {
     (0..n)
@@ -94,7 +94,7 @@ impl Scene for Probe {
     }
 }
 
-static PROBE: Registered<Probe> = Registered::<Probe>::NEW;
+pub(crate) static PROBE: Registered<Probe> = Registered::<Probe>::NEW;
 
 /// Steps the `grow` behaviour may take (set by the one test that uses it).
 static GATE: AtomicUsize = AtomicUsize::new(0);
@@ -133,35 +133,35 @@ fn grow(p: &ProbeParams, job: &Job) -> Result<Figure> {
     Ok(figure(3))
 }
 
-fn key(code: KeyCode) -> KeyEvent {
+pub(crate) fn key(code: KeyCode) -> KeyEvent {
     KeyEvent::new(code, KeyModifiers::NONE)
 }
 
-fn press(s: &mut Session, code: KeyCode) {
+pub(crate) fn press(s: &mut Session, code: KeyCode) {
     s.key(key(code));
 }
 
-fn type_text(s: &mut Session, text: &str) {
+pub(crate) fn type_text(s: &mut Session, text: &str) {
     for c in text.chars() {
         press(s, KeyCode::Char(c));
     }
 }
 
-fn clear_line(s: &mut Session) {
+pub(crate) fn clear_line(s: &mut Session) {
     s.key(KeyEvent::new(KeyCode::Char('u'), KeyModifiers::CONTROL));
 }
 
-fn session(dir: &Path, scenes: Vec<&'static dyn SceneDyn>) -> Session {
+pub(crate) fn session(dir: &Path, scenes: Vec<&'static dyn SceneDyn>) -> Session {
     Session::new(scenes, dir.join("out"), dir.join("presets"))
 }
 
-fn draw(s: &Session) -> Buffer {
+pub(crate) fn draw(s: &Session) -> Buffer {
     let mut terminal = Terminal::new(TestBackend::new(140, 40)).expect("test backend");
     terminal.draw(|f| s.draw(f)).expect("drawing into a test backend");
     terminal.backend().buffer().clone()
 }
 
-fn text(buf: &Buffer) -> String {
+pub(crate) fn text(buf: &Buffer) -> String {
     let mut out = String::new();
     for y in 0..buf.area.height {
         for x in 0..buf.area.width {
@@ -173,7 +173,7 @@ fn text(buf: &Buffer) -> String {
 }
 
 /// Number of braille cells with at least one dot (the chart's curves).
-fn braille_cells(buf: &Buffer) -> usize {
+pub(crate) fn braille_cells(buf: &Buffer) -> usize {
     buf.content()
         .iter()
         .filter(|c| {
@@ -184,7 +184,7 @@ fn braille_cells(buf: &Buffer) -> usize {
         .count()
 }
 
-fn idle(app: &App) -> bool {
+pub(crate) fn idle(app: &App) -> bool {
     app.running().is_none()
 }
 

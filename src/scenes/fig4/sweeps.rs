@@ -8,8 +8,9 @@ use super::roughness::{Setup, rough_tip_params};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Field, Figure, Marker, MarkerShape, Panel, Series, Style};
 use crate::job::Job;
-use crate::params::Range;
+use crate::params::{Range, fmt_sig};
 use crate::scenes::Scene;
+use crate::scenes::sweep::Sweep;
 
 /// P_adh/(2E*R²) and H/(2E*R³) of one cycle.
 fn adhesion_of(setup: &Setup, amplitude: f64, job: &Job) -> Result<(f64, f64)> {
@@ -97,15 +98,45 @@ impl Scene for Fig4_9b {
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        crate::scenes::sweep::run::<Self>(p, job)
+    }
+}
+
+/// Fig. 4.9b is a sweep of one cycle per point: point `c·n + i` is curve `c` (its A/λ) at σ
+/// number `i` (n values of σ); its result is (P_adh/(2E*R²), H/(2E*R³)).
+impl Sweep for Fig4_9b {
+    type Context = ();
+
+    fn context(_p: &Self::Params, _job: &Job) -> Result<()> {
+        Ok(())
+    }
+
+    fn points(p: &Self::Params) -> Vec<String> {
+        let sigmas = geometric(p.sigma_min, p.sigma_max, p.sigma_points);
+        [p.amplitude_ratio_1, p.amplitude_ratio_2, p.amplitude_ratio_3]
+            .iter()
+            .flat_map(|r| {
+                sigmas
+                    .iter()
+                    .map(move |s| format!("A/λ = {r}, σ = {} nm", fmt_sig(s * 1e9)))
+            })
+            .collect()
+    }
+
+    fn run_point(p: &Self::Params, _context: &(), id: usize, job: &Job) -> Result<Vec<f64>> {
+        let sigmas = geometric(p.sigma_min, p.sigma_max, p.sigma_points);
+        let ratios = [p.amplitude_ratio_1, p.amplitude_ratio_2, p.amplitude_ratio_3];
+        let (curve, i) = (id / sigmas.len(), id % sigmas.len());
+        let setup = p.setup(p.youngs_modulus, sigmas[i], sigmas[i])?;
+        let (force, loss) = adhesion_of(&setup, ratios[curve] * p.wavelength, job)?;
+        Ok(vec![force, loss])
+    }
+
+    fn assemble(p: &Self::Params, points: &[Vec<f64>], _job: &Job) -> Result<Figure> {
         let sigmas = geometric(p.sigma_min, p.sigma_max, p.sigma_points);
         let ratios = [p.amplitude_ratio_1, p.amplitude_ratio_2, p.amplitude_ratio_3];
         let n = sigmas.len();
-        let points: Vec<usize> = (0..3 * n).collect();
-        let values = job.map_parallel(&points, "cycles", |&k| {
-            let (curve, i) = (k / n, k % n);
-            let setup = p.setup(p.youngs_modulus, sigmas[i], sigmas[i])?;
-            adhesion_of(&setup, ratios[curve] * p.wavelength, job)
-        })?;
+        let values: Vec<(f64, f64)> = points.iter().map(|v| (v[0], v[1])).collect();
         let mut fig = Figure::new(Self::ID, Self::TITLE);
         let mut panels = [
             Panel::new(
@@ -210,6 +241,14 @@ rough_tip_params! {
 const PRINTED_OPTIMUM: (f64, f64) = (0.1741, 0.4457);
 
 impl Fig4_10Params {
+    /// The grid: α uniform from 0, β geometric.
+    fn grid(&self) -> (Vec<f64>, Vec<f64>) {
+        let alphas: Vec<f64> = (0..self.alpha_points)
+            .map(|i| self.alpha_max * i as f64 / (self.alpha_points - 1) as f64)
+            .collect();
+        (alphas, geometric(self.beta_min, self.beta_max, self.beta_points))
+    }
+
     /// σ [m] and A [m] of a grid point (α, β): with ζ0 ∝ σ, w ∝ σ⁻² (4.6), (4.7b), so
     /// β = σ²E*/(λw) ∝ σ⁴ is solved from w at a reference σ; then A = √(α λ w/E*).
     fn point(&self, alpha: f64, beta: f64) -> Result<(f64, f64)> {
@@ -278,18 +317,44 @@ impl Scene for Fig4_10 {
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        let alphas: Vec<f64> = (0..p.alpha_points)
-            .map(|i| p.alpha_max * i as f64 / (p.alpha_points - 1) as f64)
-            .collect();
-        let betas = geometric(p.beta_min, p.beta_max, p.beta_points);
+        crate::scenes::sweep::run::<Self>(p, job)
+    }
+}
+
+/// Fig. 4.10 is a sweep of one cycle per grid point: point `j·n_α + i` is (α_i, β_j); its
+/// result is (P_adh/(2E*R²), H/(2E*R³)).
+impl Sweep for Fig4_10 {
+    type Context = ();
+
+    fn context(_p: &Self::Params, _job: &Job) -> Result<()> {
+        Ok(())
+    }
+
+    fn points(p: &Self::Params) -> Vec<String> {
+        let (alphas, betas) = p.grid();
+        betas
+            .iter()
+            .flat_map(|b| {
+                alphas
+                    .iter()
+                    .map(move |a| format!("α = {}, β = {}", fmt_sig(*a), fmt_sig(*b)))
+            })
+            .collect()
+    }
+
+    fn run_point(p: &Self::Params, _context: &(), id: usize, job: &Job) -> Result<Vec<f64>> {
+        let (alphas, betas) = p.grid();
+        let (ia, ib) = (id % alphas.len(), id / alphas.len());
+        let (sigma, amplitude) = p.point(alphas[ia], betas[ib])?;
+        let setup = p.setup(p.youngs_modulus, sigma, sigma)?;
+        let (force, loss) = adhesion_of(&setup, amplitude, job)?;
+        Ok(vec![force, loss])
+    }
+
+    fn assemble(p: &Self::Params, points: &[Vec<f64>], _job: &Job) -> Result<Figure> {
+        let (alphas, betas) = p.grid();
         let (na, nb) = (alphas.len(), betas.len());
-        let points: Vec<usize> = (0..na * nb).collect();
-        let values = job.map_parallel(&points, "cycles", |&k| {
-            let (ia, ib) = (k % na, k / na);
-            let (sigma, amplitude) = p.point(alphas[ia], betas[ib])?;
-            let setup = p.setup(p.youngs_modulus, sigma, sigma)?;
-            adhesion_of(&setup, amplitude, job)
-        })?;
+        let values: Vec<(f64, f64)> = points.iter().map(|v| (v[0], v[1])).collect();
         let mut fig = Figure::new(Self::ID, Self::TITLE);
         for (pick, (label, name)) in [("(a)", "P_adh/(2E*R²)"), ("(b)", "H/(2E*R³)")]
             .iter()

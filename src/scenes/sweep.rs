@@ -1,0 +1,183 @@
+//! Sweeps: scenes made of many independent runs (a contour over two parameters, an average over
+//! random surfaces), split into points that can be computed anywhere and in any order.
+//!
+//! A sweep scene enumerates its points deterministically from its parameters: the id of a point
+//! is its index in [`Sweep::points`], and everything a point computes (its parameters, the seeds
+//! of its random surfaces) follows from the scene's parameters and the id alone, never from the
+//! process, the shard or the thread that computes it. [`Sweep::run_point`] computes one point
+//! into a flat vector of numbers, and [`Sweep::assemble`] builds the figure from the vectors of
+//! all points, in id order. An unsharded run ([`run`]) is exactly `points -> run_point (rayon)
+//! -> assemble`, so a figure merged from shards computed in many processes is the same figure,
+//! bit for bit: both go through the one `assemble`.
+//!
+//! The headless exporter stores each point's vector in a file of its own (`--shard I/N`, a job
+//! array on a cluster) and assembles them later (`--merge`); see `crate::headless`.
+
+use std::marker::PhantomData;
+
+use rayon::prelude::*;
+
+use super::{Registered, Scene, SceneDyn, SceneInfo, memory_limit};
+use crate::error::Result;
+use crate::figure::Figure;
+use crate::job::Job;
+use crate::params::{ParamSpec, ParamValues};
+
+/// A scene that is a sweep of independent points.
+pub trait Sweep: Scene {
+    /// What the points computed in one process share, built once per process before its first
+    /// point (the unit surfaces of the samples, the spectral moments of a substrate); `()` when
+    /// the points share nothing. Building it must not depend on which points follow.
+    type Context: Sync;
+
+    /// Build the shared context.
+    ///
+    /// # Errors
+    /// Model errors, cancellation.
+    fn context(params: &Self::Params, job: &Job) -> Result<Self::Context>;
+
+    /// The points, in id order, each as a short label of its parameters ("n = 7, σ_rms/σ = 31.6").
+    fn points(params: &Self::Params) -> Vec<String>;
+
+    /// Compute point `id` (an index into [`Sweep::points`]).
+    ///
+    /// # Errors
+    /// Model errors, cancellation.
+    fn run_point(params: &Self::Params, context: &Self::Context, id: usize, job: &Job) -> Result<Vec<f64>>;
+
+    /// Build the figure from the results of all points, in id order.
+    ///
+    /// # Errors
+    /// Model errors of the parts of the figure that are not points.
+    fn assemble(params: &Self::Params, points: &[Vec<f64>], job: &Job) -> Result<Figure>;
+}
+
+/// Run every point of a sweep in parallel (rayon) and assemble the figure: the body of
+/// [`Scene::run`] of every sweep scene.
+///
+/// # Errors
+/// The first error of a point, errors of the assembly.
+pub fn run<S: Sweep>(params: &S::Params, job: &Job) -> Result<Figure> {
+    let context = S::context(params, job)?;
+    let ids: Vec<usize> = (0..S::points(params).len()).collect();
+    let points = job.map_parallel(&ids, "points", |&id| {
+        job.check()?;
+        S::run_point(params, &context, id, job)
+    })?;
+    S::assemble(params, &points, job)
+}
+
+/// The computation of one point, handed to the caller of [`SweepDyn::run_points`] to run and
+/// time.
+pub type PointTask<'a> = &'a (dyn Fn() -> Result<Vec<f64>> + Sync);
+
+/// Object-safe view of a [`Sweep`], used by the headless exporter to run some of the points
+/// and to assemble stored points.
+pub trait SweepDyn: Sync {
+    /// Validate the values; the labels of the points in id order.
+    ///
+    /// # Errors
+    /// Invalid values.
+    fn points(&self, values: &ParamValues) -> Result<Vec<String>>;
+
+    /// Compute the points `ids` in parallel (rayon): for each, `visit(id, task)` is called on a
+    /// worker thread, and `task()` computes the point. The context is built once, and only if
+    /// `ids` is not empty.
+    ///
+    /// # Errors
+    /// Invalid values, the context's errors, the first error `visit` returns.
+    fn run_points(
+        &self,
+        values: &ParamValues,
+        ids: &[usize],
+        job: &Job,
+        visit: &(dyn Fn(usize, PointTask<'_>) -> Result<()> + Sync),
+    ) -> Result<()>;
+
+    /// Validate the values and build the figure from the results of all points, in id order.
+    ///
+    /// # Errors
+    /// Invalid values, errors of the assembly.
+    fn assemble(&self, values: &ParamValues, points: &[Vec<f64>], job: &Job) -> Result<Figure>;
+}
+
+/// Adapter from a typed [`Sweep`] scene to [`SceneDyn`] (with [`SceneDyn::sweep`]) and
+/// [`SweepDyn`]; list a sweep scene as `&Swept::<S>::NEW` in its chapter's `SCENES`.
+pub struct Swept<S>(PhantomData<S>);
+
+impl<S> Swept<S> {
+    /// The adapter (a zero-sized constant).
+    pub const NEW: Self = Swept(PhantomData);
+}
+
+impl<S: Sweep> Swept<S> {
+    fn params(values: &ParamValues) -> Result<S::Params> {
+        let p: S::Params = values.to_params()?;
+        Registered::<S>::NEW.validate(values)?;
+        Ok(p)
+    }
+}
+
+impl<S: Sweep> SceneDyn for Swept<S> {
+    fn info(&self) -> SceneInfo {
+        Registered::<S>::NEW.info()
+    }
+
+    fn specs(&self) -> Vec<ParamSpec> {
+        Registered::<S>::NEW.specs()
+    }
+
+    fn defaults(&self) -> ParamValues {
+        Registered::<S>::NEW.defaults()
+    }
+
+    fn validate(&self, values: &ParamValues) -> Result<()> {
+        Registered::<S>::NEW.validate(values)
+    }
+
+    fn quick(&self, values: &ParamValues) -> Result<ParamValues> {
+        Registered::<S>::NEW.quick(values)
+    }
+
+    fn run(&self, values: &ParamValues, job: &Job) -> Result<Figure> {
+        Registered::<S>::NEW.run(values, job)
+    }
+
+    fn sweep(&self) -> Option<&dyn SweepDyn> {
+        Some(self)
+    }
+}
+
+impl<S: Sweep> SweepDyn for Swept<S> {
+    fn points(&self, values: &ParamValues) -> Result<Vec<String>> {
+        Ok(S::points(&Self::params(values)?))
+    }
+
+    fn run_points(
+        &self,
+        values: &ParamValues,
+        ids: &[usize],
+        job: &Job,
+        visit: &(dyn Fn(usize, PointTask<'_>) -> Result<()> + Sync),
+    ) -> Result<()> {
+        let p = Self::params(values)?;
+        if ids.is_empty() {
+            return Ok(());
+        }
+        if let Some(m) = S::memory_estimate(&p) {
+            m.check(memory_limit())?;
+        }
+        let defaults = self.defaults();
+        let attribute = |e| crate::scenes::attribute_failure(S::ID, values, &defaults, e);
+        let context = S::context(&p, job).map_err(attribute)?;
+        ids.par_iter().try_for_each(|&id| {
+            job.check()?;
+            visit(id, &|| S::run_point(&p, &context, id, job).map_err(attribute))
+        })
+    }
+
+    fn assemble(&self, values: &ParamValues, points: &[Vec<f64>], job: &Job) -> Result<Figure> {
+        let p = Self::params(values)?;
+        crate::scenes::finish(S::ID, values, &self.defaults(), S::assemble(&p, points, job))
+    }
+}
