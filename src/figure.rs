@@ -628,12 +628,10 @@ impl Panel {
         points: Vec<(f64, f64)>,
         color: Option<usize>,
     ) -> &mut Self {
-        self.regions.push(Region {
-            name: name.into(),
-            color,
-            points,
-            hatched: true,
-        });
+        self.shade(name, points, color);
+        if let Some(r) = self.regions.last_mut() {
+            r.hatched = true;
+        }
         self
     }
 

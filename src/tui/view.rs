@@ -649,29 +649,19 @@ fn draw_help(frame: &mut Frame<'_>, area: Rect) {
             ])
         })
         .collect();
-    let lines = vec![
-        Line::from(""),
-        Line::styled(
-            " While editing a value: type, ← → Home End, Backspace Del, Ctrl-U clears;",
-            Style::default().fg(Color::DarkGray),
-        ),
-        Line::styled(
-            " invalid values turn red (✗) and block running; the last valid values are kept;",
-            Style::default().fg(Color::DarkGray),
-        ),
-        Line::styled(
-            " * marks a value changed from the dissertation's default.",
-            Style::default().fg(Color::DarkGray),
-        ),
-        Line::styled(
-            " Mouse: click a scene, a parameter or a point; drag on the chart zooms, right click and 0",
-            Style::default().fg(Color::DarkGray),
-        ),
-        Line::styled(
-            " show it whole; the wheel scrolls the lists and zooms the chart.",
-            Style::default().fg(Color::DarkGray),
-        ),
-    ];
+    let lines: Vec<Line> = std::iter::once(Line::from(""))
+        .chain(
+            [
+                " While editing a value: type, ← → Home End, Backspace Del, Ctrl-U clears;",
+                " invalid values turn red (✗) and block running; the last valid values are kept;",
+                " * marks a value changed from the dissertation's default.",
+                " Mouse: click a scene, a parameter or a point; drag on the chart zooms, right click and 0",
+                " show it whole; the wheel scrolls the lists and zooms the chart.",
+            ]
+            .into_iter()
+            .map(|t| Line::styled(t, Style::default().fg(Color::DarkGray))),
+        )
+        .collect();
     // One column when it fits, else the keys in two columns side by side.
     let one_column = keys.len() + lines.len() + 2 <= usize::from(area.height);
     let width = if one_column { 86 } else { 172 }.min(area.width);

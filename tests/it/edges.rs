@@ -178,6 +178,19 @@ fn sweep(chapter4: bool, combos: usize, bound: std::time::Duration) -> Tally {
     t
 }
 
+/// More than 300 runs, and every one within the rules.
+#[track_caller]
+fn assert_rules(t: &Tally) {
+    assert!(t.runs > 300, "only {} runs", t.runs);
+    assert!(
+        t.bad.is_empty(),
+        "{} of {} runs break the rules: {:#?}",
+        t.bad.len(),
+        t.runs,
+        t.bad
+    );
+}
+
 fn print(t: &Tally) {
     for b in &t.bad {
         println!("{b}");
@@ -198,30 +211,14 @@ fn print(t: &Tally) {
 // none panics, and none runs past its time bound.
 #[test]
 fn every_scene_at_the_edges_of_its_ranges_ends_finite_or_names_a_parameter() {
-    let t = sweep(false, 0, std::time::Duration::from_secs(20));
-    assert!(t.runs > 300, "only {} runs", t.runs);
-    assert!(
-        t.bad.is_empty(),
-        "{} of {} runs break the rules: {:#?}",
-        t.bad.len(),
-        t.runs,
-        t.bad
-    );
+    assert_rules(&sweep(false, 0, std::time::Duration::from_secs(20)));
 }
 
 // The same rules for random combinations of edge values (each numeric parameter at an edge
 // with probability 1/3), 12 per scene: a few hundred runs.
 #[test]
 fn random_combinations_of_edge_values_end_finite_or_name_a_parameter() {
-    let t = sweep(false, 12, std::time::Duration::from_secs(20));
-    assert!(t.runs > 300, "only {} runs", t.runs);
-    assert!(
-        t.bad.is_empty(),
-        "{} of {} runs break the rules: {:#?}",
-        t.bad.len(),
-        t.runs,
-        t.bad
-    );
+    assert_rules(&sweep(false, 12, std::time::Duration::from_secs(20)));
 }
 
 // Survey: many more random combinations, every scene but chapter 4's; prints the runs that
