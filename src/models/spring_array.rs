@@ -21,6 +21,8 @@
 //! only in sign. A spring counts as in contact when its gap is below σ (d̄_i < 1): every
 //! contact-branch gap lies below it and every free-branch gap above it.
 
+use std::cell::{Cell, RefCell};
+
 use crate::error::{Error, Result};
 use crate::models::fibril::{
     SingleSpring, SpringBranch, lj_curvature, lj_energy, lj_traction, max_traction_gap,
@@ -623,7 +625,8 @@ impl BinnedBranches {
 /// branch until it loses stability and then moves to the next stable state. Jumps are the steps
 /// at which the previous state had become unstable or springs changed contact state.
 ///
-/// `on_step(fraction)` is called after each step and may return an error to stop (cancellation).
+/// `on_step(fraction)` is called after each step, and with the last fraction at every Newton
+/// iteration inside a step; it may return an error to stop (cancellation).
 ///
 /// # Errors
 /// Grid errors, [`crate::error::Error::NoConvergence`] from the solver, errors of `on_step`.
@@ -633,7 +636,7 @@ pub fn coupled_cycle(
     u_min: f64,
     n: usize,
     opts: &NewtonOptions,
-    mut on_step: impl FnMut(f64) -> Result<()>,
+    on_step: impl FnMut(f64) -> Result<()>,
 ) -> Result<ArrayCycle> {
     let grid = cycle_grid(u_max, u_min, n)?;
     let s = array.single()?;
@@ -659,44 +662,60 @@ pub fn coupled_cycle(
         newton: *opts,
         refine_to: None,
         trial_iterations: opts.max_iterations,
+        landing_iterations: opts.max_iterations,
         unstable_start_is_jump: true,
+        indefinite_trial_is_beyond: false,
+        retry_after_jump: false,
     };
     let unloading: Vec<f64> = grid.iter().rev().copied().collect();
     let total = 2 * grid.len();
     let mut done = 0;
     let mut start = u_max;
+    let on_step = RefCell::new(on_step);
+    let reported = Cell::new(0.0);
+    let mut interrupt = || on_step.borrow_mut()(reported.get());
     for (loading, targets) in [(true, &grid), (false, &unloading)] {
-        let stats = follow(array, &mut solver, &mut d, start, targets, &path, |v| {
-            let u = v.lambda;
-            let step = ArrayStep {
-                u,
-                force: array.force(u, v.x),
-                contact_ratio: SpringArray::contact_ratio(v.x),
-            };
-            if let Some((_, before)) = v.jumped_from {
-                let changed = |into: bool| {
-                    before
-                        .iter()
-                        .zip(v.x)
-                        .filter(|(b, x)| (**b < CONTACT_GAP) != into && (**x < CONTACT_GAP) == into)
-                        .count()
-                };
-                out.jumps.push(ArrayJump {
+        let stats = follow(
+            array,
+            &mut solver,
+            &mut d,
+            start,
+            targets,
+            &path,
+            &mut interrupt,
+            |v| {
+                let u = v.lambda;
+                let step = ArrayStep {
                     u,
-                    into_contact: changed(true),
-                    out_of_contact: changed(false),
-                    force_before: array.force(u, before),
-                    force_after: step.force,
-                });
-            }
-            if loading {
-                out.loading.push(step);
-            } else {
-                out.unloading.push(step);
-            }
-            done += 1;
-            on_step(done as f64 / total as f64)
-        })?;
+                    force: array.force(u, v.x),
+                    contact_ratio: SpringArray::contact_ratio(v.x),
+                };
+                if let Some((_, before)) = v.jumped_from {
+                    let changed = |into: bool| {
+                        before
+                            .iter()
+                            .zip(v.x)
+                            .filter(|(b, x)| (**b < CONTACT_GAP) != into && (**x < CONTACT_GAP) == into)
+                            .count()
+                    };
+                    out.jumps.push(ArrayJump {
+                        u,
+                        into_contact: changed(true),
+                        out_of_contact: changed(false),
+                        force_before: array.force(u, before),
+                        force_after: step.force,
+                    });
+                }
+                if loading {
+                    out.loading.push(step);
+                } else {
+                    out.unloading.push(step);
+                }
+                done += 1;
+                reported.set(done as f64 / total as f64);
+                on_step.borrow_mut()(reported.get())
+            },
+        )?;
         out.newton_iterations += stats.newton_iterations;
         out.all_stable &= stats.all_stable;
         start = *targets.last().unwrap_or(&start);

@@ -26,6 +26,12 @@
 //! the factorisation of an accepted state serves both its stability test and the first step of
 //! a continuation that restarts from it (identical Hessian values are detected, not assumed).
 //! A continuation step therefore costs about one factorisation when no spring jumps.
+//! Far from convergence a dense Hessian is factorised in single precision for the direction
+//! only (half the cost; the direction's error does not limit the iteration there), and a step
+//! whose promised decrease lies below the energy's roundoff is taken in full rather than shrunk
+//! to nothing by the line search. A caller may watch the iterations
+//! ([`StableNewton::minimize_watched`]): to cancel a long minimisation, or to stop a trial as
+//! soon as it meets an indefinite Hessian.
 //! The energy, gradient and Hessian come from an [`Energy`]; nothing here knows about physics.
 //!
 //! Large systems ([`LinearSolver::Auto`] from [`ITERATIVE_MIN_UNKNOWNS`] unknowns) take the
@@ -99,6 +105,10 @@ pub trait Energy {
     }
 }
 
+/// What [`StableNewton::minimize_watched`] calls during a minimisation with the report so far;
+/// an error stops the minimisation.
+pub type Watch<'a> = &'a mut dyn FnMut(&NewtonReport) -> Result<()>;
+
 /// Tolerances of the minimisation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NewtonOptions {
@@ -149,7 +159,8 @@ impl Default for NewtonOptions {
 pub struct NewtonReport {
     /// Newton iterations taken.
     pub iterations: usize,
-    /// Cholesky factorisations computed (failed attempts included, reused ones not).
+    /// Cholesky factorisations computed (failed attempts and single-precision ones included,
+    /// reused ones not).
     pub factorizations: usize,
     /// Iterations at which the Hessian was not positive definite (the state was unstable).
     pub indefinite_iterations: usize,
@@ -198,6 +209,8 @@ pub struct StableNewton {
     dense: Option<Vec<usize>>,
     /// Storage of a dense factor no longer in use, for the next one.
     spare: Option<Vec<f64>>,
+    /// Storage of a single-precision dense factor no longer in use.
+    spare_single: Option<Vec<f32>>,
     /// Index in the values of each diagonal entry (for the shift).
     diagonal: Vec<usize>,
     /// Values in pattern order, then the diagonal shift slots appended.
@@ -285,6 +298,7 @@ impl StableNewton {
             llt,
             dense,
             spare: None,
+            spare_single: None,
             diagonal: (n_pattern..n_pattern + n).collect(),
             values: vec![0.0; n_pattern + n],
             last_shift: 0.0,
@@ -304,6 +318,12 @@ impl StableNewton {
     /// (the iterative path's certificate never applies), however large.
     pub fn set_linear(&mut self, linear: LinearSolver) {
         self.linear = linear;
+    }
+
+    /// Numeric factorisations computed so far (single-precision ones included, reused ones
+    /// not).
+    pub fn factorizations(&self) -> usize {
+        self.computed
     }
 
     /// Whether the iterative path serves this system.
@@ -372,6 +392,27 @@ impl StableNewton {
         x: &mut [f64],
         opts: &NewtonOptions,
     ) -> Result<NewtonReport> {
+        self.minimize_watched(energy, x, opts, &mut |_| Ok(()))
+    }
+
+    /// [`Self::minimize`] with a watcher: `watch` sees the report at the start of every
+    /// iteration and right after an iteration found the Hessian indefinite, and stops the
+    /// minimisation (`x` left at the current iterate) by returning an error, which is passed
+    /// on: cancellation inside a long minimisation, or a caller that only wants to know
+    /// whether a stable state lies near the start.
+    ///
+    /// # Errors
+    /// As [`Self::minimize`], and whatever `watch` returns.
+    ///
+    /// # Panics
+    /// If `x.len() != energy.dim()`.
+    pub fn minimize_watched(
+        &mut self,
+        energy: &impl Energy,
+        x: &mut [f64],
+        opts: &NewtonOptions,
+        watch: Watch<'_>,
+    ) -> Result<NewtonReport> {
         assert_eq!(x.len(), self.n, "state length must equal the energy's dimension");
         let e0 = energy.energy(x);
         if !e0.is_finite() {
@@ -389,12 +430,12 @@ impl StableNewton {
                 .filter(|(end, _)| end.as_slice() == &*x)
                 .map(|(_, delta)| delta);
             let start_x = x.to_vec();
-            let rep = self.minimize_iterative(energy, x, opts, e0, previous.as_deref())?;
+            let rep = self.minimize_iterative(energy, x, opts, e0, previous.as_deref(), watch)?;
             let delta = x.iter().zip(&start_x).map(|(a, b)| a - b).collect();
             self.last_move = Some((x.to_vec(), delta));
             rep
         } else {
-            self.minimize_inner(energy, x, opts, e0)?
+            self.minimize_inner(energy, x, opts, e0, watch)?
         };
         rep.factorizations = self.computed - start;
         Ok(rep)

@@ -8,6 +8,8 @@
 //! adhesive force P_adh (the most tensile force of the path) and the hysteresis H (the area of
 //! the loop, −∮ P dh, the energy lost in the cycle).
 
+use std::cell::{Cell, RefCell};
+
 use crate::error::{Error, Result};
 use crate::models::axisymmetric::tip::{ContactSet, Tip};
 use crate::numerics::loading::{Controlled, PathOptions, PathStats, follow};
@@ -175,8 +177,9 @@ impl CycleModel for Tip {
     }
 }
 
-/// Run one cycle. `progress(fraction)` is called after every accepted state and may return
-/// an error to stop (cancellation).
+/// Run one cycle. `progress(fraction)` is called after every accepted state, and with the last
+/// fraction at every Newton iteration in between; it may return an error to stop
+/// (cancellation), which a long minimisation then honours at its next iteration.
 ///
 /// # Errors
 /// [`Error::InvalidParameter`] for an empty or reversed depth range or a non-positive step;
@@ -184,7 +187,7 @@ impl CycleModel for Tip {
 pub fn run_cycle<M: CycleModel>(
     tip: &M,
     opts: &CycleOptions,
-    mut progress: impl FnMut(f64) -> Result<()>,
+    progress: impl FnMut(f64) -> Result<()>,
 ) -> Result<TipCycle> {
     if !(opts.h_min < opts.h_start && opts.h_min.is_finite() && opts.h_start.is_finite()) {
         return Err(Error::invalid(
@@ -226,15 +229,21 @@ pub fn run_cycle<M: CycleModel>(
         newton,
         refine_to: Some(opts.refine_to / tip.length_unit()),
         trial_iterations: 40,
+        landing_iterations: 160,
         unstable_start_is_jump: false,
+        indefinite_trial_is_beyond: true,
+        retry_after_jump: true,
     };
     let start = approach(opts.h_start);
     let start_energy = tip.at(start);
     let mut solver = StableNewton::new(&start_energy)?;
     solver.set_linear(newton.linear);
     let mut u = vec![0.0; tip.unknowns()];
+    let progress = RefCell::new(progress);
+    let reported = Cell::new(0.0);
+    let mut interrupt = || progress.borrow_mut()(reported.get());
     // Relax at the start depth.
-    solver.minimize(&start_energy, &mut u, &newton)?;
+    solver.minimize_watched(&start_energy, &mut u, &newton, &mut |_| interrupt())?;
     let state = |delta: f64, u: &[f64], stable: bool, keep: bool| TipState {
         depth: tip.depth(delta),
         force: tip.force(delta, u),
@@ -252,32 +261,43 @@ pub fn run_cycle<M: CycleModel>(
     let mut done = 0usize;
     let mut last_delta = start;
     for (phase, targets) in [(true, &loading), (false, &unloading)] {
-        let stats = follow(tip, &mut solver, &mut u, last_delta, targets, &path, |v| {
-            let s = state(
-                v.lambda,
-                v.x,
-                v.stable,
-                opts.keep_profiles || v.jumped_from.is_some(),
-            );
-            if let Some((l0, x0)) = v.jumped_from {
-                cycle.jumps.push(TipJump {
-                    loading: phase,
-                    before: state(l0, x0, true, true),
-                    after: s.clone(),
-                });
-            }
-            if phase {
-                cycle.loading.push(s);
-            } else {
-                cycle.unloading.push(s);
-            }
-            done = done.max(v.target + 1 + if phase { 0 } else { loading.len() });
-            progress(done as f64 / total)
-        })?;
+        let stats = follow(
+            tip,
+            &mut solver,
+            &mut u,
+            last_delta,
+            targets,
+            &path,
+            &mut interrupt,
+            |v| {
+                let s = state(
+                    v.lambda,
+                    v.x,
+                    v.stable,
+                    opts.keep_profiles || v.jumped_from.is_some(),
+                );
+                if let Some((l0, x0)) = v.jumped_from {
+                    cycle.jumps.push(TipJump {
+                        loading: phase,
+                        before: state(l0, x0, true, true),
+                        after: s.clone(),
+                    });
+                }
+                if phase {
+                    cycle.loading.push(s);
+                } else {
+                    cycle.unloading.push(s);
+                }
+                done = done.max(v.target + 1 + if phase { 0 } else { loading.len() });
+                reported.set(done as f64 / total);
+                progress.borrow_mut()(reported.get())
+            },
+        )?;
         last_delta = *targets.last().unwrap_or(&last_delta);
         cycle.stats.states += stats.states;
         cycle.stats.minimisations += stats.minimisations;
         cycle.stats.newton_iterations += stats.newton_iterations;
+        cycle.stats.factorizations += stats.factorizations;
         cycle.stats.jumps += stats.jumps;
         cycle.stats.all_stable &= stats.all_stable;
     }

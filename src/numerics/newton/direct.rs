@@ -12,7 +12,15 @@
 //! Hessians that are mostly full (a boundary-element kernel couples every unknown to every
 //! other) are factorised as dense matrices, sequentially: the sparse supernodal factorisation
 //! of a full matrix of a few hundred unknowns spends about a third of its time synchronising
-//! threads, and a sweep already runs its points in parallel.
+//! threads, and a sweep already runs its points in parallel. While the gradient is far above
+//! its tolerance, the direction of a dense Newton step comes from a single-precision
+//! factorisation (half the flops; where it fails, the double-precision one decides); every
+//! accepted state, every stability test and every cached factor rests on double precision.
+//!
+//! The line search cannot judge a step whose promised decrease lies below the roundoff of
+//! the energy (terms that cancel): it would shrink the step until the state stops moving and
+//! stall short of the gradient tolerance. With a positive-definite Hessian such a step is
+//! taken in full.
 //!
 //! [`LinearSolver::Direct`]: super::LinearSolver::Direct
 
@@ -24,13 +32,22 @@ use faer::sparse::linalg::cholesky::{LltRef, SymbolicCholesky};
 use faer::{Conj, Par, Side, Spec};
 use std::sync::Arc;
 
-use super::{Energy, Factor, NewtonOptions, NewtonReport, StableNewton, backtrack};
+use super::{Energy, Factor, NewtonOptions, NewtonReport, StableNewton, Watch, backtrack};
 use crate::error::{Error, Result};
 use crate::numerics::pcg::{dot, inf_norm};
 
 /// Chord steps (an earlier factorisation reused) continue while each cuts the largest
 /// gradient component by at least this factor; otherwise the Hessian is factorised again.
 const CHORD_CONTRACTION: f64 = 0.25;
+
+/// A Newton step that promises an energy decrease below this fraction of the energy is taken
+/// without line search (the energy cannot resolve it).
+const ENERGY_ROUNDOFF: f64 = 1e-12;
+
+/// While the largest gradient component exceeds this multiple of the gradient tolerance, a
+/// dense Hessian is factorised in single precision for the Newton direction (see
+/// `StableNewton::factor_dense_single`).
+const SINGLE_PRECISION_ABOVE: f64 = 1e4;
 
 /// A numeric Cholesky factor `L` of `H = L Lᵀ`: sparse (faer's simplicial or supernodal
 /// factorisation with the fill-reducing ordering of the symbolic analysis) or dense (lower triangle of a full
@@ -40,6 +57,8 @@ pub(in crate::numerics) enum Cholesky {
     Sparse(Arc<SymbolicCholesky<usize>>, Vec<f64>),
     /// Column-major n × n, L in the lower triangle.
     Dense(Vec<f64>),
+    /// As `Dense`, in single precision (a Newton direction far from convergence only).
+    DenseSingle(Vec<f32>),
 }
 
 impl Cholesky {
@@ -62,6 +81,14 @@ impl Cholesky {
                 let mut buf = MemBuffer::new(faer::dyn_stack::StackReq::EMPTY);
                 solve_in_place_with_conj(l, Conj::No, m, Par::Seq, MemStack::new(&mut buf));
             }
+            Self::DenseSingle(l) => {
+                let l = faer::MatRef::from_column_major_slice(l, n, n);
+                let mut single: Vec<f32> = rhs.iter().map(|&v| v as f32).collect();
+                let m = faer::MatMut::from_column_major_slice_mut(&mut single, n, 1);
+                let mut buf = MemBuffer::new(faer::dyn_stack::StackReq::EMPTY);
+                solve_in_place_with_conj(l, Conj::No, m, Par::Seq, MemStack::new(&mut buf));
+                rhs.iter_mut().zip(&single).for_each(|(r, s)| *r = f64::from(*s));
+            }
         }
     }
 }
@@ -82,36 +109,72 @@ pub(super) fn dense_layout(n: usize, pattern: &[(usize, usize)], n_pattern: usiz
     Some(pattern.iter().map(|&(r, c)| r + c * n).collect())
 }
 
+/// Sum `values` into the lower triangle of the column-major n × n matrix `a` at the positions
+/// `layout` (converted by `cast`) and factorise it in place, sequentially; whether it is
+/// positive definite (in the precision of `T`).
+fn dense_llt<T: faer::traits::RealField + Copy>(
+    a: &mut Vec<T>,
+    n: usize,
+    layout: &[usize],
+    values: &[f64],
+    cast: impl Fn(f64) -> T,
+) -> bool {
+    a.clear();
+    a.resize(n * n, T::zero_impl());
+    for (&k, &v) in layout.iter().zip(values) {
+        a[k] = a[k] + cast(v);
+    }
+    let par = Par::Seq;
+    let params: Spec<LltParams, T> = Default::default();
+    let mut buf =
+        MemBuffer::new(faer::linalg::cholesky::llt::factor::cholesky_in_place_scratch::<T>(n, par, params));
+    cholesky_in_place(
+        faer::MatMut::from_column_major_slice_mut(a, n, n),
+        LltRegularization::default(),
+        par,
+        MemStack::new(&mut buf),
+        params,
+    )
+    .is_ok()
+}
+
 impl StableNewton {
     /// Dense Cholesky factorisation of the values (pattern entries summed into the lower
     /// triangle); `None` if not positive definite.
     fn factor_dense(&mut self, layout: &[usize]) -> Option<Cholesky> {
-        let n = self.n;
         // The storage of a factor no longer in use, or fresh.
         let mut a = self.spare.take().unwrap_or_default();
-        a.clear();
-        a.resize(n * n, 0.0);
-        for (&k, &v) in layout.iter().zip(&self.values) {
-            a[k] += v;
-        }
-        let par = Par::Seq;
-        let params: Spec<LltParams, f64> = Default::default();
-        let mut buf = MemBuffer::new(faer::linalg::cholesky::llt::factor::cholesky_in_place_scratch::<
-            f64,
-        >(n, par, params));
-        let ok = cholesky_in_place(
-            faer::MatMut::from_column_major_slice_mut(&mut a, n, n),
-            LltRegularization::default(),
-            par,
-            MemStack::new(&mut buf),
-            params,
-        )
-        .is_ok();
-        if !ok {
+        if dense_llt(&mut a, self.n, layout, &self.values, |v| v) {
+            Some(Cholesky::Dense(a))
+        } else {
             self.spare = Some(a);
-            return None;
+            None
         }
-        Some(Cholesky::Dense(a))
+    }
+
+    /// A single-precision dense factorisation of the Hessian values (no shift) for a Newton
+    /// direction far from convergence, where the direction's accuracy (about 10⁻⁷ times the
+    /// condition number) does not limit the iteration and the factorisation costs half of a
+    /// double-precision one; `None` if it fails (not positive definite, or too ill-conditioned
+    /// for single precision). Never a stability test, and never cached as one.
+    fn factor_dense_single(&mut self) -> Option<Factor> {
+        let layout = self.dense.as_ref()?;
+        let n_pattern = self.values.len() - self.n;
+        let mut a = self.spare_single.take().unwrap_or_default();
+        self.computed += 1;
+        // The shift slots (after the pattern) are not part of H.
+        if dense_llt(
+            &mut a,
+            self.n,
+            &layout[..n_pattern],
+            &self.values[..n_pattern],
+            |v| v as f32,
+        ) {
+            Some(Arc::new(Cholesky::DenseSingle(a)))
+        } else {
+            self.spare_single = Some(a);
+            None
+        }
     }
 
     /// Factorise H + λI (values already in `self.values[..n_pattern]`); `None` if not
@@ -187,6 +250,7 @@ impl StableNewton {
         x: &mut [f64],
         opts: &NewtonOptions,
         mut e0: f64,
+        watch: Watch<'_>,
     ) -> Result<NewtonReport> {
         let n = self.n;
         let n_pattern = self.values.len() - n;
@@ -200,6 +264,7 @@ impl StableNewton {
         let mut chord: Option<(Factor, f64)> = None;
         while rep.iterations < opts.max_iterations {
             rep.iterations += 1;
+            watch(&rep)?;
             energy.gradient(x, &mut g);
             let gnorm = inf_norm(&g);
             if let Some((f, g_prev)) = &chord
@@ -226,13 +291,25 @@ impl StableNewton {
             }
             chord = None;
             energy.hessian_values(x, &mut self.values[..n_pattern]);
-            let plain = self.factor(0.0)?;
+            // Far from convergence a single-precision factorisation serves the direction
+            // (dense Hessians); the acceptance below always rests on a double-precision one.
+            let single = if gnorm > SINGLE_PRECISION_ABOVE * opts.gradient_tol {
+                self.factor_dense_single()
+            } else {
+                None
+            };
+            let exact = single.is_none();
+            let plain = match single {
+                Some(l) => Some(l),
+                None => self.factor(0.0)?,
+            };
             let (llt, definite) = match plain {
                 Some(l) => (l, true),
                 None => {
                     // Scale for the shift: the largest Hessian entry's magnitude.
                     let scale = inf_norm(&self.values[..n_pattern]).max(1e-300);
                     rep.indefinite_iterations += 1;
+                    watch(&rep)?;
                     let mut shift = if self.last_shift > 0.0 {
                         0.25 * self.last_shift
                     } else {
@@ -265,7 +342,7 @@ impl StableNewton {
             // correction tells them apart: it is of the order of the gradient at a regular
             // minimum and large near the vanishing curvature of a fold. Accept only when it is
             // below √(gradient_tol) as well; otherwise keep descending (the jump, if any).
-            if definite && gnorm <= opts.gradient_tol && inf_norm(&p) <= opts.gradient_tol.sqrt() {
+            if definite && exact && gnorm <= opts.gradient_tol && inf_norm(&p) <= opts.gradient_tol.sqrt() {
                 rep.gradient_norm = gnorm;
                 rep.energy = e0;
                 return Ok(rep);
@@ -283,12 +360,21 @@ impl StableNewton {
                 }
                 slope = dot(&g, &p).min(0.0);
             }
-            if definite && inf_norm(&p) <= opts.step_tol {
+            if definite && exact && inf_norm(&p) <= opts.step_tol {
                 rep.gradient_norm = gnorm;
                 rep.energy = e0;
                 x.iter_mut().zip(&p).for_each(|(xi, pi)| *xi += pi);
                 rep.energy = energy.energy(x);
                 return Ok(rep);
+            }
+            if definite && exact && -slope <= ENERGY_ROUNDOFF * e0.abs().max(1.0) {
+                // The decrease this step promises is below what the energy resolves (its
+                // terms cancel to roundoff): the line search cannot judge it and would shrink
+                // it to nothing. Near a minimum with a positive-definite Hessian the full
+                // Newton step is safe; take it.
+                x.iter_mut().zip(&p).for_each(|(xi, pi)| *xi += pi);
+                e0 = energy.energy(x);
+                continue;
             }
             match backtrack(energy, x, &p, e0, slope, &mut trial) {
                 Some(e1) => e0 = e1,
@@ -377,6 +463,115 @@ mod tests {
         let other = s.minimize(&e, &mut y, &opts).unwrap();
         assert!(other.factorizations >= 1);
         assert!(y.iter().zip(&x).all(|(a, b)| (a - b).abs() < 1e-8));
+    }
+
+    /// ½|x|² plus an offset of 10⁻⁹ everywhere but at the start `x0`: an energy whose
+    /// evaluation cannot resolve the decrease of a small Newton step (as when its terms cancel
+    /// to roundoff), with the exact gradient x and Hessian I.
+    struct Unresolved {
+        x0: f64,
+    }
+
+    impl Energy for Unresolved {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn energy(&self, x: &[f64]) -> f64 {
+            0.5 * x[0] * x[0] + if x[0] == self.x0 { 0.0 } else { 1e-9 }
+        }
+        fn gradient(&self, x: &[f64], g: &mut [f64]) {
+            g[0] = x[0];
+        }
+        fn hessian_pattern(&self) -> Vec<(usize, usize)> {
+            vec![(0, 0)]
+        }
+        fn hessian_values(&self, _: &[f64], v: &mut [f64]) {
+            v[0] = 1.0;
+        }
+    }
+
+    // The line search cannot see the 1.25e-13 a Newton step from x = 5e-7 gains under the
+    // offset: it would shrink the step until x stops moving and stall there, short of the
+    // gradient tolerance. A step below the energy's resolution is taken in full instead.
+    #[test]
+    fn a_step_below_the_energy_roundoff_is_taken_in_full() {
+        let e = Unresolved { x0: 5e-7 };
+        let mut s = StableNewton::new(&e).unwrap();
+        let mut x = vec![e.x0];
+        let rep = s.minimize(&e, &mut x, &NewtonOptions::default()).unwrap();
+        assert!(x[0].abs() <= 1e-10, "{x:?}");
+        assert!(rep.iterations <= 3, "{rep:?}");
+    }
+
+    /// E = ½ Σ d_i x_i² + ½ c (Σ x_i)² − Σ x_i with d_i from 1 to `ratio`: a full,
+    /// positive-definite quadratic of condition about `ratio`.
+    struct Conditioned {
+        n: usize,
+        ratio: f64,
+        c: f64,
+    }
+
+    impl Conditioned {
+        fn d(&self, i: usize) -> f64 {
+            self.ratio.powf(i as f64 / (self.n - 1) as f64)
+        }
+    }
+
+    impl Energy for Conditioned {
+        fn dim(&self) -> usize {
+            self.n
+        }
+        fn energy(&self, x: &[f64]) -> f64 {
+            let sum: f64 = x.iter().sum();
+            x.iter()
+                .enumerate()
+                .map(|(i, v)| 0.5 * self.d(i) * v * v - v)
+                .sum::<f64>()
+                + 0.5 * self.c * sum * sum
+        }
+        fn gradient(&self, x: &[f64], g: &mut [f64]) {
+            let sum: f64 = x.iter().sum();
+            for (i, (gi, v)) in g.iter_mut().zip(x).enumerate() {
+                *gi = self.d(i) * v - 1.0 + self.c * sum;
+            }
+        }
+        fn hessian_pattern(&self) -> Vec<(usize, usize)> {
+            (0..self.n).flat_map(|i| (0..=i).map(move |j| (i, j))).collect()
+        }
+        fn hessian_values(&self, _: &[f64], v: &mut [f64]) {
+            let mut k = 0;
+            for i in 0..self.n {
+                for j in 0..=i {
+                    v[k] = self.c + if i == j { self.d(i) } else { 0.0 };
+                    k += 1;
+                }
+            }
+        }
+    }
+
+    // Far from convergence a dense Hessian is factorised in single precision for the
+    // direction. At a condition number single precision cannot handle (1e12) the minimiser
+    // still reaches the minimum to the gradient tolerance (double precision where single
+    // fails or stalls), and every accepted state rests on a double-precision factorisation.
+    #[test]
+    fn single_precision_directions_reach_the_double_precision_minimum() {
+        for ratio in [1e2, 1e12] {
+            let e = Conditioned { n: 60, ratio, c: 0.5 };
+            let mut s = StableNewton::new(&e).unwrap();
+            let mut x = vec![100.0; 60];
+            let opts = NewtonOptions::default();
+            s.minimize(&e, &mut x, &opts).unwrap();
+            let mut g = vec![0.0; 60];
+            e.gradient(&x, &mut g);
+            assert!(
+                inf_norm(&g) <= opts.gradient_tol,
+                "ratio {ratio}: {}",
+                inf_norm(&g)
+            );
+            assert!(s.is_stable(&e, &x).unwrap());
+            // The accepted state's double-precision factorisation is the cached one.
+            assert!(s.cache.as_ref().is_some_and(|(_, l)| l.is_some()));
+        }
     }
 
     /// A quartic well with a full coupling matrix: E = Σ (x_i⁴/4 − s x_i²/2) + ½ c (Σ x_i)² −

@@ -13,7 +13,7 @@
 use super::local::{
     Jumps, Tangent, descend_line, escape_around, escape_patches, jump_along_coordinates, settle,
 };
-use super::{Energy, NewtonOptions, NewtonReport, StableNewton, backtrack};
+use super::{Energy, NewtonOptions, NewtonReport, StableNewton, Watch, backtrack};
 use crate::error::Result;
 use crate::numerics::pcg::{Operator, PcgEnd, certify_z_matrix, dot, inf_norm, pcg, pcg_with_curvature};
 
@@ -111,6 +111,7 @@ impl StableNewton {
         opts: &NewtonOptions,
         mut e0: f64,
         guess: Option<&[f64]>,
+        watch: Watch<'_>,
     ) -> Result<NewtonReport> {
         let n = self.n;
         let n_pattern = self.values.len() - n;
@@ -128,8 +129,12 @@ impl StableNewton {
         let mut local_moves = false;
         let mut hot_settled = false;
         let max_cg = 2000.min(10 * n.max(10));
-        let hand_over = |this: &mut Self, x: &mut [f64], mut rep: NewtonReport| -> Result<NewtonReport> {
-            let direct = this.minimize_inner(energy, x, opts, energy.energy(x))?;
+        let hand_over = |this: &mut Self,
+                         x: &mut [f64],
+                         mut rep: NewtonReport,
+                         watch: Watch<'_>|
+         -> Result<NewtonReport> {
+            let direct = this.minimize_inner(energy, x, opts, energy.energy(x), watch)?;
             rep.iterations += direct.iterations;
             rep.indefinite_iterations += direct.indefinite_iterations;
             rep.negative_curvature_steps += direct.negative_curvature_steps;
@@ -140,6 +145,7 @@ impl StableNewton {
         };
         while rep.iterations < opts.max_iterations {
             rep.iterations += 1;
+            watch(&rep)?;
             energy.gradient(x, &mut g);
             let gnorm = inf_norm(&g);
             energy.hessian_values(x, &mut self.values[..n_pattern]);
@@ -156,7 +162,7 @@ impl StableNewton {
                     return Ok(rep);
                 }
                 if definite.is_none() {
-                    return hand_over(self, x, rep);
+                    return hand_over(self, x, rep, watch);
                 }
             }
             let mut definite = diag.iter().all(|&d| d > 0.0);
@@ -258,7 +264,7 @@ impl StableNewton {
                             e0 = energy.energy(x);
                             continue;
                         }
-                        return hand_over(self, x, rep);
+                        return hand_over(self, x, rep, watch);
                     }
                     x.iter_mut().zip(&p).for_each(|(xi, pi)| *xi += pi);
                     rep.gradient_norm = gnorm;
@@ -274,7 +280,7 @@ impl StableNewton {
                             rep.energy = e0;
                             return Ok(rep);
                         }
-                        return hand_over(self, x, rep);
+                        return hand_over(self, x, rep, watch);
                     }
                 }
                 continue;
@@ -296,18 +302,18 @@ impl StableNewton {
             };
             p.fill(0.0);
             if pcg(&op, &inv, &rhs, &mut p, target, max_cg).0 == PcgEnd::NegativeCurvature {
-                return hand_over(self, x, rep);
+                return hand_over(self, x, rep, watch);
             }
             let slope = dot(&g, &p);
             if slope >= 0.0 || slope.is_nan() {
-                return hand_over(self, x, rep);
+                return hand_over(self, x, rep, watch);
             }
             match backtrack(energy, x, &p, e0, slope, &mut trial) {
                 Some(e1) => e0 = e1,
-                None => return hand_over(self, x, rep),
+                None => return hand_over(self, x, rep, watch),
             }
         }
-        hand_over(self, x, rep)
+        hand_over(self, x, rep, watch)
     }
 }
 
