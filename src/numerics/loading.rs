@@ -171,9 +171,9 @@ pub struct PathStats {
 /// The walk's current state and the trial just minimised.
 struct Current<'a> {
     x: &'a mut Vec<f64>,
-    trial: &'a mut Vec<f64>,
-    lambda: &'a mut f64,
-    stats: &'a mut PathStats,
+    trial: Vec<f64>,
+    lambda: f64,
+    stats: PathStats,
 }
 
 impl Current<'_> {
@@ -191,14 +191,14 @@ impl Current<'_> {
         self.stats.all_stable &= stable;
         visit(&Visit {
             lambda: at,
-            x: self.trial,
-            jumped_from: jumped.then_some((*self.lambda, self.x.as_slice())),
+            x: &self.trial,
+            jumped_from: jumped.then_some((self.lambda, self.x.as_slice())),
             stable,
             report,
             target,
         })?;
-        std::mem::swap(self.x, self.trial);
-        *self.lambda = at;
+        std::mem::swap(self.x, &mut self.trial);
+        self.lambda = at;
         Ok(())
     }
 }
@@ -224,13 +224,17 @@ pub fn follow<C: Controlled>(
     interrupt: &mut dyn FnMut() -> Result<()>,
     mut visit: impl FnMut(&Visit<'_>) -> Result<()>,
 ) -> Result<PathStats> {
-    let mut stats = PathStats {
-        all_stable: true,
-        ..PathStats::default()
-    };
     let factorizations_before = solver.factorizations();
-    let mut lambda = lambda_start;
-    let mut trial = x.clone();
+    let n = x.len();
+    let mut walk = Current {
+        trial: x.clone(),
+        x,
+        lambda: lambda_start,
+        stats: PathStats {
+            all_stable: true,
+            ..PathStats::default()
+        },
+    };
     let trial_opts = NewtonOptions {
         max_iterations: opts.trial_iterations.min(opts.newton.max_iterations),
         ..opts.newton
@@ -242,8 +246,8 @@ pub fn follow<C: Controlled>(
     // Minimise from `x` at `at` into `trial`: Some((report, jumped, stable)), or None when a
     // capped trial ran out of iterations (a jump under way) or, with
     // `indefinite_trial_is_beyond`, a bisection trial met an indefinite Hessian.
-    let mut rate = vec![0.0; x.len()];
-    let mut predicted = Vec::with_capacity(x.len());
+    let mut rate = vec![0.0; n];
+    let mut predicted = Vec::with_capacity(n);
     let mut attempt = |x: &[f64],
                        trial: &mut Vec<f64>,
                        from: f64,
@@ -313,18 +317,19 @@ pub fn follow<C: Controlled>(
     };
     for (k, &target) in targets.iter().enumerate() {
         'step: loop {
-            let refine = opts.refine_to.filter(|&tol| (target - lambda).abs() > tol);
-            let first = attempt(x, &mut trial, lambda, target, Trial::Step, &mut stats)?;
+            let refine = opts.refine_to.filter(|&tol| (target - walk.lambda).abs() > tol);
+            let first = attempt(
+                walk.x,
+                &mut walk.trial,
+                walk.lambda,
+                target,
+                Trial::Step,
+                &mut walk.stats,
+            )?;
             if let Some((rep, jumped, stable)) = first
                 && (!jumped || refine.is_none())
             {
-                let mut current = Current {
-                    x,
-                    trial: &mut trial,
-                    lambda: &mut lambda,
-                    stats: &mut stats,
-                };
-                current.accept(&mut visit, target, (rep, jumped, stable), k)?;
+                walk.accept(&mut visit, target, (rep, jumped, stable), k)?;
                 break;
             }
             // A converged state a jump away may be a false alarm of the measure: retry the
@@ -337,28 +342,30 @@ pub fn follow<C: Controlled>(
             // Bisect towards the fold: accept trial states that stay on the branch.
             let tol = refine.unwrap_or(0.0);
             let mut hi = target;
-            while (hi - lambda).abs() > tol {
-                let mid = 0.5 * (lambda + hi);
-                match attempt(x, &mut trial, lambda, mid, Trial::Bisect, &mut stats)? {
+            while (hi - walk.lambda).abs() > tol {
+                let mid = 0.5 * (walk.lambda + hi);
+                match attempt(
+                    walk.x,
+                    &mut walk.trial,
+                    walk.lambda,
+                    mid,
+                    Trial::Bisect,
+                    &mut walk.stats,
+                )? {
                     Some((rep, false, stable)) => {
-                        let mut current = Current {
-                            x,
-                            trial: &mut trial,
-                            lambda: &mut lambda,
-                            stats: &mut stats,
-                        };
-                        current.accept(&mut visit, mid, (rep, false, stable), k)?;
+                        walk.accept(&mut visit, mid, (rep, false, stable), k)?;
                         if retries > 0 {
                             retries -= 1;
-                            match attempt(x, &mut trial, lambda, hi, Trial::Step, &mut stats)? {
+                            match attempt(
+                                walk.x,
+                                &mut walk.trial,
+                                walk.lambda,
+                                hi,
+                                Trial::Step,
+                                &mut walk.stats,
+                            )? {
                                 Some((rep, false, stable)) => {
-                                    let mut current = Current {
-                                        x,
-                                        trial: &mut trial,
-                                        lambda: &mut lambda,
-                                        stats: &mut stats,
-                                    };
-                                    current.accept(&mut visit, hi, (rep, false, stable), k)?;
+                                    walk.accept(&mut visit, hi, (rep, false, stable), k)?;
                                     if hi == target {
                                         break 'step;
                                     }
@@ -379,11 +386,18 @@ pub fn follow<C: Controlled>(
             let mut at = hi;
             let (rep, jumped, stable) = loop {
                 let full = (at - target).abs() <= f64::EPSILON * target.abs().max(1.0);
-                match attempt(x, &mut trial, lambda, at, Trial::Land(full), &mut stats)? {
+                match attempt(
+                    walk.x,
+                    &mut walk.trial,
+                    walk.lambda,
+                    at,
+                    Trial::Land(full),
+                    &mut walk.stats,
+                )? {
                     Some(found) => break found,
                     None => {
-                        let further = lambda + 2.0 * (at - lambda);
-                        at = if (further - lambda).abs() >= (target - lambda).abs() {
+                        let further = walk.lambda + 2.0 * (at - walk.lambda);
+                        at = if (further - walk.lambda).abs() >= (target - walk.lambda).abs() {
                             target
                         } else {
                             further
@@ -391,20 +405,14 @@ pub fn follow<C: Controlled>(
                     }
                 }
             };
-            let mut current = Current {
-                x,
-                trial: &mut trial,
-                lambda: &mut lambda,
-                stats: &mut stats,
-            };
-            current.accept(&mut visit, at, (rep, jumped, stable), k)?;
+            walk.accept(&mut visit, at, (rep, jumped, stable), k)?;
             if at == target {
                 break;
             }
         }
     }
-    stats.factorizations = solver.factorizations() - factorizations_before;
-    Ok(stats)
+    walk.stats.factorizations = solver.factorizations() - factorizations_before;
+    Ok(walk.stats)
 }
 
 #[cfg(test)]

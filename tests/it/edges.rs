@@ -98,9 +98,13 @@ fn cases(scene: &dyn adhesion::scenes::SceneDyn, combos: usize, seed: u64) -> Ve
 /// each cancelled after `bound`: tallies the outcomes.
 fn sweep(chapter4: bool, combos: usize, bound: std::time::Duration) -> Tally {
     let mut t = Tally::default();
+    // A survey may be limited to some scenes: ADHESION_SURVEY_SCENES=fig4.5,fig4.7.
+    let only = std::env::var("ADHESION_SURVEY_SCENES").ok();
     for scene in scenes::all() {
         let id = scene.info().id;
-        if id.starts_with("fig4") != chapter4 {
+        if id.starts_with("fig4") != chapter4
+            || only.as_deref().is_some_and(|o| !o.split(',').any(|s| s == id))
+        {
             continue;
         }
         let base = scene.defaults();

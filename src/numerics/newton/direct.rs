@@ -503,52 +503,6 @@ mod tests {
         assert!(rep.iterations <= 3, "{rep:?}");
     }
 
-    /// E = ½ Σ d_i x_i² + ½ c (Σ x_i)² − Σ x_i with d_i from 1 to `ratio`: a full,
-    /// positive-definite quadratic of condition about `ratio`.
-    struct Conditioned {
-        n: usize,
-        ratio: f64,
-        c: f64,
-    }
-
-    impl Conditioned {
-        fn d(&self, i: usize) -> f64 {
-            self.ratio.powf(i as f64 / (self.n - 1) as f64)
-        }
-    }
-
-    impl Energy for Conditioned {
-        fn dim(&self) -> usize {
-            self.n
-        }
-        fn energy(&self, x: &[f64]) -> f64 {
-            let sum: f64 = x.iter().sum();
-            x.iter()
-                .enumerate()
-                .map(|(i, v)| 0.5 * self.d(i) * v * v - v)
-                .sum::<f64>()
-                + 0.5 * self.c * sum * sum
-        }
-        fn gradient(&self, x: &[f64], g: &mut [f64]) {
-            let sum: f64 = x.iter().sum();
-            for (i, (gi, v)) in g.iter_mut().zip(x).enumerate() {
-                *gi = self.d(i) * v - 1.0 + self.c * sum;
-            }
-        }
-        fn hessian_pattern(&self) -> Vec<(usize, usize)> {
-            (0..self.n).flat_map(|i| (0..=i).map(move |j| (i, j))).collect()
-        }
-        fn hessian_values(&self, _: &[f64], v: &mut [f64]) {
-            let mut k = 0;
-            for i in 0..self.n {
-                for j in 0..=i {
-                    v[k] = self.c + if i == j { self.d(i) } else { 0.0 };
-                    k += 1;
-                }
-            }
-        }
-    }
-
     // Far from convergence a dense Hessian is factorised in single precision for the
     // direction. At a condition number single precision cannot handle (1e12) the minimiser
     // still reaches the minimum to the gradient tolerance (double precision where single
@@ -556,7 +510,11 @@ mod tests {
     #[test]
     fn single_precision_directions_reach_the_double_precision_minimum() {
         for ratio in [1e2, 1e12] {
-            let e = Conditioned { n: 60, ratio, c: 0.5 };
+            let e = Full {
+                n: 60,
+                site: Site::Quadratic { ratio },
+                c: 0.5,
+            };
             let mut s = StableNewton::new(&e).unwrap();
             let mut x = vec![100.0; 60];
             let opts = NewtonOptions::default();
@@ -574,12 +532,42 @@ mod tests {
         }
     }
 
-    /// A quartic well with a full coupling matrix: E = Σ (x_i⁴/4 − s x_i²/2) + ½ c (Σ x_i)² −
-    /// Σ b_i x_i. Its Hessian diag(3x_i² − s) + c 11ᵀ is full, so the dense path serves it.
+    /// The energy of each unknown alone in [`Full`].
+    #[derive(Clone, Copy)]
+    enum Site {
+        /// x⁴/4 − s x²/2 − 0.01 i x: a double well, tilted more for later unknowns.
+        Quartic { s: f64 },
+        /// d_i x²/2 − x with d_i from 1 to `ratio` (geometric): a quadratic of condition
+        /// about `ratio`.
+        Quadratic { ratio: f64 },
+    }
+
+    /// E = Σ site_i(x_i) + ½ c (Σ x_i)²: every unknown coupled to every other, so the Hessian
+    /// diag(site_i'') + c 11ᵀ is full and the dense path serves it.
     struct Full {
         n: usize,
-        s: f64,
+        site: Site,
         c: f64,
+    }
+
+    impl Full {
+        /// (site_i, site_i', site_i'') at x.
+        fn site(&self, i: usize, x: f64) -> (f64, f64, f64) {
+            match self.site {
+                Site::Quartic { s } => {
+                    let b = 0.01 * i as f64;
+                    (
+                        x.powi(4) / 4.0 - s * x * x / 2.0 - b * x,
+                        x.powi(3) - s * x - b,
+                        3.0 * x * x - s,
+                    )
+                }
+                Site::Quadratic { ratio } => {
+                    let d = ratio.powf(i as f64 / (self.n - 1) as f64);
+                    (0.5 * d * x * x - x, d * x - 1.0, d)
+                }
+            }
+        }
     }
 
     impl Energy for Full {
@@ -588,16 +576,12 @@ mod tests {
         }
         fn energy(&self, x: &[f64]) -> f64 {
             let sum: f64 = x.iter().sum();
-            x.iter()
-                .enumerate()
-                .map(|(i, v)| v.powi(4) / 4.0 - self.s * v * v / 2.0 - 0.01 * i as f64 * v)
-                .sum::<f64>()
-                + 0.5 * self.c * sum * sum
+            x.iter().enumerate().map(|(i, &v)| self.site(i, v).0).sum::<f64>() + 0.5 * self.c * sum * sum
         }
         fn gradient(&self, x: &[f64], g: &mut [f64]) {
             let sum: f64 = x.iter().sum();
-            for (i, (gi, v)) in g.iter_mut().zip(x).enumerate() {
-                *gi = v.powi(3) - self.s * v - 0.01 * i as f64 + self.c * sum;
+            for (i, (gi, &v)) in g.iter_mut().zip(x).enumerate() {
+                *gi = self.site(i, v).1 + self.c * sum;
             }
         }
         fn hessian_pattern(&self) -> Vec<(usize, usize)> {
@@ -605,9 +589,9 @@ mod tests {
         }
         fn hessian_values(&self, x: &[f64], v: &mut [f64]) {
             let mut k = 0;
-            for (i, xi) in x.iter().enumerate() {
+            for (i, &xi) in x.iter().enumerate() {
                 for j in 0..=i {
-                    v[k] = self.c + if i == j { 3.0 * xi * xi - self.s } else { 0.0 };
+                    v[k] = self.c + if i == j { self.site(i, xi).2 } else { 0.0 };
                     k += 1;
                 }
             }
@@ -621,7 +605,7 @@ mod tests {
     fn a_full_hessian_takes_the_dense_factorisation() {
         let e = Full {
             n: 40,
-            s: 1.0,
+            site: Site::Quartic { s: 1.0 },
             c: 0.05,
         };
         let mut s = StableNewton::new(&e).unwrap();
@@ -630,7 +614,7 @@ mod tests {
             !s.is_stable(
                 &Full {
                     n: 40,
-                    s: 1.0,
+                    site: Site::Quartic { s: 1.0 },
                     c: 0.05
                 },
                 &[0.0; 40]
