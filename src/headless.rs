@@ -406,16 +406,20 @@ pub fn create_folder(out: &Path) -> Result<()> {
     std::fs::create_dir_all(out).map_err(Error::file("creating the folder", out))
 }
 
-/// A job that draws a progress bar on stderr once a run has taken more than a second.
+/// A job that draws a progress bar on stderr once a run has taken more than a second, at most
+/// ten times a second and only when its text changes (a long minimisation reports the same
+/// fraction at every iteration; a log file gets a line per change, not per report).
 pub fn progress_job(id: &str) -> Job {
     struct Bar {
         start: Instant,
         last: Option<Instant>,
+        text: String,
     }
     let id = id.to_string();
     let state = Mutex::new(Bar {
         start: Instant::now(),
         last: None,
+        text: String::new(),
     });
     Job::with_sink(move |event| {
         let JobEvent::Progress { fraction, message } = event else {
@@ -433,19 +437,23 @@ pub fn progress_job(id: &str) -> Job {
         {
             return;
         }
-        bar.last = Some(now);
         let width = 30;
         let filled = (fraction * width as f64).round() as usize;
-        let mut err = std::io::stderr().lock();
-        let _ = write!(
-            err,
-            "\r{id:<14} [{}{}] {:>3.0}% {:<40.40}",
+        let text = format!(
+            "{id:<14} [{}{}] {:>3.0}% {:<40.40}",
             "#".repeat(filled),
             " ".repeat(width - filled.min(width)),
             fraction * 100.0,
             message
         );
+        if text == bar.text {
+            return;
+        }
+        bar.last = Some(now);
+        let mut err = std::io::stderr().lock();
+        let _ = write!(err, "\r{text}");
         let _ = err.flush();
+        bar.text = text;
         PROGRESS_SHOWN.store(true, std::sync::atomic::Ordering::Relaxed);
     })
 }

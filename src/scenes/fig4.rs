@@ -70,7 +70,7 @@ crate::scene_params! {
         /// Start (and end) of the cycle in units of ζ0; beyond the pull-off separation.
         h_start_over_zeta0: f64 = 12.0, unit = "", range = Range::between(1.0, 200.0);
         /// Depth step in units of ζ0.
-        step_over_zeta0: f64 = 0.2, unit = "", range = Range::between(1.0e-3, 1.0);
+        step_over_zeta0: f64 = 0.2, unit = "", range = Range::between(0.02, 1.0);
         /// Ring width in units of b = ζ0²E*/w (0.25 and below: the contact edge does not hop from ring to ring).
         ring_width: f64 = 0.25, unit = "", range = Range::between(0.02, 2.0);
         /// Gauss points per interval of the interaction energy.
@@ -419,7 +419,7 @@ crate::scene_params! {
         /// Start (and end) of the cycles in units of ζ0; beyond every pull-off.
         h_start_over_zeta0: f64 = 25.0, unit = "", range = Range::between(1.0, 200.0);
         /// Depth step in units of ζ0.
-        step_over_zeta0: f64 = 0.25, unit = "", range = Range::between(1.0e-3, 1.0);
+        step_over_zeta0: f64 = 0.25, unit = "", range = Range::between(0.02, 1.0);
         /// Ring width in units of b = ζ0²E*/w.
         ring_width: f64 = 0.25, unit = "", range = Range::between(0.02, 2.0);
         /// Gauss points per interval of the interaction energy.

@@ -44,9 +44,10 @@ use crate::numerics::loading::Controlled;
 use crate::numerics::newton::Energy;
 use crate::numerics::pcg::dot_lanes;
 
-/// Largest number of rings a tip may have: the dense Hessian has N² entries (N = 3000 is
-/// 72 MB and a factorisation of about 9 Gflop).
-pub const MAX_RINGS: usize = 3000;
+/// Largest number of rings a tip may have. A cycle costs about 3 000 dense factorisations of
+/// N³/3 flops: 1.6 s of one core at 354 rings (Fig. 4.5), 8.9 s at 685, 31 s at 1 055; beyond
+/// this, a cycle would take minutes and the grid is refused, naming `ring_width`.
+pub const MAX_RINGS: usize = 1000;
 
 /// Parameters of the surface model of a tip (SI).
 #[derive(Debug, Clone, Copy, PartialEq)]

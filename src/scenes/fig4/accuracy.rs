@@ -46,7 +46,7 @@ crate::scene_params! {
         /// Start (and end) of the cycles in units of ζ0; beyond the pull-off separation.
         h_start_over_zeta0: f64 = 12.0, unit = "", range = Range::between(1.0, 200.0);
         /// Default depth step in units of ζ0 (the ring-width and Gauss-point sweeps run at it).
-        step_over_zeta0: f64 = 0.2, unit = "", range = Range::between(1.0e-3, 1.0);
+        step_over_zeta0: f64 = 0.2, unit = "", range = Range::between(0.02, 1.0);
         /// Default ring width in units of b = ζ0²E*/w (the step sweep runs at it).
         ring_width: f64 = 0.25, unit = "", range = Range::between(0.02, 2.0);
         /// Default Gauss points per interval of the interaction energy.
@@ -54,7 +54,7 @@ crate::scene_params! {
         /// Ring widths of the sweep in units of b (the finest is the reference).
         ring_widths: Vec<f64> = vec![2.0, 1.0, 0.5, 0.35, 0.25, 0.18, 0.125], unit = "", range = Range::between(0.02, 2.0);
         /// Depth steps of the sweep in units of ζ0 (the finest is the reference of the step sweep).
-        steps: Vec<f64> = vec![1.0, 0.5, 0.2, 0.1, 0.05], unit = "", range = Range::between(1.0e-3, 1.0);
+        steps: Vec<f64> = vec![1.0, 0.5, 0.2, 0.1, 0.05], unit = "", range = Range::between(0.02, 1.0);
         /// Other Gauss-point counts, run over the ring widths from the coarsest down to the default.
         quadrature_sweep: Vec<f64> = vec![1.0, 2.0], unit = "", range = Range::between(1.0, 16.0);
         /// Jumps are located to this depth tolerance, in units of ζ0.

@@ -43,10 +43,10 @@ crate::scene_params! {
     /// Parameters of scene fig4.3 (section 4.3). The tip and interaction are those of Fig. 4.5
     /// (R = 5 µm, C6 = 3, C12 = 1, σ = 1 nm, A_H = 2e-21 J); each μ_T sets E* through (1.8).
     pub struct Fig4_3Params {
-        /// Tabor parameters μ_T of the surface-model cycles (E* from (1.8) at fixed R, w, ζ0).
-        tabor_parameters: Vec<f64> = vec![0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0], unit = "", range = Range::between(0.05, 12.0);
+        /// Tabor parameters μ_T of the surface-model cycles (E* from (1.8) at fixed R, w, ζ0; up to 8, where a cycle takes 10 s: rings grow as μ_T², its cost as μ_T⁶).
+        tabor_parameters: Vec<f64> = vec![0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0], unit = "", range = Range::between(0.05, 8.0);
         /// μ_T of panel (b), the profile just before pull-in (the text: 5); also run in (a).
-        error_tabor_parameter: f64 = 5.0, unit = "", range = Range::between(0.3, 12.0);
+        error_tabor_parameter: f64 = 5.0, unit = "", range = Range::between(0.3, 8.0);
         /// Largest μ_T of the (4.23) curves.
         curve_tabor_max: f64 = 10.0, unit = "", range = Range::between(0.3, 100.0);
         /// Radius of curvature R of the tip [m].
@@ -62,7 +62,7 @@ crate::scene_params! {
         /// Deepest depth of the cycles in units of ζ0 (shallow: a little past the pull-in).
         h_min_over_zeta0: f64 = -2.0, unit = "", range = Range::between(-50.0, 0.0);
         /// Depth step in units of ζ0.
-        step_over_zeta0: f64 = 0.2, unit = "", range = Range::between(1.0e-3, 1.0);
+        step_over_zeta0: f64 = 0.2, unit = "", range = Range::between(0.02, 1.0);
         /// Jumps are located to this depth tolerance, in units of ζ0 (the gap before a jump is read there).
         refine_over_zeta0: f64 = 1.0e-4, unit = "", range = Range::between(1.0e-7, 0.1);
         /// Widest ring in units of b = ζ0²E*/w (0.25: the contact edge does not hop from ring to ring).
@@ -110,6 +110,7 @@ fn tip_at(lj: &LennardJones, p: &Fig4_3Params, mu: f64) -> Result<Tip> {
     let zeta0 = lj.zeta0();
     let b = zeta0 * zeta0 * modulus / lj.work_of_adhesion();
     let zone = (2.0 * p.radius * zeta0).sqrt();
+    let by_zone = zone / (p.rings_per_zone as f64 * b);
     let i = lj.params();
     let mut params = TipParams {
         radius: p.radius,
@@ -119,7 +120,7 @@ fn tip_at(lj: &LennardJones, p: &Fig4_3Params, mu: f64) -> Result<Tip> {
         sigma: i.sigma,
         hamaker: i.hamaker,
         amplitude: 0.0,
-        ring_width: p.ring_width.min(zone / (p.rings_per_zone as f64 * b)),
+        ring_width: p.ring_width.min(by_zone),
         quadrature_points: p.quadrature_points,
         ..TipParams::default()
     };
@@ -127,7 +128,17 @@ fn tip_at(lj: &LennardJones, p: &Fig4_3Params, mu: f64) -> Result<Tip> {
     params.fine_radius = params
         .fine_radius_for_depth(p.h_min_over_zeta0 * zeta0)?
         .min(2.0 * reach_radius);
-    Tip::new(&params)
+    // A grid of too many rings is named after the parameter that set its width.
+    Tip::new(&params).map_err(|e| match e {
+        Error::InvalidParameter { name, reason, .. } if name == "ring_width" && by_zone < p.ring_width => {
+            Error::invalid(
+                "rings_per_zone",
+                p.rings_per_zone,
+                reason.replace("a wider ring", "fewer rings"),
+            )
+        }
+        e => e,
+    })
 }
 
 /// A shallow cycle of the tip of Tabor parameter `mu`: from (2μ_T + 5) ζ0 apart to
@@ -142,6 +153,18 @@ fn cycle_at(
     progress: impl FnMut(f64) -> Result<()>,
 ) -> Result<(Tip, TipCycle)> {
     let tip = tip_at(lj, p, mu)?;
+    let cycle = cycle_of(&tip, lj, p, mu, progress)?;
+    Ok((tip, cycle))
+}
+
+/// The cycle of [`cycle_at`] on a tip already built by [`tip_at`].
+fn cycle_of(
+    tip: &Tip,
+    lj: &LennardJones,
+    p: &Fig4_3Params,
+    mu: f64,
+    progress: impl FnMut(f64) -> Result<()>,
+) -> Result<TipCycle> {
     let zeta0 = lj.zeta0();
     let opts = CycleOptions {
         h_start: (START_PER_TABOR * mu + START_OFFSET) * zeta0,
@@ -152,8 +175,7 @@ fn cycle_at(
         keep_profiles: false,
         unload_to: None,
     };
-    let cycle = run_cycle(&tip, &opts, progress)?;
-    Ok((tip, cycle))
+    run_cycle(tip, &opts, progress)
 }
 
 /// The gap at the apex g(0) of a state, in units of ζ0: the critical separation z_c of
@@ -536,20 +558,27 @@ fn sweep(lj: &LennardJones, p: &Fig4_3Params, job: &Job) -> Result<Sweep> {
         };
         job.progress(0.9 * mean, "cycles");
     };
+    // Every tip first: a grid the model refuses (too many rings at the largest μ_T) is an
+    // error at once, not after the other cycles have run.
+    let tips: Vec<Tip> = mus
+        .par_iter()
+        .map(|&mu| tip_at(lj, p, mu))
+        .collect::<Result<_>>()?;
     let mut runs: Vec<Result<(Onsets, Option<ParabolaError>)>> = mus
         .par_iter()
+        .zip(&tips)
         .enumerate()
         .rev()
-        .map(|(k, &mu)| {
+        .map(|(k, (&mu, tip))| {
             job.check()?;
-            let (tip, cycle) = cycle_at(lj, p, mu, |f| {
+            let cycle = cycle_of(tip, lj, p, mu, |f| {
                 report(k, f);
                 job.check()
             })?;
             let profile = same_tabor(mu, p.error_tabor_parameter)
-                .then(|| pull_in(&cycle).map(|s| parabola_error(&tip, s)))
+                .then(|| pull_in(&cycle).map(|s| parabola_error(tip, s)))
                 .flatten();
-            Ok((onsets(mu, &tip, &cycle), profile))
+            Ok((onsets(mu, tip, &cycle), profile))
         })
         .collect();
     runs.reverse();
