@@ -214,6 +214,9 @@ impl Current<'_> {
 ///
 /// # Panics
 /// If `x.len()` differs from the energy's dimension.
+// Eight inputs of distinct roles: the model and its solver, the start (λ, x), the targets,
+// the options, and the two callbacks (every Newton iteration, every accepted state).
+#[allow(clippy::too_many_arguments)]
 pub fn follow<C: Controlled>(
     model: &C,
     solver: &mut StableNewton,

@@ -112,7 +112,7 @@ pub(super) fn dense_layout(n: usize, pattern: &[(usize, usize)], n_pattern: usiz
 /// Sum `values` into the lower triangle of the column-major n × n matrix `a` at the positions
 /// `layout` (converted by `cast`) and factorise it in place, sequentially; whether it is
 /// positive definite (in the precision of `T`).
-fn dense_llt<T: faer::traits::RealField + Copy>(
+fn dense_llt<T: faer::traits::RealField + Copy + std::ops::AddAssign>(
     a: &mut Vec<T>,
     n: usize,
     layout: &[usize],
@@ -122,7 +122,7 @@ fn dense_llt<T: faer::traits::RealField + Copy>(
     a.clear();
     a.resize(n * n, T::zero_impl());
     for (&k, &v) in layout.iter().zip(values) {
-        a[k] = a[k] + cast(v);
+        a[k] += cast(v);
     }
     let par = Par::Seq;
     let params: Spec<LltParams, T> = Default::default();
