@@ -357,6 +357,18 @@ impl Frame {
 fn ipt(p: (f64, f64)) -> (i32, i32) {
     (p.0.round() as i32, p.1.round() as i32)
 }
+/// The outer edges of the cells centred on the grid values `g` (half a spacing beyond the first
+/// and the last, geometric on a log axis); `None` for fewer than two values.
+fn cell_edges(g: &[f64], scale: Scale) -> Option<(f64, f64)> {
+    let (&a, &b) = (g.first()?, g.last()?);
+    let (&a1, &b1) = (g.get(1)?, g.get(g.len() - 2)?);
+    match scale {
+        Scale::Linear => Some((a - 0.5 * (a1 - a), b + 0.5 * (b - b1))),
+        Scale::Log if a > 0.0 && a1 > 0.0 && b1 > 0.0 => Some((a * (a / a1).sqrt(), b * (b / b1).sqrt())),
+        Scale::Log => None,
+    }
+}
+
 /// The plotting frame of a panel of size `w` × `h` pixels before the legend is placed, and
 /// whether it has a colour bar; `None` when there is nothing to draw.
 fn panel_frame(panel: &Panel, w: f64, h: f64, m: &Metrics) -> Option<(Frame, bool, [f64; 4])> {
@@ -374,14 +386,23 @@ fn panel_frame(panel: &Panel, w: f64, h: f64, m: &Metrics) -> Option<(Frame, boo
         h - 66.0 * m.s,
     );
     let ((xlo, xhi), (ylo, yhi)) = panel.data_bounds()?;
+    // A colour map fills its frame (as far as its cells reach), unless something drawn over
+    // it reaches beyond; other panels get margins.
+    let filled = panel.field.as_ref().filter(|_| has_bar);
+    let auto = |lo: f64, hi: f64, scale: Scale, grid: Option<&[f64]>| match grid
+        .and_then(|g| cell_edges(g, scale))
+    {
+        Some((a, b)) if lo >= a && hi <= b => (a, b),
+        _ => padded_range(lo, hi, scale),
+    };
     let (xa, xb) = panel
         .x
         .range
-        .unwrap_or_else(|| padded_range(xlo, xhi, panel.x.scale));
+        .unwrap_or_else(|| auto(xlo, xhi, panel.x.scale, filled.map(|f| f.x.as_slice())));
     let (ya, yb) = panel
         .y
         .range
-        .unwrap_or_else(|| padded_range(ylo, yhi, panel.y.scale));
+        .unwrap_or_else(|| auto(ylo, yhi, panel.y.scale, filled.map(|f| f.y.as_slice())));
     let xlog = panel.x.scale == Scale::Log;
     let ylog = panel.y.scale == Scale::Log;
     let tr = |v: f64, log: bool| if log { v.max(1e-300).log10() } else { v };
@@ -490,7 +511,8 @@ fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -
     }
 
     if let Some(field) = &panel.field {
-        draw_contours(area, &frame, field, bar_range.is_some(), m)?;
+        let boxes: Vec<_> = legend_boxes.iter().map(|b| b.rect()).collect();
+        draw_contours(area, &frame, field, bar_range.is_some(), &boxes, m)?;
     }
 
     // Series.
@@ -572,19 +594,21 @@ fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -
 
 /// The contour lines of a field, each level labelled once at the middle of its longest line;
 /// the highlighted levels (a measured value) thicker, in red, with their own label. A label
-/// that would overlap one already drawn is left out.
+/// that would overlap one already drawn, or the legend's boxes `covered` (left, top, right,
+/// bottom), is left out.
 fn draw_contours<DB: DrawingBackend>(
     area: &Area<DB>,
     frame: &Frame,
     field: &crate::figure::Field,
     over_colours: bool,
+    covered: &[(f64, f64, f64, f64)],
     m: &Metrics,
 ) -> Draw<()> {
     let highlight: Vec<f64> = field.highlight.iter().map(|(l, _)| *l).collect();
     let mut levels = field.contour_levels();
     // Highlighted levels label first: their labels win where two would overlap.
     levels.sort_by_key(|l| !highlight.contains(l));
-    let mut taken: Vec<(f64, f64, f64, f64)> = Vec::new();
+    let mut taken: Vec<(f64, f64, f64, f64)> = covered.to_vec();
     for level in levels {
         let emphasised = highlight.contains(&level);
         let color = if emphasised {
@@ -607,14 +631,15 @@ fn draw_contours<DB: DrawingBackend>(
         let Some(p) = frame.map(line[line.len() / 2]).filter(|p| frame.inside(*p)) else {
             continue;
         };
-        let text = field
-            .highlight
-            .iter()
-            .find(|(l, _)| *l == level)
-            .map_or_else(|| super::axes::format_number(level), |(_, t)| t.clone());
+        let text = field.highlight.iter().find(|(l, _)| *l == level).map_or_else(
+            || tick_markup(&super::axes::format_number(level)),
+            |(_, t)| t.clone(),
+        );
         let label = Label::new(&text, m.font(if emphasised { 13.0 } else { 11.0 })).color(color);
         let label = if emphasised { label.bold() } else { label };
-        let (x, y) = (p.0 + 3.0 * m.s, p.1 - 2.0 * m.s);
+        // Right of the point, or left of it where the text would leave the frame.
+        let x = (p.0 + 3.0 * m.s).min(frame.x1 - label.width() - 3.0 * m.s);
+        let y = (p.1 - 2.0 * m.s).max(frame.y0 + 1.2 * label.size);
         let bbox = (x, y - 1.1 * label.size, x + label.width(), y);
         let overlaps =
             |b: &(f64, f64, f64, f64)| bbox.0 < b.2 && b.0 < bbox.2 && bbox.1 < b.3 && b.1 < bbox.3;
@@ -622,6 +647,17 @@ fn draw_contours<DB: DrawingBackend>(
             continue;
         }
         taken.push(bbox);
+        if emphasised && over_colours {
+            // A light ground keeps the measured level's label readable over the dark map.
+            let pad = 2.0 * m.s;
+            let ground = [
+                (bbox.0 - pad, bbox.1 - pad),
+                (bbox.2 + pad, bbox.1 - pad),
+                (bbox.2 + pad, bbox.3 + pad),
+                (bbox.0 - pad, bbox.3 + pad),
+            ];
+            fill_polygon(area, &ground, WHITE.mix(0.8), m)?;
+        }
         draw_label(area, label, (x, y), (Anchor::Start, Baseline::Bottom), m)?;
     }
     Ok(())

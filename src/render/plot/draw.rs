@@ -379,20 +379,35 @@ pub(super) fn draw_pixel_line<DB: DrawingBackend>(
         _ => 2.0 * m.s,
     };
     let c = color.to_rgba();
+    // The anti-aliased strokes have round caps, which lengthen each dash by the line's width:
+    // the dashes are shortened by as much, so that the pattern looks as specified (dots of the
+    // dotted style become round dots).
+    let pattern = |on: f64, off: f64| {
+        let (on, off) = (on * m.s, off * m.s);
+        if m.aa {
+            let shown = (on - width).max(0.05 * m.s);
+            (shown, off + on - shown)
+        } else {
+            (on, off)
+        }
+    };
     match style {
         Style::Stable | Style::Contour => draw_polyline(area, run, c, width, m)?,
         Style::Unstable | Style::Dashed => {
-            for d in dash(run, m.s * 9.0, m.s * 6.0) {
+            let (on, off) = pattern(9.0, 6.0);
+            for d in dash(run, on, off) {
                 draw_polyline(area, &d, c, width, m)?;
             }
         }
         Style::Reference => {
-            for d in dash(run, m.s * 2.5, m.s * 4.0) {
+            let (on, off) = pattern(2.5, 4.0);
+            for d in dash(run, on, off) {
                 draw_polyline(area, &d, c, width, m)?;
             }
         }
         Style::Jump => {
-            for d in dash(run, m.s * 4.0, m.s * 3.0) {
+            let (on, off) = pattern(4.0, 3.0);
+            for d in dash(run, on, off) {
                 draw_polyline(area, &d, c, width, m)?;
             }
             let n = run.len();

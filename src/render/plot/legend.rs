@@ -60,6 +60,11 @@ impl LegendPlan {
     pub(super) fn bottom(&self) -> f64 {
         self.y + self.h
     }
+
+    /// The box: left, top, right, bottom (pixels of the panel's area).
+    pub(super) fn rect(&self) -> (f64, f64, f64, f64) {
+        (self.x, self.y, self.x + self.w, self.y + self.h)
+    }
 }
 
 /// The legend entries of a panel: one per series name, region name and marker name.
