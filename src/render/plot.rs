@@ -880,12 +880,11 @@ mod tests {
         {
             let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
             let m = Metrics::png(1.0);
-            let l = crate::render::text::layout(text, 40.0, false);
             // Baseline at y = 60: anchor the top at 60 - ascent.
             draw_label(
                 &root,
                 Label::new(text, 40.0),
-                (10.0, 60.0 - l.ascent),
+                (10.0, 60.0 - crate::render::text::ASCENT * 40.0),
                 (Anchor::Start, Baseline::Top),
                 &m,
             )
@@ -994,6 +993,13 @@ mod tests {
         );
         assert!(!svg.contains('⁻'));
         assert!(svg.contains("font-weight=\"bold\"") && svg.contains("font-size=\"70%\">−7</tspan>"));
+        // The x tick labels, with and without a superscript, share one baseline.
+        let ys: std::collections::BTreeSet<&str> = svg
+            .lines()
+            .filter(|l| l.contains("text-anchor=\"middle\"") && l.contains("<tspan>10</tspan>"))
+            .filter_map(|l| l.split("y=\"").nth(1)?.split('"').next())
+            .collect();
+        assert_eq!(ys.len(), 1, "{ys:?}");
         // No text is left to the backend's own font rendering.
         assert_eq!(
             svg.matches("<text").count(),

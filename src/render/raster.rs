@@ -100,12 +100,43 @@ fn segment_distance(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
     (qx * qx + qy * qy).sqrt()
 }
 
+/// Largest bounding box (pixels) of one accumulated piece of a stroke: a long curve across a
+/// figure is split into pieces of about this size, so that the buffer cleared for each stays
+/// small (the pieces share their end points; only the pixels of those joins are blended twice).
+const PIECE_AREA: f64 = 65_536.0;
+
 /// Coverage of a polyline of `width` pixels with round caps and joins: `put(x, y, coverage)`
-/// once per covered pixel.
-pub fn stroke(points: &[(f64, f64)], width: f64, put: impl FnMut(i32, i32, f64)) {
+/// once per covered pixel (once per piece at the joins of the pieces a long polyline is cut
+/// into, see [`PIECE_AREA`]).
+pub fn stroke(points: &[(f64, f64)], width: f64, mut put: impl FnMut(i32, i32, f64)) {
     if points.is_empty() || width.is_nan() || width <= 0.0 {
         return;
     }
+    let margin = 0.5 * width + 2.0;
+    let mut start = 0;
+    while start + 1 < points.len() {
+        // Grow the piece while its padded bounding box stays small (at least one segment).
+        let mut end = start + 1;
+        let (mut b0, mut b1, mut b2, mut b3) = bounds(&points[start..=end]);
+        while end + 1 < points.len() {
+            let q = points[end + 1];
+            let (n0, n1, n2, n3) = (b0.min(q.0), b1.max(q.0), b2.min(q.1), b3.max(q.1));
+            if (n1 - n0 + 2.0 * margin) * (n3 - n2 + 2.0 * margin) > PIECE_AREA {
+                break;
+            }
+            (b0, b1, b2, b3) = (n0, n1, n2, n3);
+            end += 1;
+        }
+        stroke_piece(&points[start..=end], width, &mut put);
+        start = end;
+    }
+    if points.len() == 1 {
+        stroke_piece(points, width, &mut put);
+    }
+}
+
+/// [`stroke`] of one piece, accumulated in one buffer.
+fn stroke_piece(points: &[(f64, f64)], width: f64, put: impl FnMut(i32, i32, f64)) {
     let r = 0.5 * width;
     let Some(mut acc) = Accumulator::new(bounds(points), r + 2.0) else {
         return;
@@ -290,6 +321,25 @@ mod tests {
         // Intermediate levels along the edges: the line is anti-aliased.
         let partial = m.values().filter(|&&c| c > 0.05 && c < 0.95).count();
         assert!(partial > 40, "{partial}");
+    }
+
+    #[test]
+    fn a_long_curve_cut_into_pieces_covers_its_area() {
+        // A sine across 2 000 px, 4 px wide: far larger than one piece's buffer.
+        let pts: Vec<(f64, f64)> = (0..=2000)
+            .map(|i| {
+                let x = f64::from(i);
+                (x, 500.0 + 300.0 * (x / 200.0).sin())
+            })
+            .collect();
+        let length: f64 = pts
+            .windows(2)
+            .map(|w| (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1))
+            .sum();
+        let m = collect(|put| stroke(&pts, 4.0, put));
+        let area: f64 = m.values().sum();
+        let exact = 4.0 * length + std::f64::consts::PI * 4.0;
+        assert!((area - exact).abs() < 0.01 * exact, "{area} vs {exact}");
     }
 
     #[test]

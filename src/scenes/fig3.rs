@@ -276,11 +276,16 @@ impl Scene for Fig3_4 {
                 depth - 0.05 * (second.0 - depth),
                 second.0 + 0.25 * (second.0 - depth),
             );
+            let loss = losses_a[p.chis_a.iter().position(|&c| c == last.1).unwrap_or(0)];
             fig.note(format!(
                 "(a): the curve chi = {} starts at Z0, h/R = {:.3}, outside the frame; its pull-in and pull-off lie there (loss {:.2e})",
+                last.1, last.0, loss
+            ));
+            // On the figure too: the reader sees the curve run out of the frame.
+            a.annotate(format!(
+                "χ = {}: the interaction starts at h/R = {}, right of the frame; its pull-in and pull-off are there",
                 last.1,
-                last.0,
-                losses_a[p.chis_a.iter().position(|&c| c == last.1).unwrap_or(0)]
+                crate::figure::number(last.0, 3)
             ));
         }
         fig.panels.push(a);

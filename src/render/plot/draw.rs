@@ -25,14 +25,15 @@ pub(super) enum Anchor {
     End,
 }
 
-/// Vertical anchor of a label: where `at` lies across the text.
+/// Vertical anchor of a label: where `at` lies across a line of plain text of its size
+/// ([`crate::render::text::ASCENT`], [`crate::render::text::DESCENT`]).
 #[derive(Debug, Clone, Copy)]
 pub(super) enum Baseline {
-    /// At the top of the text's ascent.
+    /// At the top of the ascent.
     Top,
     /// Half-way between ascent and descent.
     Center,
-    /// At the bottom of its descent.
+    /// At the bottom of the descent.
     Bottom,
 }
 
@@ -112,10 +113,16 @@ pub(super) fn draw_label<DB: DrawingBackend>(
         Anchor::Middle => -0.5 * l.width,
         Anchor::End => -l.width,
     };
+    // On the extent of plain text of this size, not of this text: labels with and without
+    // sub- or superscripts (10^{−2} beside 10) share their baseline.
+    let (ascent, descent) = (
+        crate::render::text::ASCENT * size,
+        crate::render::text::DESCENT * size,
+    );
     let base = match anchor.1 {
-        Baseline::Top => l.ascent,
-        Baseline::Center => 0.5 * (l.ascent - l.descent),
-        Baseline::Bottom => -l.descent,
+        Baseline::Top => ascent,
+        Baseline::Center => 0.5 * (ascent - descent),
+        Baseline::Bottom => -descent,
     };
     // Text coordinates (u along the text, v down from the baseline) to panel pixels.
     let map = |u: f64, v: f64| {

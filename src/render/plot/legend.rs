@@ -140,8 +140,8 @@ pub(super) fn covered_points(panel: &Panel, frame: &Frame) -> Vec<(f64, f64)> {
 /// the same box; when that box fits nowhere, the legend and the notes are placed as two boxes
 /// (the notes' box also clear of the legend's); failing that, the notes are written under the
 /// panel, below the x-axis title (the figure grows to hold them), and the legend alone placed
-/// in the frame. When even that fails, one box goes outside the frame on the right (the frame
-/// narrows to make room).
+/// in the frame. When even that fails, the legend goes outside the frame on the right (the
+/// frame narrows to make room) and the notes under the panel.
 /// Returns the frame to draw in and the boxes.
 pub(super) fn plan_legend(
     panel: &Panel,
@@ -225,35 +225,47 @@ pub(super) fn plan_legend(
     {
         return (frame, vec![legend, note_box]);
     }
-    if !notes.is_empty() {
-        // Under the panel, across the frame's width (the panel grows to hold them).
+    // The notes written under the panel, across the frame's width (the panel grows to hold them).
+    let footer_under = |frame: &Frame| -> Option<LegendPlan> {
         let lines: Vec<(String, Swatch)> = panel
             .notes
             .iter()
             .flat_map(|n| wrap(n, font, frame.x1 - frame.x0))
             .map(|line| (line, Swatch::Note))
             .collect();
+        let mut f = boxed(lines)?;
+        f.footer = true;
+        f.x = frame.x0 - pad;
+        f.y = frame.y1 + FOOTER_OFFSET * m.s;
+        Some(f)
+    };
+    if !notes.is_empty() {
         let legend = if entries.is_empty() {
             Some(None)
         } else {
             boxed(entries.clone()).and_then(|plan| place(plan, None).ok().map(Some))
         };
-        if let (Some(legend), Some(mut footer)) = (legend, boxed(lines)) {
-            footer.footer = true;
-            footer.x = frame.x0 - pad;
-            footer.y = frame.y1 + FOOTER_OFFSET * m.s;
+        if let (Some(legend), Some(footer)) = (legend, footer_under(&frame)) {
             return (frame, legend.into_iter().chain([footer]).collect());
         }
     }
-    // Outside on the right, beyond the colour bar if there is one.
-    let mut plan = combined;
+    // Outside on the right, beyond the colour bar if there is one; the notes, if any, under the
+    // panel, so that the frame narrows only by the legend's width.
+    let (mut plan, footer) = match (boxed(entries), notes.is_empty()) {
+        (Some(legend), false) => (legend, true),
+        _ => (combined, false),
+    };
     let x = panel_w - plan.w - 6.0 * m.s;
     let right_margin = if has_bar { 110.0 } else { 16.0 } * m.s;
     let x1 = (x - right_margin).max(frame.x0 + 0.3 * (frame.x1 - frame.x0));
     let frame = Frame { x1, ..frame };
     plan.x = x;
     plan.y = frame.y0;
-    (frame, vec![plan])
+    let mut boxes = vec![plan];
+    if footer {
+        boxes.extend(footer_under(&frame));
+    }
+    (frame, boxes)
 }
 
 /// The first place for a box of `size` inside the frame that holds none of `points` (with
