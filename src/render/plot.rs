@@ -1,10 +1,10 @@
 //! PNG and SVG figures through plotters, drawn in pixel space so that both backends give the
 //! same picture: axes with ticks and units, log scales, solid/dashed/dotted lines, instability
 //! markers, shaded loops, arrows, heat maps with a colour bar, contour lines, and a legend placed
-//! where it covers no data ([`legend`]).
+//! where it covers no data (`plot/legend.rs`).
 //!
 //! In PNG every line, marker and fill is anti-aliased ([`crate::render::raster`], through
-//! [`draw`]) and every text (titles, axis and tick labels, legends, colour-bar and contour
+//! `plot/draw.rs`) and every text (titles, axis and tick labels, legends, colour-bar and contour
 //! labels) is laid out in the math markup of [`crate::render::text`] with the embedded DejaVu
 //! Sans (kerned, sub- and superscripts, Greek) and rasterised with anti-aliased coverage; in SVG
 //! the same texts are `<text>` elements with `<tspan>`s. Figures render on machines without

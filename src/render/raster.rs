@@ -107,7 +107,7 @@ const PIECE_AREA: f64 = 65_536.0;
 
 /// Coverage of a polyline of `width` pixels with round caps and joins: `put(x, y, coverage)`
 /// once per covered pixel (once per piece at the joins of the pieces a long polyline is cut
-/// into, see [`PIECE_AREA`]).
+/// into, see `PIECE_AREA`).
 pub fn stroke(points: &[(f64, f64)], width: f64, mut put: impl FnMut(i32, i32, f64)) {
     if points.is_empty() || width.is_nan() || width <= 0.0 {
         return;
