@@ -473,6 +473,53 @@ impl Field {
     }
 }
 
+/// Where two curves count as one in the drawing, for [`Panel::mark_coinciding`]: within this
+/// fraction of the panel's span on each axis, about a pixel of a PNG's frame.
+pub const COINCIDENCE_TOL: f64 = 1.5e-3;
+
+/// A number for text drawn on a figure (notes, legends): `digits` significant digits (a number
+/// with more integer digits keeps them all), trailing zeros kept (they state the precision),
+/// and the typographic minus sign.
+pub fn number(v: f64, digits: usize) -> String {
+    if !v.is_finite() || v == 0.0 {
+        return format!("{v}");
+    }
+    let magnitude = v.abs().log10().floor() as i64;
+    let decimals = (digits as i64 - 1 - magnitude).max(0) as usize;
+    let rounded = format!("{v:.decimals$}");
+    // Rounding up into the next decade (9.9996 -> 10.000) gives one digit too many.
+    let text = if rounded
+        .trim_start_matches('-')
+        .replace('.', "")
+        .trim_start_matches('0')
+        .len()
+        > digits
+        && decimals > 0
+    {
+        format!("{v:.prec$}", prec = decimals - 1)
+    } else {
+        rounded
+    };
+    text.replace('-', "−")
+}
+
+/// Distance from `p` to the polyline `line`.
+fn polyline_distance(p: (f64, f64), line: &[(f64, f64)]) -> f64 {
+    line.windows(2)
+        .map(|w| {
+            let (a, b) = (w[0], w[1]);
+            let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+            let len2 = dx * dx + dy * dy;
+            let t = if len2 > 0.0 {
+                (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            (a.0 + t * dx - p.0).hypot(a.1 + t * dy - p.1)
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
 /// Join line segments sharing end points into polylines.
 fn join_segments(mut segments: Vec<((f64, f64), (f64, f64))>) -> Vec<Vec<(f64, f64)>> {
     let close = |a: (f64, f64), b: (f64, f64)| {
@@ -552,6 +599,10 @@ pub struct Panel {
     /// Draw one data unit as long on both axes (maps of a square surface stay square).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub equal_aspect: bool,
+    /// Short remarks drawn on the panel, under its legend entries (what the figure finds where
+    /// it differs from the text, what its symbols mean).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub notes: Vec<String>,
 }
 
 impl Panel {
@@ -569,6 +620,7 @@ impl Panel {
             field: None,
             legend: Legend::Auto,
             equal_aspect: false,
+            notes: Vec::new(),
         }
     }
 
@@ -584,6 +636,12 @@ impl Panel {
     #[must_use]
     pub fn with_equal_aspect(mut self) -> Self {
         self.equal_aspect = true;
+        self
+    }
+
+    /// Add a note drawn on the panel (with the legend).
+    pub fn annotate(&mut self, text: impl Into<String>) -> &mut Self {
+        self.notes.push(text.into());
         self
     }
 
@@ -676,6 +734,106 @@ impl Panel {
         })
     }
 
+    /// Make solid curves that lie on an earlier solid curve tell apart: where a later series
+    /// runs along an earlier one of another name (every point within `tol` of it, in units of
+    /// the panel's data span on each axis, over at least a twentieth of the span), that part
+    /// is split off as a dashed series in the same colour, named `"<later>: coincides with
+    /// <earlier>"` (the earlier name up to its first bracket), so the curve under it shows
+    /// between the dashes and the legend says why. Returns the names of the split-off series.
+    ///
+    /// Colours are fixed first (as [`Panel::series_colors`] assigns them), so the figure's
+    /// other colours stay as they were. Only where the curves coincide is anything changed.
+    pub fn mark_coinciding(&mut self, tol: f64) -> Vec<String> {
+        let Some(((x0, x1), (y0, y1))) = self.data_bounds() else {
+            return Vec::new();
+        };
+        let (sx, sy) = ((x1 - x0).max(f64::MIN_POSITIVE), (y1 - y0).max(f64::MIN_POSITIVE));
+        let norm = |p: (f64, f64)| (p.0 / sx, p.1 / sy);
+        let colors = self.series_colors();
+        for (s, c) in self.series.iter_mut().zip(colors) {
+            s.color = Some(c);
+        }
+        let mut added = Vec::new();
+        let mut k = 0;
+        while k < self.series.len() {
+            let top = &self.series[k];
+            if top.style != Style::Stable || top.points.len() < 2 {
+                k += 1;
+                continue;
+            }
+            let under = self.series[..k].iter().find_map(|s| {
+                let solid = s.style == Style::Stable && s.name != top.name && s.points.len() > 1;
+                let on = solid.then(|| {
+                    let line: Vec<(f64, f64)> = s.points.iter().map(|&p| norm(p)).collect();
+                    top.points
+                        .iter()
+                        .map(|&p| polyline_distance(norm(p), &line) <= tol)
+                        .collect::<Vec<bool>>()
+                })?;
+                Some((s.name.clone(), on))
+            });
+            let Some((under_name, on)) = under else {
+                k += 1;
+                continue;
+            };
+            // Runs of points on the curve below, long enough to be seen as one line.
+            let mut runs: Vec<(usize, usize)> = Vec::new();
+            let mut i = 0;
+            while i < on.len() {
+                if !on[i] {
+                    i += 1;
+                    continue;
+                }
+                let j = (i..on.len()).find(|&j| !on[j]).unwrap_or(on.len());
+                let length: f64 = top.points[i..j]
+                    .windows(2)
+                    .map(|w| {
+                        let (a, b) = (norm(w[0]), norm(w[1]));
+                        (b.0 - a.0).hypot(b.1 - a.1)
+                    })
+                    .sum();
+                if j - i >= 2 && length >= 0.05 {
+                    runs.push((i, j));
+                }
+                i = j;
+            }
+            if runs.is_empty() {
+                k += 1;
+                continue;
+            }
+            let short = under_name.split(" (").next().unwrap_or(&under_name).trim();
+            let name = format!("{}: coincides with {short}", top.name);
+            let (points, color) = (top.points.clone(), top.color);
+            // The parts off the curve below stay solid (sharing their end points with the
+            // dashed parts, so the line stays unbroken); the parts on it become dashed.
+            let mut pieces: Vec<Series> = Vec::new();
+            let mut start = 0;
+            for &(i, j) in &runs {
+                if i > start {
+                    let mut s = self.series[k].clone();
+                    s.points = points[start..=i].to_vec();
+                    pieces.push(s);
+                }
+                let mut dashed = Series::new(name.clone(), Style::Dashed, points[i..j].to_vec());
+                dashed.color = color;
+                pieces.push(dashed);
+                start = j - 1;
+            }
+            if start + 1 < points.len() {
+                let mut s = self.series[k].clone();
+                s.points = points[start..].to_vec();
+                pieces.push(s);
+            }
+            let n = pieces.len();
+            self.series.splice(k..=k, pieces);
+            if !added.contains(&name) {
+                added.push(name);
+            }
+            k += n;
+        }
+        added
+    }
+
     /// Bounding box of everything drawn, in data units, honouring fixed ranges and skipping
     /// non-positive values on log axes. `None` when there is nothing to draw.
     pub fn data_bounds(&self) -> Option<((f64, f64), (f64, f64))> {
@@ -736,6 +894,52 @@ mod tests {
         p.line("JKR", Style::Unstable, vec![(1.0, 1.0)]);
         p.line("DMT", Style::Stable, vec![]);
         assert_eq!(p.series_colors(), vec![1, 0, 1, 2]);
+    }
+
+    #[test]
+    fn numbers_on_figures_have_their_significant_digits_and_a_true_minus() {
+        assert_eq!(number(-14.54272352431763, 4), "−14.54");
+        assert_eq!(number(-282.6612192302118, 4), "−282.7");
+        assert_eq!(number(0.44028227, 3), "0.440");
+        assert_eq!(number(9.9996, 4), "10.00");
+        assert_eq!(number(15.260879, 3), "15.3");
+        // Whole numbers keep their integer digits.
+        assert_eq!(number(1234.6, 2), "1235");
+    }
+
+    #[test]
+    fn a_curve_on_another_is_dashed_only_where_they_coincide() {
+        let parabola = |a: f64, b: f64, n: usize, dy: f64| -> Vec<(f64, f64)> {
+            (0..n)
+                .map(|k| a + (b - a) * k as f64 / (n - 1) as f64)
+                .map(|x| (x, x * x + dy))
+                .collect()
+        };
+        let mut p = Panel::new(Axis::linear("h", ""), Axis::linear("P", ""));
+        p.line("model (2.31)", Style::Stable, parabola(0.5, 2.0, 300, 0.0));
+        p.line("JKR", Style::Stable, parabola(0.0, 2.0, 170, 0.0));
+        // Parallel but 5 % of the span away: not the same curve.
+        p.line("shifted", Style::Stable, parabola(0.0, 2.0, 50, 0.2));
+        let colors = p.series_colors();
+        let added = p.mark_coinciding(1.5e-3);
+        assert_eq!(added, vec!["JKR: coincides with model".to_string()]);
+        let dashed: Vec<&Series> = p.series.iter().filter(|s| s.style == Style::Dashed).collect();
+        assert_eq!(dashed.len(), 1);
+        // The dashed part is exactly the part over the model's range, in the JKR colour.
+        let xs: Vec<f64> = dashed[0].points.iter().map(|q| q.0).collect();
+        assert!(
+            xs[0] >= 0.5 - 2.0 / 169.0 && xs[0] <= 0.5 + 2.0 / 169.0,
+            "{}",
+            xs[0]
+        );
+        assert!((xs[xs.len() - 1] - 2.0).abs() < 1e-12);
+        assert_eq!(dashed[0].color, Some(colors[1]));
+        // The JKR part below x = 0.5 stays solid and joins the dashed part; nothing else moved.
+        let solid: Vec<&Series> = p.series.iter().filter(|s| s.name == "JKR").collect();
+        assert_eq!(solid.len(), 1);
+        assert_eq!(solid[0].points.last(), dashed[0].points.first());
+        let shifted = p.series.iter().find(|s| s.name == "shifted").unwrap();
+        assert_eq!((shifted.style, shifted.color), (Style::Stable, Some(colors[2])));
     }
 
     #[test]

@@ -770,6 +770,8 @@ pub fn fit_figure(curve: &Curve, report: &FitReport) -> Result<Figure> {
         Series::new("measured, fitted", Style::Scatter, in_contact).with_color(2),
     );
     panel.x = Axis::linear("Indentation depth h", "nm");
+    // Both models share the P-h relation in contact: the JKR curve lies on the model's.
+    panel.mark_coinciding(crate::figure::COINCIDENCE_TOL);
     let mut fig = Figure::new("fit", "Fit of a measured force-indentation curve").with_panel(panel);
     fig.result(
         "work_of_adhesion_J_per_m2",

@@ -1,12 +1,14 @@
 //! Renderers of a [`crate::figure::Figure`]: PNG and SVG through plotters ([`plot`]), CSV and
 //! JSON ([`data`]), and a ratatui chart for the terminal ([`terminal`]); labels in a small math
-//! markup laid out with the embedded font ([`text`]). All file output is
+//! markup laid out with the embedded font ([`text`]), strokes and fills of the PNG anti-aliased
+//! ([`raster`]). All file output is
 //! atomic ([`write_atomic`]): a temporary file in the target folder, renamed on success.
 
 pub mod axes;
 pub mod data;
 pub mod labels;
 pub mod plot;
+pub mod raster;
 pub mod terminal;
 pub mod text;
 

@@ -1,6 +1,6 @@
 //! The figure as data: long-form CSV (`panel,series,style,x,y`, one row per point) and a JSON
-//! record of the run (scene, caption, parameters with units, named results, fields, notes,
-//! crate version, run time).
+//! record of the run (scene, caption, parameters with units, named results, fields, notes and
+//! the notes drawn on panels, crate version, run time).
 //!
 //! CSV rows: every series point (style `stable`, `unstable`, `reference`, `scatter`,
 //! `errorbar`, `contour`, `jump`), every marker (style = its shape: `pull-in`, `pull-off`, ...),
@@ -96,6 +96,14 @@ struct FieldRecord<'a> {
     values: Vec<&'a [f64]>,
 }
 
+/// The notes drawn on one panel.
+#[derive(Serialize)]
+struct PanelNotes<'a> {
+    /// Panel number, from 1 (as the CSV's `panel`).
+    panel: usize,
+    notes: &'a [String],
+}
+
 #[derive(Serialize)]
 struct Record<'a> {
     scene: &'a str,
@@ -104,6 +112,9 @@ struct Record<'a> {
     parameters: Vec<ParamRecord>,
     results: serde_json::Map<String, serde_json::Value>,
     notes: &'a [String],
+    /// The notes drawn on the panels (what a panel finds against the text).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    panel_notes: Vec<PanelNotes<'a>>,
     fields: Vec<FieldRecord<'a>>,
     crate_name: &'static str,
     version: &'static str,
@@ -167,6 +178,16 @@ pub fn json(fig: &Figure, caption: &str, params: &ParamValues, run_time_s: f64) 
         parameters,
         results,
         notes: &fig.notes,
+        panel_notes: fig
+            .panels
+            .iter()
+            .enumerate()
+            .filter(|(_, p)| !p.notes.is_empty())
+            .map(|(k, p)| PanelNotes {
+                panel: k + 1,
+                notes: &p.notes,
+            })
+            .collect(),
         fields,
         crate_name: env!("CARGO_PKG_NAME"),
         version: env!("CARGO_PKG_VERSION"),

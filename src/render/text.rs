@@ -54,6 +54,12 @@ pub struct Run {
     pub accent: Accent,
 }
 
+/// Height of a line of plain text above its baseline, in units of the text size (labels are
+/// aligned on it, so that texts with and without scripts share their baseline).
+pub const ASCENT: f64 = 0.8;
+/// Depth of a line of plain text below its baseline, in units of the text size.
+pub const DESCENT: f64 = 0.22;
+
 /// Size of sub- and superscripts relative to the text.
 pub const SCRIPT_SIZE: f64 = 0.7;
 /// Shift of a subscript below the baseline, in units of the text size.
@@ -386,8 +392,8 @@ pub fn layout(src: &str, size: f64, bold: bool) -> Layout {
     let mut x = 0.0;
     let base = font.as_scaled(PxScale::from(size as f32));
     let asc = f64::from(base.ascent());
-    let mut ascent = 0.8 * size;
-    let mut descent = 0.22 * size;
+    let mut ascent = ASCENT * size;
+    let mut descent = DESCENT * size;
     for run in parse(src) {
         let (sz, dy) = match run.script {
             Script::Normal => (size, 0.0),

@@ -103,7 +103,7 @@ impl Scene for Fig1_1 {
                 String::new(),
                 1.0,
                 1.0,
-                "Indentation depth h/h0",
+                "Indentation depth h/h_0, h_0 = ∛(π²Rw²/E*²)",
                 "Contact force P/(πwR)",
             ),
             PlotUnits::Si => {

@@ -6,14 +6,14 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
+mod experiments;
+
+pub use self::experiments::{Fig2_8, Fig2_8Fit, Fig2_8FitParams, Fig2_8Params, FitModelChoice, demo_cycle};
 use super::{Registered, Scene, SceneDyn};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Figure, Marker, MarkerShape, Panel, Series, Style};
-use crate::fit::predictions::{ph_panel, predictions};
 use crate::job::Job;
-use crate::models::machine_stiffness::{
-    Accuracy, Experiment, MachineStiffness, State, SweepPoint, TipGeometry, TipShape,
-};
+use crate::models::machine_stiffness::{Accuracy, MachineStiffness, State, SweepPoint, TipShape};
 use crate::numerics::curve::{linspace, logspace};
 use crate::params::Range;
 
@@ -76,8 +76,44 @@ struct BranchSpec {
     markers: usize,
 }
 
-/// A quantity of a state drawn against the stage displacement: axis label and accessor.
-type Quantity = (&'static str, fn(&State) -> f64);
+/// A quantity of a state drawn against the stage displacement: panel title, axis label and
+/// accessor.
+type Quantity = (&'static str, String, fn(&State) -> f64);
+
+/// The scales of chapter 2's non-dimensional variables for a tip, as the axes write them
+/// (sphere: Sec. 2.3.1, Eqs. (2.31)-(2.38); cone: Sec. 2.3.2, Eqs. (2.44)-(2.48)).
+struct Scales {
+    /// The contact radius â.
+    a: &'static str,
+    /// The depth ĥ.
+    h: &'static str,
+    /// The force P̂.
+    p: &'static str,
+    /// The interface stiffness k̂_s of α = k_s/k̂_s.
+    k: &'static str,
+    /// The non-dimensional hysteresis H̄.
+    hysteresis: &'static str,
+}
+
+/// The scales of [`Scales`] for `tip`.
+fn scales(tip: TipShape) -> Scales {
+    match tip {
+        TipShape::Sphere | TipShape::SphereExact { .. } => Scales {
+            a: "â = ∛(9πwR²/8ℰ)",
+            h: "ĥ = â²/R",
+            p: "P̂ = 3πwR/2",
+            k: "k̂_s = ∛(9πwℰ²R²/8)",
+            hysteresis: "H̄ = ΔE/∛(R⁴w⁵/ℰ²)",
+        },
+        TipShape::Cone => Scales {
+            a: "â = w/(πℰ tan²θ)",
+            h: "ĥ = w/(ℰ tan θ)",
+            p: "P̂ = w²/(πℰ tan³θ)",
+            k: "k̂_s = w/(π tan²θ)",
+            hysteresis: "H̄ = πℰ²tan⁴θ ΔE/w³",
+        },
+    }
+}
 
 fn branch_figure(id: &str, title: &str, spec: &BranchSpec, job: &Job) -> Result<Figure> {
     let BranchSpec {
@@ -125,19 +161,28 @@ fn branch_figure(id: &str, title: &str, spec: &BranchSpec, job: &Job) -> Result<
         solutions.extend(m.solution_points(d, XTOL)?);
     }
     job.check()?;
+    let sc = scales(tip);
     let quantities: [Quantity; 3] = [
-        ("Contact radius a/â", |s| s.a),
-        ("Indentation depth h/ĥ", |s| s.h),
-        ("Contact force P/P̂", |s| s.force),
+        ("contact radius", format!("Contact radius a/â, {}", sc.a), |s| {
+            s.a
+        }),
+        (
+            "indentation depth",
+            format!("Indentation depth h/ĥ, {}", sc.h),
+            |s| s.h,
+        ),
+        ("contact force", format!("Contact force P/P̂, {}", sc.p), |s| {
+            s.force
+        }),
     ];
     let mut fig = Figure::new(id, title);
-    for (k, (label, q)) in quantities.iter().enumerate() {
+    for (k, (heading, label, q)) in quantities.iter().enumerate() {
         let pts = |v: &[State]| v.iter().map(|s| (s.delta, q(s))).collect::<Vec<_>>();
         let mut panel = Panel::new(
             Axis::linear("Stage displacement Δ/ĥ", ""),
-            Axis::linear(*label, ""),
+            Axis::linear(label.clone(), ""),
         )
-        .titled(["(b)", "(c)", "(d)"][k], *label);
+        .titled(["(b)", "(c)", "(d)"][k], *heading);
         panel.add(Series::new("solution (in contact)", Style::Stable, pts(&stable)).with_color(0));
         panel.add(Series::new("stationary, unstable", Style::Unstable, pts(&unstable)).with_color(0));
         panel.add(Series::new("solution (out of contact)", Style::Stable, pts(&free)).with_color(1));
@@ -370,11 +415,10 @@ fn sweep_figure(
         .iter()
         .map(|&a| MachineStiffness::new(tip, a))
         .collect::<Result<_>>()?;
-    let mut forces = Panel::new(
-        Axis::log("Stiffness ratio α", ""),
-        Axis::linear("Force |P|/P̂", ""),
-    )
-    .titled("(a)", "pull-in and pull-off forces");
+    let sc = scales(tip);
+    let alpha_axis = || Axis::log(format!("Stiffness ratio α = k_s/k̂_s, {}", sc.k), "");
+    let mut forces = Panel::new(alpha_axis(), Axis::linear(format!("Force |P|/P̂, {}", sc.p), ""))
+        .titled("(a)", "pull-in and pull-off forces");
     forces.add(
         Series::new(
             "|P_i| exact",
@@ -411,8 +455,11 @@ fn sweep_figure(
         )
         .with_color(1),
     );
-    let mut hyst = Panel::new(Axis::log("Stiffness ratio α", ""), Axis::log("Hysteresis H", ""))
-        .titled("(b)", "hysteretic energy loss");
+    let mut hyst = Panel::new(
+        alpha_axis(),
+        Axis::log(format!("Hysteresis {}", sc.hysteresis), ""),
+    )
+    .titled("(b)", "hysteretic energy loss");
     // The exact hysteresis is (2.38) for the sphere and (2.48) for the cone.
     let exact_eq = if tip == TipShape::Cone { "(2.48)" } else { "(2.38)" };
     hyst.add(
@@ -774,340 +821,6 @@ impl Scene for Fig2_5Accuracy {
         fig.note(format!(
             "reference: Brent to 1e-15 and a 100-point Gauss-Legendre rule; errors below {floor:e} are drawn at {floor:e}"
         ));
-        job.progress(1.0, "done");
-        Ok(fig)
-    }
-}
-
-// ---------------------------------------------------------------------------------------------
-// Fig. 2.8: the experiments of section 2.4.
-
-crate::scene_params! {
-    /// Parameters of scene fig2.8: the best-fit parameters of Sec. 2.4 for Sun et al. (a) and
-    /// Notbohm et al. (b). ℰ is the plane-strain modulus (ERRATA); the Notbohm work of
-    /// adhesion is 25.7 mJ/m² (the text's J/m² is a typo).
-    pub struct Fig2_8Params {
-        /// (a) Sun et al.: tip radius R.
-        sun_radius: f64 = 58.0e-9, unit = "m", range = Range::positive();
-        /// (a) Sun et al.: plane-strain modulus ℰ.
-        sun_modulus: f64 = 6.39e6, unit = "Pa", range = Range::positive();
-        /// (a) Sun et al.: work of adhesion w.
-        sun_work_of_adhesion: f64 = 63.2e-3, unit = "J/m^2", range = Range::positive();
-        /// (a) Sun et al.: cantilever stiffness k_s.
-        sun_spring_constant: f64 = 0.66, unit = "N/m", range = Range::positive();
-        /// (b) Notbohm et al.: tip radius R.
-        notbohm_radius: f64 = 2.5e-6, unit = "m", range = Range::positive();
-        /// (b) Notbohm et al.: plane-strain modulus ℰ.
-        notbohm_modulus: f64 = 0.65e6, unit = "Pa", range = Range::positive();
-        /// (b) Notbohm et al.: work of adhesion w.
-        notbohm_work_of_adhesion: f64 = 25.7e-3, unit = "J/m^2", range = Range::positive();
-        /// (b) Notbohm et al.: cantilever stiffness k_s.
-        notbohm_spring_constant: f64 = 0.642, unit = "N/m", range = Range::positive();
-        /// Largest indentation depth drawn, in units of ĥ = â²/R.
-        max_depth_norm: f64 = 3.0, unit = "", range = Range::open(0.0, 1.0e3);
-        /// Samples per branch.
-        points: usize = 300, unit = "", range = Range::between(20.0, 1.0e6);
-    }
-}
-
-/// Fig. 2.8: P-h cycles of the machine-stiffness model and of JKR at the best-fit parameters of
-/// Sec. 2.4, with the pull-off squares.
-pub struct Fig2_8;
-
-impl Scene for Fig2_8 {
-    type Params = Fig2_8Params;
-    const ID: &'static str = "fig2.8";
-    const CHAPTER: &'static str = "2";
-    const TITLE: &'static str = "Machine-stiffness model and JKR at the best fits of section 2.4";
-    const CAPTION: &'static str = "Contact force vs indentation depth of the machine-stiffness model \
-        ((2.31b)-(2.32b) with the jumps of Sec. 2.3.1, blue) and of JKR ((1.2), red) at the best-fit \
-        parameters of Sec. 2.4: (a) Sun et al., R = 58 nm; (b) Notbohm et al., R = 2.5 um. Squares: \
-        the state just before the pull-off. Measured curves: `--fit FILE.csv` or scene fig2.8-fit.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        ("sun_alpha_norm", "alpha = k_s/k_hat, Sun et al."),
-        (
-            "sun_pull_off_force_nN",
-            "machine-stiffness pull-off force, Sun et al. (printed -14.73)",
-        ),
-        (
-            "sun_jkr_pull_off_force_nN",
-            "JKR pull-off -5 pi w R/6, Sun et al. (printed -9.59)",
-        ),
-        (
-            "sun_pull_in_force_nN",
-            "machine-stiffness pull-in force, Sun et al.",
-        ),
-        (
-            "sun_pull_off_force_exact_sphere_nN",
-            "pull-off force with the exact spherical profile (2.28)",
-        ),
-        (
-            "sun_pull_in_depth_jump_nm",
-            "depth change in the pull-in, Sun et al. (printed 27.4)",
-        ),
-        (
-            "sun_pull_off_depth_jump_nm",
-            "|depth change| in the pull-off, Sun et al. (printed 26)",
-        ),
-        ("notbohm_alpha_norm", "alpha = k_s/k_hat, Notbohm et al."),
-        (
-            "notbohm_pull_off_force_nN",
-            "machine-stiffness pull-off force, Notbohm et al. (printed -281.5)",
-        ),
-        (
-            "notbohm_jkr_pull_off_force_nN",
-            "JKR pull-off -5 pi w R/6, Notbohm et al. (printed -167.5)",
-        ),
-        (
-            "notbohm_pull_in_force_nN",
-            "machine-stiffness pull-in force, Notbohm et al.",
-        ),
-        (
-            "notbohm_pull_off_force_exact_sphere_nN",
-            "pull-off force with the exact spherical profile (2.28)",
-        ),
-        (
-            "notbohm_pull_in_depth_jump_um",
-            "depth change in the pull-in, Notbohm et al. (printed 0.19)",
-        ),
-        (
-            "notbohm_pull_off_depth_jump_um",
-            "|depth change| in the pull-off, Notbohm et al. (printed 0.42)",
-        ),
-    ];
-
-    fn quick(p: &mut Self::Params) {
-        p.points = p.points.min(40);
-    }
-
-    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        let sun = Experiment::new(
-            TipGeometry::Sphere { radius: p.sun_radius },
-            p.sun_modulus,
-            p.sun_work_of_adhesion,
-            p.sun_spring_constant,
-        )?;
-        let notbohm = Experiment::new(
-            TipGeometry::Sphere {
-                radius: p.notbohm_radius,
-            },
-            p.notbohm_modulus,
-            p.notbohm_work_of_adhesion,
-            p.notbohm_spring_constant,
-        )?;
-        let mut fig = Figure::new(Self::ID, Self::TITLE);
-        for (k, (name, x, title, depth_unit)) in [
-            ("sun", sun, "Sun et al.", ("nm", 1e9)),
-            ("notbohm", notbohm, "Notbohm et al.", ("um", 1e6)),
-        ]
-        .into_iter()
-        .enumerate()
-        {
-            job.check()?;
-            let pr = predictions(&x)?;
-            fig.panels.push(ph_panel(
-                &x,
-                ["(a)", "(b)"][k],
-                title,
-                p.max_depth_norm,
-                p.points,
-            )?);
-            fig.result(format!("{name}_alpha_norm"), x.alpha());
-            fig.result(
-                format!("{name}_pull_off_force_nN"),
-                pr.pull_off.before.force * 1e9,
-            );
-            fig.result(
-                format!("{name}_jkr_pull_off_force_nN"),
-                pr.jkr_pull_off_force * 1e9,
-            );
-            fig.result(format!("{name}_pull_in_force_nN"), pr.pull_in.after.force * 1e9);
-            // The exact profile (2.28) is a secondary result: where the contact would reach the
-            // bead's equator (R/â ≤ 1) it has no pull-off, and the figure is drawn without it.
-            match x.model_exact_sphere().and_then(|m| m.pull_off(XTOL)) {
-                Ok(po) => fig.result(
-                    format!("{name}_pull_off_force_exact_sphere_nN"),
-                    po.before.force * x.scales().force * 1e9,
-                ),
-                Err(e) => fig.note(format!(
-                    "{title}: no pull-off with the exact spherical profile ({e})"
-                )),
-            }
-            fig.result(
-                format!("{name}_pull_in_depth_jump_{}", depth_unit.0),
-                pr.pull_in.depth_jump().abs() * depth_unit.1,
-            );
-            fig.result(
-                format!("{name}_pull_off_depth_jump_{}", depth_unit.0),
-                pr.pull_off.depth_jump().abs() * depth_unit.1,
-            );
-        }
-        fig.note("in this model the depth changes by |P|/k_s in each jump; JKR predicts no change of depth");
-        job.progress(1.0, "done");
-        Ok(fig)
-    }
-}
-
-// ---------------------------------------------------------------------------------------------
-// fig2.8-fit: Fig. 2.8 for the user's own data (the `--fit` command as a scene).
-
-crate::param_choice! {
-    /// The model drawn and reported first by a fit.
-    pub enum FitModelChoice { Auto = "auto", Jkr = "jkr", MachineStiffness = "machine-stiffness" }
-}
-
-crate::scene_params! {
-    /// Parameters of scene fig2.8-fit. With no data file, a synthetic cycle of the model (with
-    /// the demo parameters and deterministic force noise) is fitted, as a demonstration.
-    pub struct Fig2_8FitParams {
-        /// Measured cycle (CSV with a header such as `depth_nm,force_nN`); empty: a synthetic demonstration cycle.
-        data_file: String = String::new(), unit = "", range = Range::any();
-        /// Tip radius R.
-        tip_radius: f64 = 1.0e-6, unit = "m", range = Range::positive();
-        /// Cantilever stiffness k_s; 0: unknown (JKR only).
-        spring_constant: f64 = 0.5, unit = "N/m", range = Range::non_negative();
-        /// Model drawn and reported first: auto (machine-stiffness when k_s > 0), jkr, machine-stiffness.
-        model: FitModelChoice = FitModelChoice::Auto, unit = "", range = Range::any();
-        /// Demonstration cycle: plane-strain modulus ℰ.
-        demo_modulus: f64 = 2.0e6, unit = "Pa", range = Range::positive();
-        /// Demonstration cycle: work of adhesion w.
-        demo_work_of_adhesion: f64 = 0.04, unit = "J/m^2", range = Range::positive();
-        /// Demonstration cycle: force noise, as a fraction of the largest |P|.
-        demo_noise: f64 = 0.01, unit = "", range = Range::between(0.0, 0.5);
-        /// Demonstration cycle: samples per branch.
-        demo_points: usize = 400, unit = "", range = Range::between(20.0, 1.0e6);
-    }
-}
-
-/// fig2.8-fit: fit a measured force-indentation cycle (appendix A.4) and draw it against both
-/// models, as `adhesion --headless --fit FILE.csv` does.
-pub struct Fig2_8Fit;
-
-/// The synthetic demonstration cycle of [`Fig2_8Fit`]: the model's cycle with seeded Gaussian
-/// force noise (standard deviation `noise` × max |P|; the same cycle on every run and platform).
-///
-/// # Errors
-/// Model errors.
-pub fn demo_cycle(x: &Experiment, noise: f64, samples: usize) -> Result<crate::fit::Curve> {
-    use rand::SeedableRng;
-    use rand_distr::{Distribution, StandardNormal};
-    let d_o = x.pull_off()?.before.delta;
-    let mut curve = crate::fit::simulate_cycle(x, 1.5 * d_o, 3.0 * x.scales().h, samples)?;
-    let p_max = curve.force.iter().fold(0.0f64, |m, p| m.max(p.abs()));
-    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(2019);
-    for p in curve.force.iter_mut() {
-        let z: f64 = StandardNormal.sample(&mut rng);
-        *p += noise * p_max * z;
-    }
-    Ok(curve)
-}
-
-impl Scene for Fig2_8Fit {
-    type Params = Fig2_8FitParams;
-    const ID: &'static str = "fig2.8-fit";
-    const CHAPTER: &'static str = "2";
-    const TITLE: &'static str = "Fit of a measured force-indentation cycle (your data)";
-    const CAPTION: &'static str = "A measured cycle (CSV: depth and force columns with units; positive depth is \
-        indentation) fitted for the work of adhesion and the plane-strain modulus by Levenberg-Marquardt on the \
-        contact relation (2.31b)-(2.32b), appendix A.4; the in-contact part is found automatically. Drawn against \
-        the machine-stiffness model and JKR at the fitted parameters, with their predicted jumps.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        ("work_of_adhesion_J_per_m2", "fitted w"),
-        ("work_of_adhesion_std_error_J_per_m2", "standard error of w"),
-        (
-            "plane_strain_modulus_Pa",
-            "fitted plane-strain modulus E/(1-nu^2)",
-        ),
-        ("plane_strain_modulus_std_error_Pa", "its standard error"),
-        ("rms_residual_N", "root-mean-square force residual"),
-        ("points_used_count", "in-contact points used"),
-        ("jkr_pull_off_force_N", "JKR pull-off -5 pi w R/6 at the fit"),
-        (
-            "pull_in_force_N",
-            "machine-stiffness pull-in force (k_s > 0 only)",
-        ),
-        (
-            "pull_in_depth_jump_m",
-            "machine-stiffness depth change at the pull-in (k_s > 0 only)",
-        ),
-        (
-            "pull_off_force_N",
-            "machine-stiffness pull-off force (k_s > 0 only)",
-        ),
-        (
-            "pull_off_depth_jump_m",
-            "machine-stiffness depth change at the pull-off (k_s > 0 only)",
-        ),
-    ];
-
-    fn validate(p: &Self::Params) -> Result<()> {
-        if p.model == FitModelChoice::MachineStiffness && p.spring_constant == 0.0 {
-            return Err(Error::invalid(
-                "model",
-                "machine-stiffness",
-                "needs spring_constant > 0",
-            ));
-        }
-        Ok(())
-    }
-
-    fn quick(p: &mut Self::Params) {
-        p.demo_points = p.demo_points.min(80);
-    }
-
-    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        let k = (p.spring_constant > 0.0).then_some(p.spring_constant);
-        let path = std::path::PathBuf::from(if p.data_file.is_empty() {
-            "demonstration"
-        } else {
-            p.data_file.as_str()
-        });
-        let curve = if p.data_file.is_empty() {
-            let x = Experiment::new(
-                TipGeometry::Sphere { radius: p.tip_radius },
-                p.demo_modulus,
-                p.demo_work_of_adhesion,
-                k.unwrap_or(1.0),
-            )?;
-            demo_cycle(&x, p.demo_noise, p.demo_points)?
-        } else {
-            crate::fit::read_curve(&path)?
-        };
-        job.check()?;
-        let model = match p.model {
-            FitModelChoice::Auto => None,
-            FitModelChoice::Jkr => Some(crate::fit::FitModel::Jkr),
-            FitModelChoice::MachineStiffness => Some(crate::fit::FitModel::MachineStiffness),
-        };
-        let report = crate::fit::fit_curve(&curve, &path, p.tip_radius, k, model).map_err(|e| match e {
-            // The demonstration is no file of the user's: its failure is the parameters'.
-            Error::DataFile { message, .. } if p.data_file.is_empty() => Error::Unresolvable {
-                model: "fit of the demonstration cycle",
-                reason: message,
-            },
-            e => e,
-        })?;
-        let mut fig = crate::fit::fit_figure(&curve, &report)?;
-        fig.id = Self::ID.into();
-        fig.title = Self::TITLE.into();
-        fig.result(
-            "work_of_adhesion_std_error_J_per_m2",
-            report.work_of_adhesion_j_per_m2.std_error,
-        );
-        fig.result(
-            "plane_strain_modulus_std_error_Pa",
-            report.plane_strain_modulus_pa.std_error,
-        );
-        fig.result("jkr_pull_off_force_N", report.jkr.pull_off_force_n);
-        if let Some(ms) = report.machine_stiffness {
-            fig.result("pull_in_force_N", ms.pull_in_force_n);
-            fig.result("pull_in_depth_jump_m", ms.pull_in_depth_jump_m);
-            fig.result("pull_off_force_N", ms.pull_off_force_n);
-            fig.result("pull_off_depth_jump_m", ms.pull_off_depth_jump_m);
-        }
-        if p.data_file.is_empty() {
-            fig.note("no data file given: a synthetic demonstration cycle of the model is fitted");
-        }
         job.progress(1.0, "done");
         Ok(fig)
     }

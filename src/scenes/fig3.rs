@@ -276,11 +276,16 @@ impl Scene for Fig3_4 {
                 depth - 0.05 * (second.0 - depth),
                 second.0 + 0.25 * (second.0 - depth),
             );
+            let loss = losses_a[p.chis_a.iter().position(|&c| c == last.1).unwrap_or(0)];
             fig.note(format!(
                 "(a): the curve chi = {} starts at Z0, h/R = {:.3}, outside the frame; its pull-in and pull-off lie there (loss {:.2e})",
+                last.1, last.0, loss
+            ));
+            // On the figure too: the reader sees the curve run out of the frame.
+            a.annotate(format!(
+                "χ = {}: the interaction starts at h/R = {}, right of the frame; its pull-in and pull-off are there",
                 last.1,
-                last.0,
-                losses_a[p.chis_a.iter().position(|&c| c == last.1).unwrap_or(0)]
+                crate::figure::number(last.0, 3)
             ));
         }
         fig.panels.push(a);
@@ -410,7 +415,11 @@ impl Scene for Fig3_5 {
         job.check()?;
         let mut fig = Figure::new(Self::ID, Self::TITLE);
         let chis_a = logspace(p.chi_min_a, p.chi_max_a, p.points);
-        let mut a = Panel::new(Axis::log("χ", ""), Axis::log("Loss ΔĒ_md", "")).titled("(a)", "small χ");
+        let mut a = Panel::new(
+            Axis::log("χ = w/(E*Z_0)", ""),
+            Axis::log("Loss ΔĒ_md = ΔE_md/(2E*R³)", ""),
+        )
+        .titled("(a)", "small χ");
         a.add(
             Series::new(
                 "5.8483 χ⁵ (3.5b)",
@@ -432,8 +441,11 @@ impl Scene for Fig3_5 {
 
         let chis_b = logspace(p.chi_min_b, p.chi_max_b, p.points);
         let fine = logspace(p.chi_min_b, p.chi_max_b, 8 * p.points);
-        let mut b =
-            Panel::new(Axis::log("χ", ""), Axis::log("Loss ΔĒ_md", "")).titled("(b)", "exact vs (3.6)");
+        let mut b = Panel::new(
+            Axis::log("χ = w/(E*Z_0)", ""),
+            Axis::log("Loss ΔĒ_md = ΔE_md/(2E*R³)", ""),
+        )
+        .titled("(b)", "exact vs (3.6)");
         let mut worst = (0.0f64, 0.0f64);
         for (k, &ell) in p.ells_b.iter().enumerate() {
             job.check()?;

@@ -4,7 +4,7 @@
 use super::sweep::{Sweep, Swept};
 use super::{Registered, Scene, SceneDyn};
 use crate::error::{Error, Result};
-use crate::figure::{Axis, Figure, Marker, MarkerShape, Panel, Series, Style};
+use crate::figure::{Axis, Figure, Legend, Marker, MarkerShape, Panel, Series, Style, number};
 use crate::job::Job;
 use crate::models::fibril::{K_CR_BAR, SingleSpring, SpringState, tilted_fibril_stiffness};
 use crate::numerics::curve::{linspace, logspace};
@@ -185,7 +185,11 @@ impl Scene for Fig5_3 {
         for (ratio, labels) in cases {
             job.check()?;
             let s = SingleSpring::new(ratio * K_CR_BAR)?;
-            let names = [("Energy Π̄", 0), ("∂Π̄/∂d̄", 1), ("∂²Π̄/∂d̄²", 2)];
+            let names = [
+                ("Energy Π̄ = Π_tot/(cwA_e)", 0),
+                ("∂Π̄/∂d̄, d̄ = d/σ", 1),
+                ("∂²Π̄/∂d̄²", 2),
+            ];
             for ((yname, which), label) in names.into_iter().zip(labels) {
                 let mut panel = Panel::new(Axis::linear("Gap d/σ", ""), Axis::linear(yname, ""))
                     .titled(label, format!("k = {ratio} k_cr"));
@@ -418,14 +422,14 @@ impl Scene for Fig5_5 {
             hys.push((k, s.hysteresis()?));
         }
         let mut forces = Panel::new(
-            Axis::linear("Stiffness k", ""),
+            Axis::linear("Stiffness k̄_e = k_eσ²/(cwA_e)", ""),
             Axis::linear("Force Pσ/(c w A_e)", ""),
         )
         .titled("(a)", "pull-in and pull-off forces");
         forces.add(Series::new("pull-in", Style::Stable, pin.clone()).with_color(0));
         forces.add(Series::new("pull-off", Style::Stable, poff).with_color(1));
         let mut loss = Panel::new(
-            Axis::linear("Stiffness k", ""),
+            Axis::linear("Stiffness k̄_e = k_eσ²/(cwA_e)", ""),
             Axis::linear("Hysteresis ΔE_s/(c w A_e)", ""),
         )
         .titled("(b)", "hysteretic energy loss");
@@ -594,6 +598,49 @@ crate::scene_params! {
     }
 }
 
+/// Panel (b) of Fig. 5.7: the cycles of `full` framed on their tensile part. Forces from 15 %
+/// below the most negative one to as far above zero; displacements over the points in that
+/// band whose force is not yet (or no longer) negligible (|P| above 2 % of the most negative
+/// force), so the range ends where the slowest decay reaches zero. One arrow per branch, at the
+/// middle of its part inside the frame, gives the direction of travel.
+fn adhesive_window(full: &Panel) -> Panel {
+    let mut zoom = full.clone().titled("(b)", "tensile part, where the loops lie");
+    zoom.arrows.clear();
+    zoom.legend = Legend::Hidden;
+    let y_min = full
+        .series
+        .iter()
+        .flat_map(|s| s.points.iter().map(|p| p.1))
+        .fold(0.0f64, f64::min);
+    if y_min >= 0.0 {
+        return zoom;
+    }
+    let (y_lo, y_hi) = (1.15 * y_min, -y_min);
+    let inside = |p: &(f64, f64)| p.1 >= y_lo && p.1 <= y_hi && p.1.abs() >= 0.02 * -y_min;
+    let (x_lo, x_hi) = full
+        .series
+        .iter()
+        .flat_map(|s| s.points.iter().filter(|p| inside(p)).map(|p| p.0))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+            (a.min(x), b.max(x))
+        });
+    if x_hi <= x_lo {
+        return zoom;
+    }
+    let dx = 0.05 * (x_hi - x_lo);
+    zoom.x = zoom.x.clone().with_range(x_lo - dx, x_hi + dx);
+    zoom.y = zoom.y.clone().with_range(y_lo, y_hi);
+    for s in &full.series {
+        let idx: Vec<usize> = (0..s.points.len().saturating_sub(1))
+            .filter(|&i| inside(&s.points[i]) && s.points[i].0 >= x_lo && s.points[i].0 <= x_hi)
+            .collect();
+        if let Some(&k) = idx.get(idx.len() / 2) {
+            zoom.arrow(s.points[k], s.points[k + 1], s.color);
+        }
+    }
+    zoom
+}
+
 /// Fig. 5.7: force-displacement cycles of uncoupled spring arrays on rough surfaces.
 pub struct Fig5_7;
 
@@ -605,7 +652,8 @@ impl Scene for Fig5_7 {
     const CAPTION: &'static str = "Total force P/(MN |P_m|) (positive in compression) against the displacement \
         u/sigma over a loading-unloading cycle of 256 x 256 uncoupled springs, k_e = 2^-7 k_cr, on Gaussian \
         rough surfaces of several sigma_rms/sigma, averaged over the samples: the sum of shifted single-spring \
-        branches (5.35).";
+        branches (5.35). (a) The whole cycles (the roughest surface sets the range); (b) the tensile part, \
+        where the smoother surfaces' loops lie. Arrows: loading to the left, unloading to the right.";
     const RESULTS: &'static [(&'static str, &'static str)] = &[
         (
             "efficiency_first_norm",
@@ -639,7 +687,10 @@ impl Scene for Fig5_7 {
             Axis::linear("Displacement u/σ", ""),
             Axis::linear("Force P/(MN |P_m|)", ""),
         )
-        .titled("", format!("k_e = 2^-{} k_cr", p.stiffness_exponent));
+        .titled(
+            "(a)",
+            format!("whole cycles, k_e = 2^-{} k_cr", p.stiffness_exponent),
+        );
         let mut fig = Figure::new(Self::ID, Self::TITLE);
         let mut effs = Vec::new();
         let unit = unit_surfaces(n, n, p.correlation_length, p.samples, p.seed, job)?;
@@ -690,7 +741,9 @@ impl Scene for Fig5_7 {
                 .collect();
             effs.push(mean_std(&e).0);
         }
+        let zoom = adhesive_window(&panel);
         fig.panels.push(panel);
+        fig.panels.push(zoom);
         fig.result("efficiency_first_norm", effs[0]);
         fig.result("efficiency_last_norm", *effs.last().unwrap_or(&f64::NAN));
         fig.note("arrows give the direction of travel: loading to the left, unloading to the right");
@@ -726,6 +779,39 @@ crate::scene_params! {
         end_sigmas: f64 = 5.0, unit = "", range = Range::positive();
         /// Height bins per displacement step.
         oversample: usize = 4, unit = "", range = Range::between(1.0, 1000.0);
+    }
+}
+
+/// Axis title of the adhesion efficiency, with its definition (5.36).
+const EFFICIENCY_LABEL: &str = "Adhesion efficiency α_F = P_max/(MN P_m)";
+
+/// RMS deviation of the simulated efficiency from (5.37) up to which the fit counts as matching
+/// the data: 5 % of the efficiency's range [0, 1], three times the spread of the sample means.
+const FIT_MATCH_RMS: f64 = 0.05;
+
+/// What Fig. 5.8 finds about (5.37), against the text (section 5.5.2), which finds that it
+/// matches for n = 6-8 and deviates for n = 9-11: the stiffness exponents whose RMS deviation
+/// exceeds [`FIT_MATCH_RMS`], or that it fits every one, with the deviations' range.
+fn fit_verdict(exponents: &[f64], deviations: &[f64]) -> String {
+    let (lo, hi) = deviations
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &d| {
+            (a.min(d), b.max(d))
+        });
+    let off: Vec<String> = exponents
+        .iter()
+        .zip(deviations)
+        .filter(|(_, d)| **d > FIT_MATCH_RMS)
+        .map(|(n, _)| fmt_sig(*n))
+        .collect();
+    let range = format!("RMS deviation {}-{}", number(lo, 2), number(hi, 2));
+    if off.is_empty() {
+        format!("(5.37) fits every n here ({range}); the text finds deviations for n = 9-11")
+    } else {
+        format!(
+            "(5.37) deviates here for n = {} ({range}); the text finds deviations for n = 9-11",
+            off.join(", ")
+        )
     }
 }
 
@@ -821,7 +907,7 @@ impl Sweep for Fig5_8 {
         let sigmas = logspace(p.roughness_min, p.roughness_max, p.roughness_points);
         let mut panel = Panel::new(
             Axis::log("Roughness σ_rms/σ", ""),
-            Axis::linear("Adhesion efficiency α_F", ""),
+            Axis::linear(EFFICIENCY_LABEL, ""),
         );
         let mut fig = Figure::new(Self::ID, Self::TITLE);
         let mut deviations = Vec::with_capacity(p.stiffness_exponents.len());
@@ -860,6 +946,11 @@ impl Sweep for Fig5_8 {
             "fit_rms_deviation_max_norm",
             deviations.iter().copied().fold(0.0, f64::max),
         );
+        panel.annotate(format!(
+            "symbols: simulation, mean ± 1 s.d. over {} surfaces; lines: (5.37)",
+            p.samples
+        ));
+        panel.annotate(fit_verdict(&p.stiffness_exponents, &deviations));
         fig.panels.push(panel);
         fig.note(
             "symbols: simulation mean over the samples, bars: one standard deviation; lines: Eq. (5.37)",
@@ -893,6 +984,24 @@ crate::scene_params! {
         /// Height bins per displacement step.
         oversample: usize = 4, unit = "", range = Range::between(1.0, 1000.0);
     }
+}
+
+/// The top of an efficiency axis that starts at zero: the first of 0.1, 0.12, 0.15, 0.2, 0.25,
+/// 0.3, 0.4, 0.5, 0.6, 0.8, 1 (times a power of ten) at least 30 % above `top`, and at most 1
+/// (the efficiency's bound).
+fn efficiency_axis_top(top: f64) -> f64 {
+    const STEPS: [f64; 11] = [1.0, 1.2, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0];
+    let want = 1.3 * top;
+    if !(want > 0.0 && want.is_finite()) {
+        return 1.0;
+    }
+    let decade = 10f64.powf(want.log10().floor());
+    let nice = STEPS
+        .iter()
+        .map(|s| s * decade)
+        .find(|v| *v >= want * (1.0 - 1e-12))
+        .unwrap_or(10.0 * decade);
+    nice.min(1.0)
 }
 
 /// Fig. 5.9: adhesion efficiency against correlation length.
@@ -983,21 +1092,62 @@ impl Sweep for Fig5_9 {
                 bars.push((lc, m + sd));
             }
             let ms: Vec<f64> = pts.iter().map(|q| q.1).collect();
+            let sds: Vec<f64> = (0..nl).map(|l| mean_std(&points[c * nl + l]).1).collect();
             let (lo, hi) = ms.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
                 (a.min(v), b.max(v))
             });
-            spread = spread.max((hi - lo) / mean_std(&ms).0);
+            let mean = mean_std(&ms).0;
+            spread = spread.max((hi - lo) / mean);
             let mut panel = Panel::new(
                 Axis::linear("Correlation length L_c/(100 µm)", ""),
-                Axis::linear("Adhesion efficiency α_F", ""),
+                Axis::linear(EFFICIENCY_LABEL, ""),
             )
             .titled(labels[c.min(3)], format!("σ_rms/σ = {sigma}"));
-            panel.add(Series::new("simulation", Style::Scatter, pts).with_color(c));
+            // From zero, to a round value above the largest error bar: the figure is about
+            // whether the efficiency depends on L_c, which a range fitted to the means'
+            // scatter would exaggerate into a trend.
+            let top = bars.iter().map(|b| b.1).fold(0.0, f64::max);
+            panel.y = panel.y.clone().with_range(0.0, efficiency_axis_top(top));
+            let (first, last) = (p.correlation_lengths[0], p.correlation_lengths[nl - 1]);
             panel.add(
-                Series::new("simulation", Style::ErrorBar, bars)
-                    .with_color(c)
-                    .without_legend(),
+                Series::new(
+                    "mean over all L_c",
+                    Style::Reference,
+                    vec![(first, mean), (last, mean)],
+                )
+                .with_color(7),
             );
+            panel.add(
+                Series::new(
+                    format!("simulation: mean of {} surfaces", p.samples),
+                    Style::Scatter,
+                    pts,
+                )
+                .with_color(c),
+            );
+            panel.add(Series::new("± 1 s.d. over the surfaces", Style::ErrorBar, bars).with_color(c));
+            // The text (section 5.5.2): no appreciable dependence on L_c, the uncertainty
+            // growing with L_c. Compare the spread of the means with their standard errors.
+            let sem_max = sds.iter().fold(0.0f64, |a, &v| a.max(v)) / (p.samples.max(1) as f64).sqrt();
+            panel.annotate(format!(
+                "s.d. over the surfaces {} at L_c = {} to {} at {}",
+                number(sds[0], 2),
+                fmt_sig(first),
+                number(sds[nl - 1], 2),
+                fmt_sig(last)
+            ));
+            panel.annotate(format!(
+                "means {}-{} ({} % of their mean), standard errors ≤ {}: {}",
+                number(lo, 3),
+                number(hi, 3),
+                number(100.0 * (hi - lo) / mean, 2),
+                number(sem_max, 2),
+                if hi - lo <= 2.0 * sem_max {
+                    "no dependence on L_c beyond the scatter, as the text finds"
+                } else {
+                    "they vary by more than the scatter, a dependence on L_c the text does not report"
+                }
+            ));
             fig.panels.push(panel);
         }
         fig.result("max_relative_spread_norm", spread);
@@ -1204,6 +1354,33 @@ impl Scene for Fig5_10 {
     }
 }
 
+/// Axis title of the contact ratio, with its definition: springs in contact over all.
+const CONTACT_RATIO_LABEL: &str = "Contact ratio N_c/(MN)";
+
+/// A direction mark on a curve given in the order of travel: a short arrow (the renderer gives
+/// it a head of fixed size) at the point where the curve's value first crosses half its range,
+/// pointing along the chord to the first point 4 % of the span of u further on (the average
+/// direction over the steps of a stair-like curve). `None` for a curve without such points.
+fn travel_arrow(pts: &[(f64, f64)]) -> Option<((f64, f64), (f64, f64))> {
+    let (lo, hi) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+        (a.min(p.1), b.max(p.1))
+    });
+    let (u_lo, u_hi) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+        (a.min(p.0), b.max(p.0))
+    });
+    if !(hi > lo && u_hi > u_lo) {
+        return None;
+    }
+    let mid = 0.5 * (lo + hi);
+    let k = pts
+        .windows(2)
+        .position(|w| (w[0].1 - mid) * (w[1].1 - mid) <= 0.0)?;
+    let step = 0.04 * (u_hi - u_lo);
+    let j = (k + 1..pts.len()).find(|&j| (pts[j].0 - pts[k].0).abs() >= step)?;
+    let (a, b) = (pts[k], pts[j]);
+    Some((a, (a.0 + 1e-3 * (b.0 - a.0), a.1 + 1e-3 * (b.1 - a.1))))
+}
+
 /// Fig. 5.11: contact ratio over the cycle for several coupling stiffnesses.
 pub struct Fig5_11;
 
@@ -1212,8 +1389,10 @@ impl Scene for Fig5_11 {
     const ID: &'static str = "fig5.11";
     const CHAPTER: &'static str = "5";
     const TITLE: &'static str = "Coupled springs: contact ratio over the cycle";
-    const CAPTION: &'static str = "Fraction of springs in contact (gap below sigma) against u/sigma on loading \
-        (dashed arrows left) and unloading for coupling k_mu = 0, 2 k_e, 10 k_e; the cycles of Fig. 5.10.";
+    const CAPTION: &'static str = "Contact ratio N_c/(MN), the fraction of springs in contact (gap below \
+        sigma), against u/sigma on loading (a) and unloading (b) for coupling k_mu = 0, 2 k_e, 10 k_e; the \
+        cycles of Fig. 5.10. Arrows give the direction of travel: u decreases on loading, increases on \
+        unloading.";
     const RESULTS: &'static [(&'static str, &'static str)] = &[
         (
             "max_contact_ratio_uncoupled_norm",
@@ -1241,14 +1420,14 @@ impl Scene for Fig5_11 {
         let cycles = coupling_study(p, job)?;
         let mut load = Panel::new(
             Axis::linear("Displacement u/σ", ""),
-            Axis::linear("Contact ratio", ""),
+            Axis::linear(CONTACT_RATIO_LABEL, ""),
         )
-        .titled("(a)", "loading");
+        .titled("(a)", "loading (u decreasing)");
         let mut unload = Panel::new(
             Axis::linear("Displacement u/σ", ""),
-            Axis::linear("Contact ratio", ""),
+            Axis::linear(CONTACT_RATIO_LABEL, ""),
         )
-        .titled("(b)", "unloading");
+        .titled("(b)", "unloading (u increasing)");
         let max_ratio = |c: &crate::models::spring_array::ArrayCycle| {
             c.loading
                 .iter()
@@ -1258,22 +1437,13 @@ impl Scene for Fig5_11 {
         };
         for (c, (mult, cy)) in cycles.iter().enumerate() {
             let name = format!("k_μ = {mult} k_e");
-            load.add(
-                Series::new(
-                    &name,
-                    Style::Stable,
-                    cy.loading.iter().map(|s| (s.u, s.contact_ratio)).collect(),
-                )
-                .with_color(c),
-            );
-            unload.add(
-                Series::new(
-                    &name,
-                    Style::Stable,
-                    cy.unloading.iter().map(|s| (s.u, s.contact_ratio)).collect(),
-                )
-                .with_color(c),
-            );
+            for (panel, phase) in [(&mut load, &cy.loading), (&mut unload, &cy.unloading)] {
+                let pts: Vec<(f64, f64)> = phase.iter().map(|s| (s.u, s.contact_ratio)).collect();
+                if let Some((from, to)) = travel_arrow(&pts) {
+                    panel.arrow(from, to, Some(c));
+                }
+                panel.add(Series::new(&name, Style::Stable, pts).with_color(c));
+            }
         }
         let mut fig = Figure::new(Self::ID, Self::TITLE)
             .with_panel(load)

@@ -471,7 +471,7 @@ fn assemble_map(
             });
         nice_levels(lo, hi, 8)
     };
-    let x_axis = || Axis::linear("Aspect ratio A", "");
+    let x_axis = || Axis::linear("Aspect ratio A = amplitude/λ", "");
     let y_axis = || Axis::linear("Peel angle θ", "rad");
     let mut pa = Panel::new(x_axis(), y_axis()).titled("(a)", "effective peel force F_max/(Ebh)");
     let mut field = Field::heat("F_max/(Ebh)", "", a_grid.clone(), t_grid.clone(), fmax);
@@ -777,7 +777,7 @@ impl Scene for Fig6Limits {
         let second = profile_of(&p.profile_file, &Profile::Zigzag)?;
         let profiles = [Profile::Sinusoid, second];
         let a_grid = logspace(p.aspect_ratio_min, p.aspect_ratio_max, p.points);
-        let x_axis = || Axis::log("Aspect ratio A", "");
+        let x_axis = || Axis::log("Aspect ratio A = amplitude/λ", "");
         let mut pa =
             Panel::new(x_axis(), Axis::linear("F_max/F_flat", "")).titled("(a)", "peel force, θ = 90°");
         let mut pb =

@@ -12,6 +12,7 @@ mod ch6;
 mod cli;
 mod common;
 mod edges;
+mod figures;
 mod fuzz;
 mod hardening;
 mod layering;

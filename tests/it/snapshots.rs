@@ -33,24 +33,35 @@ fn quick_figures() -> &'static [(&'static str, Figure)] {
     })
 }
 
-/// No legend box holds a series point or a marker, in any panel of any scene (the legend
-/// placement as the PNG renderer computes it).
+/// No legend box, nor the box of a panel's notes, holds a series point or a marker, in any
+/// panel of any scene (the placement as the PNG renderer computes it); the two boxes do not
+/// overlap.
 #[test]
 fn legends_cover_no_data_point_in_any_scene() {
     let mut failures = Vec::new();
     for (id, fig) in quick_figures() {
         for (k, layout) in adhesion::render::plot::panel_layouts(fig).into_iter().enumerate() {
             let Some(layout) = layout else { continue };
-            let Some((x0, y0, x1, y1)) = layout.legend else {
-                continue;
-            };
-            let inside = layout
-                .points
-                .iter()
-                .filter(|p| p.0 >= x0 && p.0 <= x1 && p.1 >= y0 && p.1 <= y1)
-                .count();
-            if inside > 0 {
-                failures.push(format!("{id} panel {}: {inside} points under the legend", k + 1));
+            for (what, b) in [("legend", layout.legend), ("notes", layout.notes)] {
+                let Some((x0, y0, x1, y1)) = b else {
+                    continue;
+                };
+                let inside = layout
+                    .points
+                    .iter()
+                    .filter(|p| p.0 >= x0 && p.0 <= x1 && p.1 >= y0 && p.1 <= y1)
+                    .count();
+                if inside > 0 {
+                    failures.push(format!("{id} panel {}: {inside} points under the {what}", k + 1));
+                }
+            }
+            if let (Some(a), Some(b)) = (layout.legend, layout.notes)
+                && a.0 < b.2
+                && b.0 < a.2
+                && a.1 < b.3
+                && b.1 < a.3
+            {
+                failures.push(format!("{id} panel {}: the notes overlap the legend", k + 1));
             }
         }
     }

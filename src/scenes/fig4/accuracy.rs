@@ -299,12 +299,16 @@ fn mark_default(panel: &mut Panel, x: f64, y: f64) {
 
 /// (a) errors and (b) spurious jumps against the ring width, one colour per Gauss-point count.
 fn width_panels(s: &Sweep) -> (Panel, Panel) {
-    let mut a = Panel::new(Axis::log("Ring width h/b", ""), Axis::log("Relative error", "")).titled(
+    let mut a = Panel::new(
+        Axis::log("Ring width h/b, b = ζ_0²E*/w", ""),
+        Axis::log("Relative error", ""),
+    )
+    .titled(
         "(a)",
         format!("error against ring width (step {} ζ0)", s.default.step),
     );
     let mut b = Panel::new(
-        Axis::log("Ring width h/b", ""),
+        Axis::log("Ring width h/b, b = ζ_0²E*/w", ""),
         Axis::linear("Spurious jumps", ""),
     )
     .titled("(b)", "spurious jumps against ring width");
