@@ -167,8 +167,8 @@ impl<S: Sweep> SweepDyn for Swept<S> {
         if let Some(m) = S::memory_estimate(&p) {
             m.check(memory_limit())?;
         }
-        let defaults = self.defaults();
-        let attribute = |e| crate::scenes::attribute_failure(S::ID, values, &defaults, e);
+        let baseline = self.baseline(values);
+        let attribute = |e| crate::scenes::attribute_failure(S::ID, values, &baseline, e);
         let context = S::context(&p, job).map_err(attribute)?;
         ids.par_iter().try_for_each(|&id| {
             job.check()?;
@@ -178,6 +178,11 @@ impl<S: Sweep> SweepDyn for Swept<S> {
 
     fn assemble(&self, values: &ParamValues, points: &[Vec<f64>], job: &Job) -> Result<Figure> {
         let p = Self::params(values)?;
-        crate::scenes::finish(S::ID, values, &self.defaults(), S::assemble(&p, points, job))
+        crate::scenes::finish(
+            S::ID,
+            values,
+            &self.baseline(values),
+            S::assemble(&p, points, job),
+        )
     }
 }
