@@ -450,7 +450,10 @@ fn the_gauge_is_monotone_and_below_100_percent_before_a_long_scene_ends() {
         "{below} reports below 100 % of {}",
         seen.len()
     );
-    assert_eq!(seen.last().copied(), Some(1.0));
+    assert!(seen.windows(2).all(|w| w[1] >= w[0]), "{seen:?}");
+    let (last, before) = seen.split_last().expect("progress reported");
+    assert_eq!(*last, 1.0);
+    assert!(before.iter().all(|f| *f < 1.0), "100 % before `done`");
 
     // Through the UI: the gauge as drawn.
     let dir = tempfile::tempdir().expect("temp dir");
@@ -469,6 +472,74 @@ fn the_gauge_is_monotone_and_below_100_percent_before_a_long_scene_ends() {
     assert!(shown.windows(2).all(|w| w[1] >= w[0]), "{shown:?}");
     assert_eq!(time_left(0.25, 10.0), " · 10.0 s, about 30.0 s left");
     assert_eq!(time_left(0.5, 0.2), "");
+}
+
+/// The fractions a run of `id` (in quick form when `quick`, with `sets`) reports, in order.
+fn progress_of(id: &str, sets: &[&str], quick: bool) -> Vec<f64> {
+    let sc = scene(id);
+    let mut values = sc.defaults();
+    for a in sets {
+        values.set_assignment(a).expect("a valid assignment");
+    }
+    if quick {
+        values = sc.quick(&values).expect("quick form");
+    }
+    let seen = Arc::new(Mutex::new(Vec::new()));
+    let sink = Arc::clone(&seen);
+    let job = Job::with_sink(move |e| {
+        if let JobEvent::Progress { fraction, .. } = e {
+            sink.lock().expect("test mutex").push(*fraction);
+        }
+    });
+    sc.run(&values, &job).expect("the scene runs");
+    seen.lock().expect("test mutex").clone()
+}
+
+/// The scenes that take over a second report progress that means something, here in the
+/// forms that take a second or two: the fraction never moves back, stays below 1 until the
+/// run's last report (which is 1), advances in many small steps (per point, per step of a
+/// cycle, per sample) and never jumps by more than a quarter. Before, fig4.12 reported twice
+/// (0.5, 1.0: its cycles, then the top views at 100 %), fig4.9a went back from 1.0 to 0.33 for
+/// its second panel, fig4.10's points came as 9 reports, fig4.5-accuracy's cycles as 6.
+#[test]
+fn long_scenes_report_progress_that_advances_and_ends_only_at_the_end() {
+    let cases: &[(&str, &[&str], bool)] = &[
+        // Weighted cycles in parallel, then bisection cycles.
+        ("fig4.3", &[], true),
+        // Two panels of parallel cycles, weighted.
+        ("fig4.9a", &[], true),
+        // A sweep whose points are cycles.
+        ("fig4.10", &[], true),
+        // Parallel cycles, then the top views.
+        ("fig4.12", &[], true),
+        // Cycles on grids, weighted by their cost.
+        ("fig4.5-accuracy", &[], true),
+        // A sweep whose assembly computes a second grid.
+        ("fig3.8", &[], false),
+        // A reference cycle, then cycles weighted by their steps.
+        ("fig5.10-accuracy", &[], true),
+        // Surfaces weighted by their size.
+        ("figC.2-accuracy", &[], true),
+    ];
+    for (id, sets, quick) in cases {
+        let seen = progress_of(id, sets, *quick);
+        let (last, before) = seen.split_last().expect("progress reported");
+        assert_eq!(*last, 1.0, "{id} ends at 1: {seen:?}");
+        assert!(
+            before.iter().all(|f| *f < 1.0),
+            "{id}: 100 % before the end: {seen:?}"
+        );
+        assert!(seen.windows(2).all(|w| w[1] >= w[0]), "{id} moves back: {seen:?}");
+        let jump = seen.windows(2).map(|w| w[1] - w[0]).fold(seen[0], f64::max);
+        assert!(jump <= 0.25, "{id} jumps by {jump}: {seen:?}");
+        let mut distinct = seen.clone();
+        distinct.dedup();
+        assert!(
+            distinct.len() >= 20,
+            "{id}: {} distinct fractions: {seen:?}",
+            distinct.len()
+        );
+    }
 }
 
 /// The history keeps finished runs with their parameters and run times; Enter reopens one

@@ -280,7 +280,10 @@ fn run_grid(p: &Fig4_5AccuracyParams, lj: &LennardJones, modulus: f64, grid: Gri
         keep_profiles: false,
         unload_to: None,
     };
-    let cycle = run_cycle(&tip, &opts, |_| job.check())?;
+    let cycle = run_cycle(&tip, &opts, |f| {
+        job.progress(f, "cycles");
+        job.check()
+    })?;
     Ok(Run {
         grid,
         adhesive_force: -cycle.adhesive_force() / (PI * lj.work_of_adhesion() * p.radius),
@@ -567,7 +570,15 @@ impl Scene for Fig4_5Accuracy {
         let mut sweep = Sweep::new(p);
         let grids = sweep.grids();
         job.progress(0.0, "cycles");
-        sweep.runs = job.map_parallel(&grids, "cycles", |&grid| run_grid(p, &lj, modulus, grid, job))?;
+        // Each cycle's part of the progress by its cost: rings ∝ 1/width (each step's solve
+        // grows as their square), steps ∝ 1/step, the kernel ∝ Gauss points.
+        let weights: Vec<f64> = grids
+            .iter()
+            .map(|g| g.points as f64 / (g.width * g.width * g.step))
+            .collect();
+        sweep.runs = job.map_parallel_parts(&grids, &weights, "cycles", (0.0, 0.99), |&grid, part| {
+            run_grid(p, &lj, modulus, grid, part)
+        })?;
 
         let (a, b) = width_panels(&sweep);
         let (c, e) = step_panels(&sweep);

@@ -132,7 +132,7 @@ impl Sweep for Fig4_9b {
         Ok(vec![force, loss])
     }
 
-    fn assemble(p: &Self::Params, points: &[Vec<f64>], _job: &Job) -> Result<Figure> {
+    fn assemble(p: &Self::Params, points: &[Vec<f64>], job: &Job) -> Result<Figure> {
         let sigmas = geometric(p.sigma_min, p.sigma_max, p.sigma_points);
         let ratios = [p.amplitude_ratio_1, p.amplitude_ratio_2, p.amplitude_ratio_3];
         let n = sigmas.len();
@@ -216,6 +216,7 @@ impl Sweep for Fig4_9b {
             ));
         }
         fig.panels.extend(panels);
+        job.progress(1.0, "done");
         Ok(fig)
     }
 }
@@ -351,7 +352,7 @@ impl Sweep for Fig4_10 {
         Ok(vec![force, loss])
     }
 
-    fn assemble(p: &Self::Params, points: &[Vec<f64>], _job: &Job) -> Result<Figure> {
+    fn assemble(p: &Self::Params, points: &[Vec<f64>], job: &Job) -> Result<Figure> {
         let (alphas, betas) = p.grid();
         let (na, nb) = (alphas.len(), betas.len());
         let values: Vec<(f64, f64)> = points.iter().map(|v| (v[0], v[1])).collect();
@@ -420,6 +421,7 @@ impl Sweep for Fig4_10 {
                  beta falls.",
             );
         }
+        job.progress(1.0, "done");
         Ok(fig)
     }
 }
