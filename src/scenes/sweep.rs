@@ -57,12 +57,19 @@ pub trait Sweep: Scene {
     fn progress_shares(_params: &Self::Params) -> [f64; 3] {
         [0.0, 0.98, 0.02]
     }
+
+    /// The relative cost of each point, in id order, for its part of the points' share of the
+    /// progress; by default all points cost alike.
+    fn point_weights(params: &Self::Params) -> Vec<f64> {
+        vec![1.0; Self::points(params).len()]
+    }
 }
 
 /// Run every point of a sweep in parallel (rayon) and assemble the figure: the body of
 /// [`Scene::run`] of every sweep scene. Progress: the context, the points and the assembly
-/// each cross their [`Sweep::progress_shares`] of the gauge; each point has an equal part of
-/// the points' share, which its own steps (a cycle's) fill as it runs.
+/// each cross their [`Sweep::progress_shares`] of the gauge; each point has a part of the
+/// points' share by its [`Sweep::point_weights`], which its own steps (a cycle's) fill as it
+/// runs.
 ///
 /// # Errors
 /// The first error of a point, errors of the assembly.
@@ -72,7 +79,8 @@ pub fn run<S: Sweep>(params: &S::Params, job: &Job) -> Result<Figure> {
     let (a, b) = (context_share / total, (context_share + points_share) / total);
     let context = S::context(params, &job.part(0.0, a))?;
     let ids: Vec<usize> = (0..S::points(params).len()).collect();
-    let weights = vec![1.0; ids.len()];
+    let mut weights = S::point_weights(params);
+    weights.resize(ids.len(), 1.0);
     let points = job.map_parallel_parts(&ids, &weights, "points", (a, b), |&id, part| {
         part.check()?;
         S::run_point(params, &context, id, part)

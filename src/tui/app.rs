@@ -632,12 +632,8 @@ impl App {
         if !visible.contains(&self.selected)
             && let Some(&k) = visible.first()
         {
-            self.set_selected(k);
+            self.select_index(k);
         }
-    }
-
-    fn set_selected(&mut self, k: usize) {
-        self.select_index(k);
     }
 
     fn select_scene(&mut self, step: isize) {
@@ -650,7 +646,7 @@ impl App {
             Some(i) => visible[(i as isize + step).clamp(0, visible.len() as isize - 1) as usize],
             None => visible[0],
         };
-        self.set_selected(k);
+        self.select_index(k);
     }
 
     fn run(&mut self, effects: &mut Vec<Effect>) {

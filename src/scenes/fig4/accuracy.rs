@@ -570,11 +570,14 @@ impl Scene for Fig4_5Accuracy {
         let mut sweep = Sweep::new(p);
         let grids = sweep.grids();
         job.progress(0.0, "cycles");
-        // Each cycle's part of the progress by its cost: rings ∝ 1/width (each step's solve
-        // grows as their square), steps ∝ 1/step, the kernel ∝ Gauss points.
+        // Each cycle's part of the progress by its cost: rings ∝ 1/width and a cycle's time
+        // as their square (measured at the defaults: 0.17 s at 2 b, 4.9 s at 0.25 b, 46 s at
+        // 0.125 b), the kernel ∝ Gauss points; not the step, which costs about as much coarse
+        // as fine (12.6 s at 1 ζ0, 4.9 s at 0.2 ζ0, 5.7 s at 0.1 ζ0: a coarse step meets more
+        // false alarms of the jump test and longer Newton walks).
         let weights: Vec<f64> = grids
             .iter()
-            .map(|g| g.points as f64 / (g.width * g.width * g.step))
+            .map(|g| g.points as f64 / (g.width * g.width))
             .collect();
         sweep.runs = job.map_parallel_parts(&grids, &weights, "cycles", (0.0, 0.99), |&grid, part| {
             run_grid(p, &lj, modulus, grid, part)
