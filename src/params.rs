@@ -460,6 +460,9 @@ pub struct ParamValues {
     pub specs: Vec<ParamSpec>,
     /// Values, parallel to `specs`.
     pub values: Vec<toml::Value>,
+    /// Reduced by quick mode (`SceneDyn::quick`): a failure then names what differs from the
+    /// defaults in quick form, not the resolution quick mode itself set.
+    pub quick: bool,
 }
 
 impl ParamValues {
@@ -475,7 +478,12 @@ impl ParamValues {
             .iter()
             .map(|s| table.get(s.name).cloned().expect("every spec names a field"))
             .collect();
-        Self { scene, specs, values }
+        Self {
+            scene,
+            specs,
+            values,
+            quick: false,
+        }
     }
 
     /// Index of a parameter, or an error with a suggestion.

@@ -111,6 +111,18 @@ pub trait SceneDyn: Send + Sync {
     /// # Errors
     /// Validation errors, model errors, cancellation.
     fn run(&self, values: &ParamValues, job: &Job) -> Result<Figure>;
+    /// The values a failure of a run with `values` measures the user's changes from (see
+    /// [`attribute_failure`]): the defaults, or in a quick run ([`ParamValues::quick`]) the
+    /// defaults in quick form, so that only what the user changed (`--set`, a preset, the
+    /// form) is named, never the resolution quick mode set.
+    fn baseline(&self, values: &ParamValues) -> ParamValues {
+        let defaults = self.defaults();
+        if values.quick {
+            self.quick(&defaults).unwrap_or(defaults)
+        } else {
+            defaults
+        }
+    }
     /// The sweep interface of a scene made of independent points ([`sweep::Sweep`]), which the
     /// headless exporter runs in shards and merges; `None` for other scenes.
     fn sweep(&self) -> Option<&dyn sweep::SweepDyn> {
@@ -227,13 +239,15 @@ impl<S: Scene> SceneDyn for Registered<S> {
 
     fn validate(&self, values: &ParamValues) -> Result<()> {
         let p: S::Params = values.to_params()?;
-        S::validate(&p).map_err(|e| attribute_failure(S::ID, values, &self.defaults(), e))
+        S::validate(&p).map_err(|e| attribute_failure(S::ID, values, &self.baseline(values), e))
     }
 
     fn quick(&self, values: &ParamValues) -> Result<ParamValues> {
         let mut p: S::Params = values.to_params()?;
         S::quick(&mut p);
-        Ok(ParamValues::from_params(S::ID, &p))
+        let mut quick = ParamValues::from_params(S::ID, &p);
+        quick.quick = true;
+        Ok(quick)
     }
 
     fn run(&self, values: &ParamValues, job: &Job) -> Result<Figure> {
@@ -242,7 +256,7 @@ impl<S: Scene> SceneDyn for Registered<S> {
         if let Some(m) = S::memory_estimate(&p) {
             m.check(memory_limit())?;
         }
-        finish(S::ID, values, &self.defaults(), S::run(&p, job))
+        finish(S::ID, values, &self.baseline(values), S::run(&p, job))
     }
 }
 
@@ -282,7 +296,9 @@ pub fn finish(
 /// names one of the scene's parameters, a cancellation and file errors pass unchanged; any
 /// other, which names internal quantities (`no sign change on [..]`, `m0`, a Newton residual),
 /// is prefixed by the parameters the user changed, most changed first (by the ratio to the
-/// default), with their defaults, and its numbers are cut to 6 significant digits.
+/// default), with their defaults, and its numbers are cut to 6 significant digits. `defaults`
+/// is what the changes are measured from: [`SceneDyn::baseline`] (in quick runs, the defaults
+/// in quick form).
 pub fn attribute_failure(
     scene: &'static str,
     values: &ParamValues,

@@ -1,7 +1,8 @@
-//! A figure panel as a ratatui braille [`Chart`]: the same series, markers and fields as the
-//! PNG/SVG, drawn in the terminal. Unstable branches are dashed (drawn in pieces), reference
-//! curves dotted, markers as block symbols; fields as contour lines. Log axes are drawn in
-//! log10 coordinates with decade labels.
+//! A figure panel as a ratatui braille [`Chart`]: the same series, markers, shaded regions and
+//! fields as the PNG/SVG, drawn in the terminal. Unstable branches are dashed (drawn in pieces),
+//! reference curves dotted, markers as block symbols, shaded regions (hysteresis loops) as a
+//! sparse dot fill under the curves (hatched ones as diagonal rows of dots); fields as contour
+//! lines. Log axes are drawn in log10 coordinates with decade labels.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Rect};
@@ -12,7 +13,25 @@ use ratatui::widgets::{Axis as TuiAxis, Chart, Dataset, GraphType, LegendPositio
 
 use super::axes::padded_range;
 use super::labels::{AxisLabels, axis_labels};
-use crate::figure::{FieldKind, MarkerShape, Panel, Scale, Style};
+use crate::figure::{FieldKind, MarkerShape, Panel, Region, Scale, Style};
+
+/// The symbol of a marker shape, as drawn and in the legend.
+pub fn marker_symbol(shape: MarkerShape) -> &'static str {
+    match shape {
+        MarkerShape::PullIn => "▲",
+        MarkerShape::PullOff => "■",
+        MarkerShape::StableState => "●",
+        MarkerShape::UnstableState => "○",
+        MarkerShape::Point => "◆",
+        MarkerShape::Cross => "×",
+    }
+}
+
+/// The legend symbol of a shaded region.
+pub const REGION_SYMBOL: &str = "░";
+
+/// Palette index of a region without its own colour.
+const REGION_COLOR: usize = 8;
 
 /// Terminal colour of palette index `k` (readable on dark and light backgrounds).
 pub fn color(k: usize) -> Color {
@@ -43,7 +62,8 @@ struct Set {
 /// A rectangle in data units: (x range, y range).
 pub type View = ((f64, f64), (f64, f64));
 
-/// What is drawn besides the panel: the shown range (zoom), a cursor, a zoom rectangle.
+/// What is drawn besides the panel: the shown range (zoom), a cursor, a zoom rectangle, and
+/// which markers and regions the legend lists.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct ChartOptions {
     /// The shown range in data units; `None` fits the data.
@@ -52,6 +72,9 @@ pub struct ChartOptions {
     pub cursor: Option<(f64, f64)>,
     /// A rectangle being chosen for zooming, in data units.
     pub selection: Option<View>,
+    /// Only the first this many markers and regions get legend entries (`None`: all); the
+    /// others belong to an entry that lists them, such as a pinned run's.
+    pub listed: Option<(usize, usize)>,
 }
 
 /// Where the plotting area of a drawn chart is and what it shows, to map screen cells to data
@@ -168,6 +191,14 @@ pub fn render_chart(
     let colors = panel.series_colors();
     let mut sets: Vec<Set> = Vec::new();
     let mut named: Vec<String> = Vec::new();
+    let (listed_markers, listed_regions) = options.listed.unwrap_or((usize::MAX, usize::MAX));
+    let y_width = y_labels
+        .ticks
+        .iter()
+        .map(|(_, l)| l.chars().count())
+        .max()
+        .unwrap_or(1)
+        .max(1);
 
     if let Some(field) = &panel.field {
         let mut levels = field.contour_levels();
@@ -196,6 +227,23 @@ pub fn render_chart(
                     kind: GraphType::Line,
                 });
             }
+        }
+    }
+
+    if let Some(layout) = chart_layout(area, y_width as u16) {
+        for (k, region) in panel.regions.iter().enumerate() {
+            let label = format!("{REGION_SYMBOL} {}", region.name);
+            let name = (k < listed_regions && !named.contains(&label)).then(|| {
+                named.push(label.clone());
+                label
+            });
+            sets.push(Set {
+                name,
+                color: color(region.color.unwrap_or(REGION_COLOR)),
+                points: region_fill(region, layout.graph, xb_, yb_, &map),
+                marker: TuiMarker::Braille,
+                kind: GraphType::Scatter,
+            });
         }
     }
 
@@ -243,18 +291,10 @@ pub fn render_chart(
             }),
         }
     }
-    for m in &panel.markers {
+    for (k, m) in panel.markers.iter().enumerate() {
         let c = color(panel.marker_color(m, &colors).unwrap_or(7));
-        let symbol = match m.shape {
-            MarkerShape::PullIn => "▲",
-            MarkerShape::PullOff => "■",
-            MarkerShape::StableState => "●",
-            MarkerShape::UnstableState => "○",
-            MarkerShape::Point => "◆",
-            MarkerShape::Cross => "×",
-        };
-        let label = format!("{symbol} {}", m.name);
-        let name = (!named.contains(&label)).then(|| {
+        let label = format!("{} {}", marker_symbol(m.shape), m.name);
+        let name = (k < listed_markers && !named.contains(&label)).then(|| {
             named.push(label.clone());
             label
         });
@@ -313,13 +353,6 @@ pub fn render_chart(
             d
         })
         .collect();
-    let y_width = y_labels
-        .ticks
-        .iter()
-        .map(|(_, l)| l.chars().count())
-        .max()
-        .unwrap_or(1)
-        .max(1);
     // Blank labels reserve the room; the real ones go where their ticks are (ratatui spaces
     // labels evenly between the bounds, which 1-2-5 ticks are not).
     let blank = |w: usize| Line::from(" ".repeat(w));
@@ -445,6 +478,57 @@ fn draw_ticks(
             buf[(col, row)].set_symbol("┤");
         }
     }
+}
+
+/// The dots that shade `region` in a graph of `graph` cells showing `x` × `y` (drawing
+/// coordinates): one braille dot at the centre of every other cell inside the polygon, in a
+/// checkerboard (a fill) or on diagonals (a hatched region). Rows are cut by the polygon's edges
+/// (even-odd rule), so the cost is cells plus rows × edges.
+fn region_fill(
+    region: &Region,
+    graph: Rect,
+    x: [f64; 2],
+    y: [f64; 2],
+    map: &impl Fn(&(f64, f64)) -> Option<(f64, f64)>,
+) -> Vec<(f64, f64)> {
+    let poly: Vec<(f64, f64)> = region.points.iter().filter_map(map).collect();
+    let (w, h) = (usize::from(graph.width), usize::from(graph.height));
+    if poly.len() < 3 || w == 0 || h == 0 {
+        return Vec::new();
+    }
+    let (dx, dy) = ((x[1] - x[0]) / w as f64, (y[1] - y[0]) / h as f64);
+    let mut dots = Vec::new();
+    let mut cuts: Vec<f64> = Vec::new();
+    for row in 0..h {
+        let yc = y[0] + (row as f64 + 0.5) * dy;
+        cuts.clear();
+        for (k, a) in poly.iter().enumerate() {
+            let b = poly[(k + 1) % poly.len()];
+            if (a.1 <= yc) != (b.1 <= yc) {
+                cuts.push(a.0 + (yc - a.1) / (b.1 - a.1) * (b.0 - a.0));
+            }
+        }
+        cuts.sort_by(f64::total_cmp);
+        for pair in cuts.chunks_exact(2) {
+            // Cells whose centre lies between the two cuts.
+            let first = ((pair[0] - x[0]) / dx - 0.5).ceil().max(0.0);
+            let last = ((pair[1] - x[0]) / dx - 0.5).floor().min(w as f64 - 1.0);
+            if first.is_nan() || last.is_nan() || first > last {
+                continue;
+            }
+            for col in first as usize..=last as usize {
+                let on = if region.hatched {
+                    (col + row) % 4 == 0
+                } else {
+                    (col + row) % 2 == 0
+                };
+                if on {
+                    dots.push((x[0] + (col as f64 + 0.5) * dx, yc));
+                }
+            }
+        }
+    }
+    dots
 }
 
 /// Cut a polyline into dashes measured in fractions of the chart's span.

@@ -753,15 +753,19 @@ impl Scene for Fig2_5Accuracy {
         let mut by_time = Panel::new(Axis::log("Run time", "s"), Axis::log("Max relative error", ""))
             .titled("(b)", "error against run time");
         let mut fig = Figure::new(Self::ID, Self::TITLE);
-        let n_fam = families.len();
+        // Progress: the reference above, then setting by setting.
+        let n_settings: usize = families.iter().map(|(_, s)| s.len()).sum();
+        let mut done = 0;
+        job.progress(0.05, "reference computed");
         for (k, (name, settings)) in families.into_iter().enumerate() {
             job.check()?;
-            job.progress(k as f64 / n_fam as f64, name);
             let mut off_pts = Vec::new();
             let mut h_pts = Vec::new();
             let mut off_t = Vec::new();
             let mut h_t = Vec::new();
             for (x, method) in settings {
+                job.progress(0.05 + 0.94 * done as f64 / n_settings as f64, name);
+                done += 1;
                 let (e_off, e_h) = method_errors(method, &models, &reference)?;
                 let (e_off, e_h) = (e_off.max(floor), e_h.max(floor));
                 if let Method::Fits = method {

@@ -657,14 +657,15 @@ impl Scene for Fig3_5Accuracy {
         let n = p.grid_points;
         // The shared table is built once per process; keep its construction out of the timing.
         crate::models::maugis_dugdale::loss_table()?;
-        let timed = |method: LossMethod| -> Result<(Vec<f64>, f64)> {
+        let timed = |method: LossMethod, part: &Job| -> Result<(Vec<f64>, f64)> {
             let t0 = std::time::Instant::now();
-            let (_, _, v) = grid.loss_grid(method, n, job)?;
+            let (_, _, v) = grid.loss_grid(method, n, part)?;
             Ok((v, t0.elapsed().as_secs_f64() / (n * n) as f64))
         };
-        let (reference, quad_time) = timed(LossMethod::Quadrature)?;
-        let (tabled, table_time) = timed(LossMethod::Table)?;
-        let (empirical, emp_time) = timed(LossMethod::Empirical)?;
+        // The quadrature grid costs most of the three.
+        let (reference, quad_time) = timed(LossMethod::Quadrature, &job.part(0.8, 0.97))?;
+        let (tabled, table_time) = timed(LossMethod::Table, &job.part(0.97, 0.98))?;
+        let (empirical, emp_time) = timed(LossMethod::Empirical, &job.part(0.98, 0.99))?;
         let max_err = |v: &[f64]| {
             v.iter()
                 .zip(&reference)
@@ -879,12 +880,19 @@ impl Fig3_8Params {
         let base = self.base_moments()?;
         let zs = crate::numerics::curve::linspace(self.range_min, self.range_max, n);
         let ss = crate::numerics::curve::linspace(self.sigma_min, self.sigma_max, n);
+        // Progress once per row's worth of cells (cheap next to even the empirical loss).
+        let done = std::sync::atomic::AtomicUsize::new(0);
+        let rows = job.ticker(n, "loss grid", 0.0, 1.0);
         let values: Vec<f64> = (0..n * n)
             .into_par_iter()
             .map(|k| {
                 job.check()?;
                 let (i, j) = (k % n, k / n);
-                self.model_on(base, zs[i], ss[j])?.loss_per_area(method)
+                let loss = self.model_on(base, zs[i], ss[j])?.loss_per_area(method);
+                if (done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1).is_multiple_of(n) {
+                    rows.tick();
+                }
+                loss
             })
             .collect::<Result<_>>()?;
         Ok((zs, ss, values))
@@ -1030,6 +1038,17 @@ impl Sweep for Fig3_8 {
             .collect()
     }
 
+    /// The points compute the contour with the chosen loss, the assembly the same grid with
+    /// the other loss (and, once per process, the loss table): alike, unless the points use
+    /// the quadrature (about 100 times the cost).
+    fn progress_shares(p: &Self::Params) -> [f64; 3] {
+        if p.loss == LossChoice::Quadrature {
+            [0.0, 0.95, 0.05]
+        } else {
+            [0.0, 0.5, 0.5]
+        }
+    }
+
     fn assemble(p: &Self::Params, points: &[Vec<f64>], job: &Job) -> Result<Figure> {
         job.check()?;
         let method = p.loss.method();
@@ -1137,7 +1156,7 @@ impl Sweep for Fig3_8 {
         if job.wants_preview() {
             job.preview(&fig);
         }
-        job.progress(0.1, "contour");
+        job.progress(0.2, "contour");
 
         let n = p.grid_points;
         let zs = crate::numerics::curve::linspace(p.range_min, p.range_max, n);
@@ -1162,7 +1181,7 @@ impl Sweep for Fig3_8 {
             .titled("(c)", format!("loss per nominal area, {}", loss_label(method)));
         c.field = Some(field);
         // Where the measured level lies with the other loss.
-        let (zs2, ss2, values2) = p.loss_grid(other, p.grid_points, job)?;
+        let (zs2, ss2, values2) = p.loss_grid(other, p.grid_points, &job.part(0.2, 0.95))?;
         let other_field = Field::heat(
             "other",
             "",

@@ -274,8 +274,9 @@ impl Scene for Fig4_5 {
             keep_profiles: false,
             unload_to: None,
         };
+        // The cycle is nearly all of the run; the Maugis-Dugdale curves follow.
         let cycle = run_cycle(&tip, &opts, |f| {
-            job.progress(f, "cycle");
+            job.progress(0.98 * f, "cycle");
             job.check()
         })?;
         let (chi, ell) = (lj.chi(modulus), lj.ell(p.radius, modulus));
@@ -387,6 +388,7 @@ impl Scene for Fig4_5 {
             cycle.stats.states,
             cycle.stats.all_stable
         ));
+        job.progress(1.0, "done");
         Ok(fig)
     }
 }
@@ -539,12 +541,26 @@ impl Scene for Fig4_7 {
             keep_profiles: keep,
             unload_to: None,
         };
-        // The two cycles in parallel; progress from the deep one.
+        // The two cycles in parallel, each with its part of the progress by its steps (the
+        // depth travelled from the start, twice).
+        let parts = job.parts(
+            &[
+                p.h_start_over_zeta0 * zeta0 + depths[0],
+                p.h_start_over_zeta0 * zeta0 + depths[1],
+            ],
+            0.0,
+            0.98,
+        );
         let (shallow, deep) = rayon::join(
-            || run_cycle(&tip, &opts(depths[0], false), |_| job.check()),
+            || {
+                run_cycle(&tip, &opts(depths[0], false), |f| {
+                    parts[0].progress(f, "shallow cycle");
+                    job.check()
+                })
+            },
             || {
                 run_cycle(&tip, &opts(depths[1], false), |f| {
-                    job.progress(f, "deep cycle");
+                    parts[1].progress(f, "deep cycle");
                     job.check()
                 })
             },
@@ -649,6 +665,7 @@ impl Scene for Fig4_7 {
             tip.len(),
             p.ring_width
         ));
+        job.progress(1.0, "done");
         Ok(fig)
     }
 }
@@ -709,7 +726,7 @@ impl Scene for Fig4_8 {
             unload_to: Some(1.5e-4 * p.radius),
         };
         let deep = run_cycle(&tip, &opts, |f| {
-            job.progress(f, "deep cycle");
+            job.progress(0.99 * f, "deep cycle");
             job.check()
         })?;
         let states = marked_states(&deep, p.radius);
@@ -780,6 +797,7 @@ impl Scene for Fig4_8 {
             "depth_cd_norm",
             states[2].as_ref().map_or(0.0, |s| s.depth / p.radius),
         );
+        job.progress(1.0, "done");
         Ok(fig)
     }
 }

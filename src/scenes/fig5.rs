@@ -521,11 +521,14 @@ fn unit_surfaces(
     job: &Job,
 ) -> Result<Vec<Vec<f64>>> {
     use rayon::prelude::*;
+    let done = job.ticker(samples, "surfaces", 0.0, 1.0);
     (0..samples)
         .into_par_iter()
         .map(|k| {
             job.check()?;
-            unit_surface(nx, ny, lc_bar, seed + k as u64)
+            let surface = unit_surface(nx, ny, lc_bar, seed + k as u64);
+            done.tick();
+            surface
         })
         .collect()
 }
@@ -556,11 +559,14 @@ fn uncoupled_samples(
         oversample,
         (sigma_bar * lo, sigma_bar * hi),
     )?;
+    let done = job.ticker(unit.len(), "samples", 0.0, 1.0);
     unit.par_iter()
         .map(|u| {
             job.check()?;
             let z: Vec<f64> = u.iter().map(|v| v * sigma_bar).collect();
-            tables.cycle(&z)
+            let cycle = tables.cycle(&z);
+            done.tick();
+            cycle
         })
         .collect()
 }
@@ -693,24 +699,38 @@ impl Scene for Fig5_7 {
         );
         let mut fig = Figure::new(Self::ID, Self::TITLE);
         let mut effs = Vec::new();
-        let unit = unit_surfaces(n, n, p.correlation_length, p.samples, p.seed, job)?;
-        for (c, &sigma) in p.roughness.iter().enumerate() {
+        // Progress: the surfaces (about 4 % of a run at the defaults), then each roughness's
+        // cycles sample by sample.
+        let unit = unit_surfaces(
+            n,
+            n,
+            p.correlation_length,
+            p.samples,
+            p.seed,
+            &job.part(0.0, 0.04),
+        )?;
+        let stages = job.parts(&vec![1.0; p.roughness.len()], 0.04, 0.99);
+        for ((c, &sigma), stage) in p.roughness.iter().enumerate().zip(&stages) {
             job.check()?;
-            job.progress(c as f64 / p.roughness.len() as f64, &format!("σ_rms/σ = {sigma}"));
+            stage.progress(0.0, &format!("σ_rms/σ = {sigma}"));
             let window = cycle_window(k_e, sigma, p.depth_sigmas, p.end_sigmas)?;
             let cycles = match p.path {
                 UncoupledPath::Binned => {
-                    uncoupled_samples(&unit, sigma, k_e, p.steps, p.oversample, window, job)?
+                    uncoupled_samples(&unit, sigma, k_e, p.steps, p.oversample, window, stage)?
                 }
                 UncoupledPath::Exact => {
                     use rayon::prelude::*;
+                    let done = stage.ticker(p.samples, "samples", 0.0, 1.0);
                     (0..p.samples)
                         .into_par_iter()
                         .map(|k| {
                             job.check()?;
                             let z: Vec<f64> = unit[k].iter().map(|v| v * sigma).collect();
                             let a = crate::models::spring_array::SpringArray::new(n, n, k_e, 0.0, z)?;
-                            crate::models::spring_array::uncoupled_cycle(&a, window.0, window.1, p.steps)
+                            let cycle =
+                                crate::models::spring_array::uncoupled_cycle(&a, window.0, window.1, p.steps);
+                            done.tick();
+                            cycle
                         })
                         .collect::<Result<Vec<_>>>()?
                 }
@@ -1069,8 +1089,16 @@ impl Sweep for Fig5_9 {
         let nl = p.correlation_lengths.len();
         let (sigma, lc) = (p.roughness[id / nl], p.correlation_lengths[id % nl]);
         let window = cycle_window(k_e, sigma, p.depth_sigmas, p.end_sigmas)?;
-        let unit = unit_surfaces(n, n, lc, p.samples, p.seed, job)?;
-        let cycles = uncoupled_samples(&unit, sigma, k_e, p.steps, p.oversample, window, job)?;
+        let unit = unit_surfaces(n, n, lc, p.samples, p.seed, &job.part(0.0, 0.5))?;
+        let cycles = uncoupled_samples(
+            &unit,
+            sigma,
+            k_e,
+            p.steps,
+            p.oversample,
+            window,
+            &job.part(0.5, 1.0),
+        )?;
         Ok(cycles
             .iter()
             .map(|cy| crate::models::spring_array::adhesion_efficiency(cy, n * n))
@@ -1220,17 +1248,17 @@ fn coupling_study(
             let c =
                 crate::models::spring_array::coupled_cycle(&a, window.0, window.1, p.steps, &opts, |f| {
                     job.check()?;
-                    let mean = match fractions.lock() {
-                        Ok(mut all) => {
-                            all[slot] = f;
-                            all.iter().sum::<f64>() / n_couplings as f64
-                        }
+                    // Reported under the lock, so the means arrive in order.
+                    let Ok(mut all) = fractions.lock() else {
                         // Another coupling panicked holding the lock; its error will surface.
-                        Err(_) => f,
+                        return Ok(());
                     };
+                    all[slot] = f;
+                    let mean = all.iter().sum::<f64>() / n_couplings as f64;
                     let steps = (mean * (2 * p.steps * n_couplings) as f64).round();
+                    // The figure is built after the last step: `done` brings the 1.
                     job.progress(
-                        mean,
+                        0.99 * mean,
                         &format!(
                             "coupled cycles: {steps:.0}/{} steps of {n_couplings} couplings",
                             2 * p.steps * n_couplings
@@ -1544,19 +1572,33 @@ impl Scene for Fig5_10Accuracy {
         let a = SpringArray::new(p.springs, 1, k_e, p.coupling * k_e, z)?;
         let window = cycle_window(k_e, p.roughness, p.depth_sigmas, p.end_sigmas)?;
         let norm = p.springs as f64 * crate::models::spring_array::single_spring_adhesive_force().abs();
-        let run = |steps: usize, tol: f64| -> Result<(crate::models::spring_array::ArrayCycle, f64, usize)> {
+        let run = |steps: usize,
+                   tol: f64,
+                   part: &Job,
+                   what: &str|
+         -> Result<(crate::models::spring_array::ArrayCycle, f64, usize)> {
             let opts = NewtonOptions {
                 gradient_tol: tol,
                 linear: crate::numerics::newton::LinearSolver::Iterative,
                 ..Default::default()
             };
             let t0 = std::time::Instant::now();
-            let c = coupled_cycle(&a, window.0, window.1, steps, &opts, |_| job.check())?;
+            let c = coupled_cycle(&a, window.0, window.1, steps, &opts, |f| {
+                part.progress(f, what);
+                job.check()
+            })?;
             let iterations = c.newton_iterations;
             Ok((c, t0.elapsed().as_secs_f64(), iterations))
         };
-        job.progress(0.0, "reference");
-        let (reference, ref_time, _) = run(p.reference_steps, 1e-12)?;
+        // Each cycle's part of the progress by its cost: its steps, a little more per step for
+        // a tighter tolerance (the reference takes about 45 % of a run at the defaults).
+        let cost = |steps: f64, tol: f64| steps * (1.0 + 0.1 * (1.0 / tol).log10().max(0.0));
+        let mut weights = vec![cost(p.reference_steps as f64, 1e-12)];
+        for &tol in &p.tolerances {
+            weights.extend(p.steps.iter().map(|&steps| cost(steps, tol)));
+        }
+        let parts = job.parts(&weights, 0.0, 0.99);
+        let (reference, ref_time, _) = run(p.reference_steps, 1e-12, &parts[0], "reference")?;
         let p_ref = reference.max_tensile_force();
         let h_ref = reference.hysteresis();
         let x_label = if p.wall_clock {
@@ -1575,11 +1617,8 @@ impl Scene for Fig5_10Accuracy {
             let mut hp = Vec::new();
             for (k, &steps) in p.steps.iter().enumerate() {
                 job.check()?;
-                job.progress(
-                    (c * p.steps.len() + k) as f64 / (p.tolerances.len() * p.steps.len()) as f64,
-                    &format!("tolerance {tol:e}, {steps} steps"),
-                );
-                let (cy, time, iters) = run(steps as usize, tol)?;
+                let what = format!("tolerance {tol:e}, {steps} steps");
+                let (cy, time, iters) = run(steps as usize, tol, &parts[1 + c * p.steps.len() + k], &what)?;
                 let x = if p.wall_clock { time } else { iters as f64 };
                 let ef = ((cy.max_tensile_force() - p_ref) / p_ref).abs().max(1e-16);
                 let eh = ((cy.hysteresis() - h_ref) / h_ref).abs().max(1e-16);

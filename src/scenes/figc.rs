@@ -695,21 +695,34 @@ impl Scene for FigC2Accuracy {
         for &n in &grids {
             bias.push((n, resolution_bias(&spectrum, n)?));
         }
-        let total = (grids.len() * samples.len()) as f64;
-        let mut done = 0.0;
+        // Each (S, N)'s part of the progress by its cost, S surfaces of N² log N each; it fills
+        // surface by surface.
+        let weights: Vec<f64> = samples
+            .iter()
+            .flat_map(|&s| {
+                grids
+                    .iter()
+                    .map(move |&n| s as f64 * (n * n) as f64 * (n as f64).log2().max(1.0))
+            })
+            .collect();
+        let parts = job.parts(&weights, 0.0, 0.99);
+        let mut done = 0;
         let (mut e2_fin, mut e4_fin, mut t_fin) = (f64::NAN, f64::NAN, f64::NAN);
         for (si, &s) in samples.iter().enumerate() {
             let (mut l2, mut l4, mut c2, mut c4) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
             for &n in &grids {
                 job.check()?;
-                job.progress(done / total, &format!("N = {n}, S = {s}"));
-                done += 1.0;
+                let part = &parts[done];
+                done += 1;
+                let what = format!("N = {n}, S = {s}");
+                part.progress(0.0, &what);
                 let (mut se2, mut se4, mut time) = (0.0, 0.0, 0.0);
                 for r in 0..p.repetitions {
                     let t0 = std::time::Instant::now();
                     let (mut m2, mut m4) = (0.0, 0.0);
                     for k in 0..s {
                         job.check()?;
+                        part.progress((r * s + k) as f64 / (p.repetitions * s) as f64, &what);
                         let seed = 1_000_000 * (r as u64 + 1) + k as u64;
                         let map = generate(&spectrum, n, n, 1.0, 1.0, seed)?;
                         let m = moments_of_map(&map);

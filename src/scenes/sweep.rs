@@ -50,21 +50,42 @@ pub trait Sweep: Scene {
     /// # Errors
     /// Model errors of the parts of the figure that are not points.
     fn assemble(params: &Self::Params, points: &[Vec<f64>], job: &Job) -> Result<Figure>;
+
+    /// The shares of an unsharded run's time spent building the context, computing the points
+    /// and assembling the figure (any unit), for its progress: the gauge crosses each part in
+    /// its share. By default nearly all of it is the points.
+    fn progress_shares(_params: &Self::Params) -> [f64; 3] {
+        [0.0, 0.98, 0.02]
+    }
+
+    /// The relative cost of each point, in id order, for its part of the points' share of the
+    /// progress; by default all points cost alike.
+    fn point_weights(params: &Self::Params) -> Vec<f64> {
+        vec![1.0; Self::points(params).len()]
+    }
 }
 
 /// Run every point of a sweep in parallel (rayon) and assemble the figure: the body of
-/// [`Scene::run`] of every sweep scene.
+/// [`Scene::run`] of every sweep scene. Progress: the context, the points and the assembly
+/// each cross their [`Sweep::progress_shares`] of the gauge; each point has a part of the
+/// points' share by its [`Sweep::point_weights`], which its own steps (a cycle's) fill as it
+/// runs.
 ///
 /// # Errors
 /// The first error of a point, errors of the assembly.
 pub fn run<S: Sweep>(params: &S::Params, job: &Job) -> Result<Figure> {
-    let context = S::context(params, job)?;
+    let [context_share, points_share, assembly_share] = S::progress_shares(params);
+    let total = context_share + points_share + assembly_share;
+    let (a, b) = (context_share / total, (context_share + points_share) / total);
+    let context = S::context(params, &job.part(0.0, a))?;
     let ids: Vec<usize> = (0..S::points(params).len()).collect();
-    let points = job.map_parallel(&ids, "points", |&id| {
-        job.check()?;
-        S::run_point(params, &context, id, job)
+    let mut weights = S::point_weights(params);
+    weights.resize(ids.len(), 1.0);
+    let points = job.map_parallel_parts(&ids, &weights, "points", (a, b), |&id, part| {
+        part.check()?;
+        S::run_point(params, &context, id, part)
     })?;
-    S::assemble(params, &points, job)
+    S::assemble(params, &points, &job.part(b, 1.0))
 }
 
 /// The computation of one point, handed to the caller of [`SweepDyn::run_points`] to run and
@@ -167,8 +188,8 @@ impl<S: Sweep> SweepDyn for Swept<S> {
         if let Some(m) = S::memory_estimate(&p) {
             m.check(memory_limit())?;
         }
-        let defaults = self.defaults();
-        let attribute = |e| crate::scenes::attribute_failure(S::ID, values, &defaults, e);
+        let baseline = self.baseline(values);
+        let attribute = |e| crate::scenes::attribute_failure(S::ID, values, &baseline, e);
         let context = S::context(&p, job).map_err(attribute)?;
         ids.par_iter().try_for_each(|&id| {
             job.check()?;
@@ -178,6 +199,11 @@ impl<S: Sweep> SweepDyn for Swept<S> {
 
     fn assemble(&self, values: &ParamValues, points: &[Vec<f64>], job: &Job) -> Result<Figure> {
         let p = Self::params(values)?;
-        crate::scenes::finish(S::ID, values, &self.defaults(), S::assemble(&p, points, job))
+        crate::scenes::finish(
+            S::ID,
+            values,
+            &self.baseline(values),
+            S::assemble(&p, points, job),
+        )
     }
 }

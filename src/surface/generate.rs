@@ -97,12 +97,14 @@ struct Filter {
     square: bool,
 }
 
-/// What a filter depends on: the spectrum's shape (its σ_rms cancels in the scaling) and the grid.
+/// What a filter depends on: the spectrum and the grid. Its σ_rms cancels in the scaling, but
+/// not where the filter's values overflow or underflow (σ_rms = 1e300 or 1e-300), so it is part
+/// of the key: such a filter must not serve the next surface of the same shape.
 type FilterKey = (Spectrum, usize, usize, f64, f64);
 
 impl Filter {
     /// The filter of `spectrum` on the grid, from the one-entry cache when the last surface had
-    /// the same shape and grid (a sample average draws many surfaces of one kind).
+    /// the same spectrum and grid (a sample average draws many surfaces of one kind).
     fn cached(
         spectrum: &Spectrum,
         fft: &RealFft2,
@@ -113,7 +115,7 @@ impl Filter {
         h: impl Fn(f64) -> f64 + Sync,
     ) -> Arc<Filter> {
         static LAST: Mutex<Option<(FilterKey, Arc<Filter>)>> = Mutex::new(None);
-        let key = (spectrum.with_rms(1.0), nx, ny, lx, ly);
+        let key = (*spectrum, nx, ny, lx, ly);
         if let Some((k, f)) = &*LAST.lock().unwrap_or_else(PoisonError::into_inner)
             && *k == key
         {

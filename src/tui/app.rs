@@ -7,8 +7,9 @@ use std::path::{Path, PathBuf};
 use ratatui::crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
 use std::cell::Cell;
+use std::collections::HashMap;
 
-use super::chart::{CursorAt, DrawnLayout, HistoryEntry};
+use super::chart::{AxesKey, CursorAt, DrawnLayout, HistoryEntry, PanelView};
 use super::compare::Pin;
 use super::form::{Form, LineEdit};
 use super::keymap::{Action, action_for};
@@ -191,6 +192,9 @@ pub struct App {
     pub(crate) zoom_mark: Option<(f64, f64)>,
     pub(crate) drag: Option<((f64, f64), (f64, f64))>,
     pub(crate) history: Vec<HistoryEntry>,
+    pub(crate) views: HashMap<(usize, usize), PanelView>,
+    pub(crate) last_panel: Vec<usize>,
+    pub(crate) axes: Vec<Vec<AxesKey>>,
     pub(crate) layout: Cell<DrawnLayout>,
     preset_dir: PathBuf,
     next_job: u64,
@@ -215,6 +219,7 @@ impl App {
         let forms = scenes.iter().map(|s| Form::new(*s)).collect();
         let figures = scenes.iter().map(|_| None).collect();
         let pins = scenes.iter().map(|_| Vec::new()).collect();
+        let n = scenes.len();
         Self {
             scenes,
             forms,
@@ -237,6 +242,9 @@ impl App {
             zoom_mark: None,
             drag: None,
             history: Vec::new(),
+            views: HashMap::new(),
+            last_panel: vec![0; n],
+            axes: vec![Vec::new(); n],
             layout: Cell::new(DrawnLayout::default()),
             preset_dir: preset_dir.into(),
             next_job: 1,
@@ -561,14 +569,12 @@ impl App {
             }
             Action::PrevPanel | Action::NextPanel => {
                 let before = self.panel();
-                self.panel = if action == Action::PrevPanel {
+                let next = if action == Action::PrevPanel {
                     before.saturating_sub(1)
                 } else {
                     before + 1
                 };
-                if self.panel() != before {
-                    self.on_view_change();
-                }
+                self.show_panel(next);
             }
             Action::History => {
                 if self.history.is_empty() {
@@ -626,15 +632,7 @@ impl App {
         if !visible.contains(&self.selected)
             && let Some(&k) = visible.first()
         {
-            self.set_selected(k);
-        }
-    }
-
-    fn set_selected(&mut self, k: usize) {
-        if k != self.selected && k < self.scenes.len() {
-            self.selected = k;
-            self.panel = 0;
-            self.on_view_change();
+            self.select_index(k);
         }
     }
 
@@ -648,16 +646,7 @@ impl App {
             Some(i) => visible[(i as isize + step).clamp(0, visible.len() as isize - 1) as usize],
             None => visible[0],
         };
-        self.set_selected(k);
-    }
-
-    /// Called when the shown scene or panel changes: the cursor and the zoom belong to one
-    /// panel.
-    pub(crate) fn on_view_change(&mut self) {
-        self.cursor = None;
-        self.zoom = None;
-        self.zoom_mark = None;
-        self.drag = None;
+        self.select_index(k);
     }
 
     fn run(&mut self, effects: &mut Vec<Effect>) {
@@ -729,6 +718,7 @@ impl App {
                             .map(|r| r.values)
                             .unwrap_or_else(|| self.forms[scene].values().clone());
                         self.remember(scene, &figure, &values, run_time_s);
+                        self.on_results(scene, &figure);
                         self.figures[scene] = Some(FigureView {
                             figure: *figure,
                             values,

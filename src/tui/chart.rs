@@ -4,14 +4,14 @@
 //!
 //! Everything here is state: the view draws it, the session carries out the effects.
 
-use ratatui::crossterm::event::{MouseButton, MouseEvent, MouseEventKind};
+use ratatui::crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
 use ratatui::layout::Rect;
 
 use super::app::{App, Effect, FigureState, FigureView, Focus, Mode};
-use super::compare::{Overlay, Owner, Pin, overlay, pin_color, pin_label};
+use super::compare::{Overlay, Pin, overlay, pin_color, pin_label};
 use super::keymap::Action;
-use super::view::{ListRow, scene_rows};
-use crate::figure::{Figure, Scale};
+use super::view::{ListRow, footer_at, scene_rows, tab_at};
+use crate::figure::{Figure, Panel, Scale};
 use crate::params::ParamValues;
 use crate::render::labels::fmt_quantity;
 use crate::render::terminal::{ChartGeometry, View, shown_range};
@@ -63,6 +63,39 @@ pub struct HistoryEntry {
     pub run_time_s: f64,
 }
 
+/// The cursor and the zoom of one panel, kept while the shown scene or panel changes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PanelView {
+    /// The cursor.
+    pub cursor: Option<CursorAt>,
+    /// The shown range.
+    pub zoom: Option<View>,
+}
+
+/// What a panel's cursor and zoom refer to: its axes (label, unit, scale) and the range the
+/// whole panel shows. New results that change it reset the panel's cursor and zoom.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AxesKey {
+    /// Label, unit and scale of x.
+    pub x: (String, String, Scale),
+    /// Label, unit and scale of y.
+    pub y: (String, String, Scale),
+    /// The whole panel's range in data units.
+    pub range: Option<View>,
+}
+
+impl AxesKey {
+    /// The key of `panel`.
+    pub fn of(panel: &Panel) -> Self {
+        let axis = |a: &crate::figure::Axis| (a.label.clone(), a.unit.clone(), a.scale);
+        Self {
+            x: axis(&panel.x),
+            y: axis(&panel.y),
+            range: shown_range(panel, None),
+        }
+    }
+}
+
 /// Where the last frame put the parts the mouse can hit.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct DrawnLayout {
@@ -78,6 +111,16 @@ pub struct DrawnLayout {
     pub chart_area: Rect,
     /// The chart's graph, if a chart was drawn.
     pub chart: Option<ChartGeometry>,
+    /// The line of panel tabs (empty when the figure has one panel).
+    pub tabs: Rect,
+    /// The history overlay (its border included).
+    pub overlay: Rect,
+    /// The history overlay's rows of runs.
+    pub history: Rect,
+    /// First history entry shown.
+    pub history_offset: usize,
+    /// The history overlay's footer line (its actions).
+    pub history_footer: Rect,
 }
 
 fn hit(r: Rect, column: u16, row: u16) -> bool {
@@ -102,12 +145,13 @@ impl App {
             .collect()
     }
 
-    /// The shown panel of the selected scene with its pinned runs drawn over it.
+    /// The shown panel of the selected scene with its pinned runs drawn over it, each pin's
+    /// legend entry listing the symbols of its markers and regions.
     pub fn drawn(&self) -> Option<Overlay> {
         let view = self.figure(self.selected)?;
         let k = self.panel();
         let panel = view.figure.panels.get(k)?;
-        Some(overlay(panel, k, self.pins(self.selected), &self.pin_labels()))
+        Some(overlay(panel, k, self.pins(self.selected), &self.pin_labels()).with_legend_symbols())
     }
 
     /// Where the last frame drew the chart's graph and what it shows.
@@ -138,7 +182,7 @@ impl App {
     /// The cursor's point, curve and coordinates on the drawn panel.
     pub fn readout(&self) -> Option<Readout> {
         let drawn = self.drawn()?;
-        readout(&drawn, self.cursor?, &self.pin_labels())
+        readout(&drawn, self.cursor?)
     }
 
     /// The rectangle being chosen for zooming (first corner and the cursor, or a mouse drag).
@@ -173,11 +217,10 @@ impl App {
             self.set_status("a run of this scene is in progress: Esc cancels it first", true);
             return;
         }
-        self.selected = entry.scene;
-        self.panel = 0;
-        self.on_view_change();
+        self.select_index(entry.scene);
         self.filter.clear();
         self.forms[entry.scene].load(entry.values.clone());
+        self.on_results(entry.scene, &entry.figure);
         self.figures[entry.scene] = Some(FigureView {
             figure: entry.figure,
             values: entry.values,
@@ -387,11 +430,28 @@ impl App {
     /// Handle a mouse event (where the terminal reports them); returns what the session must
     /// do.
     pub fn on_mouse(&mut self, ev: MouseEvent) -> Vec<Effect> {
-        if self.mode != Mode::Normal {
-            return Vec::new();
-        }
         let layout = self.layout.get();
         let (column, row) = (ev.column, ev.row);
+        match self.mode {
+            Mode::Normal | Mode::Filter { .. } => {}
+            Mode::Help => {
+                if matches!(ev.kind, MouseEventKind::Down(_)) {
+                    self.mode = Mode::Normal;
+                }
+                return Vec::new();
+            }
+            Mode::History { .. } => return self.history_mouse(ev, &layout),
+            Mode::Prompt { .. } => return Vec::new(),
+        }
+        if ev.kind == MouseEventKind::Down(MouseButton::Left) && hit(layout.tabs, column, row) {
+            if let Some(k) = self
+                .figure(self.selected)
+                .and_then(|v| tab_at(v, layout.tabs.x, column))
+            {
+                self.show_panel(k);
+            }
+            return Vec::new();
+        }
         let in_list = hit(layout.list, column, row);
         let in_form = hit(layout.form, column, row);
         let at_chart = layout.chart.and_then(|g| g.to_data(column, row));
@@ -466,6 +526,45 @@ impl App {
         Vec::new()
     }
 
+    /// The mouse over the history overlay: a click chooses a run, a click on the chosen run
+    /// reopens it, the wheel moves the choice, the footer's actions act as their keys, a click
+    /// outside closes the overlay.
+    fn history_mouse(&mut self, ev: MouseEvent, layout: &DrawnLayout) -> Vec<Effect> {
+        let (column, row) = (ev.column, ev.row);
+        let key = |code: KeyCode| KeyEvent::new(code, KeyModifiers::NONE);
+        match ev.kind {
+            MouseEventKind::ScrollUp => self.update(key(KeyCode::Up)),
+            MouseEventKind::ScrollDown => self.update(key(KeyCode::Down)),
+            MouseEventKind::Down(MouseButton::Left) => {
+                if hit(layout.history, column, row) {
+                    let k = usize::from(row - layout.history.y) + layout.history_offset;
+                    let Mode::History { selected } = &mut self.mode else {
+                        return Vec::new();
+                    };
+                    if k >= self.history.len() {
+                        return Vec::new();
+                    }
+                    if *selected == k {
+                        return self.update(key(KeyCode::Enter));
+                    }
+                    *selected = k;
+                    Vec::new()
+                } else if hit(layout.history_footer, column, row) {
+                    match footer_at(layout.history_footer.x, column) {
+                        Some(code) => self.update(key(code)),
+                        None => Vec::new(),
+                    }
+                } else if !hit(layout.overlay, column, row) {
+                    self.mode = Mode::Normal;
+                    Vec::new()
+                } else {
+                    Vec::new()
+                }
+            }
+            _ => Vec::new(),
+        }
+    }
+
     fn act_scroll(&mut self, focus: Focus, step: isize) {
         match focus {
             Focus::Scenes => {
@@ -483,11 +582,79 @@ impl App {
         }
     }
 
-    fn select_index(&mut self, k: usize) {
+    /// Show scene `k` at the panel it showed last, with that panel's cursor and zoom.
+    pub(crate) fn select_index(&mut self, k: usize) {
         if k != self.selected && k < self.scenes.len() {
+            self.keep_view();
             self.selected = k;
-            self.panel = 0;
-            self.on_view_change();
+            self.panel = self.last_panel.get(k).copied().unwrap_or(0);
+            self.panel = self.panel();
+            self.restore_view();
+        }
+    }
+
+    /// Show panel `k` of the selected scene (clamped to its panels), with its cursor and zoom.
+    pub(crate) fn show_panel(&mut self, k: usize) {
+        let n = self
+            .figure(self.selected)
+            .map_or(1, |f| f.figure.panels.len().max(1));
+        let k = k.min(n - 1);
+        if k != self.panel() {
+            self.keep_view();
+            self.panel = k;
+            self.restore_view();
+        }
+    }
+
+    /// Keep the shown panel's cursor and zoom for when it is shown again.
+    fn keep_view(&mut self) {
+        let key = (self.selected, self.panel());
+        if self.cursor.is_some() || self.zoom.is_some() {
+            self.views.insert(
+                key,
+                PanelView {
+                    cursor: self.cursor,
+                    zoom: self.zoom,
+                },
+            );
+        } else {
+            self.views.remove(&key);
+        }
+        let panel = self.panel();
+        if let Some(p) = self.last_panel.get_mut(self.selected) {
+            *p = panel;
+        }
+    }
+
+    /// The shown panel's kept cursor and zoom (none if it had none); a half-chosen zoom
+    /// rectangle is dropped.
+    fn restore_view(&mut self) {
+        let view = self.views.get(&(self.selected, self.panel())).copied();
+        self.cursor = view.and_then(|v| v.cursor);
+        self.zoom = view.and_then(|v| v.zoom);
+        self.zoom_mark = None;
+        self.drag = None;
+    }
+
+    /// Complete results of scene `scene` arrive: the cursor and zoom of every panel whose axes
+    /// they change are reset (those of the others are kept).
+    pub(crate) fn on_results(&mut self, scene: usize, figure: &Figure) {
+        let new: Vec<AxesKey> = figure.panels.iter().map(AxesKey::of).collect();
+        let Some(old) = self.axes.get_mut(scene) else {
+            return;
+        };
+        let changed: Vec<usize> = (0..old.len().max(new.len()))
+            .filter(|k| old.get(*k) != new.get(*k))
+            .collect();
+        *old = new;
+        for k in changed {
+            self.views.remove(&(scene, k));
+            if scene == self.selected && k == self.panel {
+                self.cursor = None;
+                self.zoom = None;
+                self.zoom_mark = None;
+                self.drag = None;
+            }
         }
     }
 
@@ -585,28 +752,17 @@ fn cursor_point(drawn: &Overlay, at: CursorAt) -> Option<(f64, f64)> {
     }
 }
 
-/// The readout of the cursor at `at` on `drawn`.
-pub fn readout(drawn: &Overlay, at: CursorAt, pin_labels: &[String]) -> Option<Readout> {
+/// The readout of the cursor at `at` on `drawn` (a pinned run's curves and markers are named
+/// after the run).
+pub fn readout(drawn: &Overlay, at: CursorAt) -> Option<Readout> {
     let point = cursor_point(drawn, at)?;
-    let owner = match at {
-        CursorAt::Point { series, .. } => drawn.series.get(series).copied(),
-        CursorAt::Marker(k) => drawn.markers.get(k).copied(),
-    };
     let name = match at {
         CursorAt::Point { series, .. } => drawn.panel.series[series].name.clone(),
         CursorAt::Marker(k) => {
             let m = &drawn.panel.markers[k];
-            let base = m
-                .label
+            m.label
                 .as_ref()
-                .map_or(m.name.clone(), |l| format!("{} ({l})", m.name));
-            match owner {
-                Some(Owner::Pin(i)) => {
-                    let pin = pin_labels.get(i).map_or("pinned", String::as_str);
-                    format!("{pin} · {base}")
-                }
-                _ => base,
-            }
+                .map_or(m.name.clone(), |l| format!("{} ({l})", m.name))
         }
     };
     let axis = |a: &crate::figure::Axis, v: f64| format!("{} = {}", a.label, fmt_quantity(v, &a.unit));

@@ -1,10 +1,14 @@
 //! Comparing runs on one chart: pinned runs of a scene are drawn over the current one, each in
 //! its own colour, with a legend entry naming the parameters in which it differs from the
-//! current run ("couplings = [0, 2], roughness = 50"). The same overlay is what an export writes
-//! when runs are pinned, so the PNG/SVG/CSV carry every drawn run.
+//! current run ("couplings = [0, 2], roughness = 50"). A pinned run's curves, markers and shaded
+//! regions are all named after its entry (`#1 roughness = 50 · pull-off`), so the legend and the
+//! CSV tell the runs apart. The same overlay is what an export writes when runs are pinned, so
+//! the PNG/SVG/CSV carry every drawn run; in the terminal the run's entry lists the symbols of
+//! its markers and regions instead of an entry for each.
 
 use crate::figure::{Figure, Panel, Series};
 use crate::params::{ParamValues, value_text};
+use crate::render::terminal::{REGION_SYMBOL, marker_symbol};
 
 /// A run kept on the chart.
 #[derive(Debug, Clone)]
@@ -84,7 +88,7 @@ pub enum Owner {
     Pin(usize),
 }
 
-/// A panel with pinned runs drawn over it, and who drew each series and marker.
+/// A panel with pinned runs drawn over it, and who drew each series, marker and region.
 #[derive(Debug, Clone)]
 pub struct Overlay {
     /// The panel to draw.
@@ -93,12 +97,50 @@ pub struct Overlay {
     pub series: Vec<Owner>,
     /// Owner of each marker of `panel`.
     pub markers: Vec<Owner>,
+    /// Owner of each shaded region of `panel`.
+    pub regions: Vec<Owner>,
+    /// Index in `panel.series` of each pin's legend entry (a series with no points), by pin.
+    pub entries: Vec<Option<usize>>,
+}
+
+impl Overlay {
+    /// The markers and regions of the current run: they come first, the pins' follow (what the
+    /// terminal legend lists one by one; see [`Overlay::with_legend_symbols`]).
+    pub fn current_counts(&self) -> (usize, usize) {
+        let count = |o: &[Owner]| o.iter().take_while(|w| **w == Owner::Current).count();
+        (count(&self.markers), count(&self.regions))
+    }
+
+    /// The overlay for the terminal legend: each pin's entry followed by the symbols of its
+    /// markers and regions (`#1 roughness = 50 ▲■░`), which then get no entries of their own.
+    #[must_use]
+    pub fn with_legend_symbols(mut self) -> Self {
+        for (i, entry) in self.entries.iter().enumerate() {
+            let Some(e) = *entry else { continue };
+            let mut symbols = String::new();
+            for (m, owner) in self.panel.markers.iter().zip(&self.markers) {
+                let s = marker_symbol(m.shape);
+                if *owner == Owner::Pin(i) && !symbols.contains(s) {
+                    symbols.push_str(s);
+                }
+            }
+            if self.regions.contains(&Owner::Pin(i)) {
+                symbols.push_str(REGION_SYMBOL);
+            }
+            if !symbols.is_empty() {
+                let name = &mut self.panel.series[e].name;
+                name.push(' ');
+                name.push_str(&symbols);
+            }
+        }
+        self
+    }
 }
 
 /// Panel `k` of the current figure with the same panel of every pin drawn over it: the current
 /// curves keep their colours; each pin gets one legend entry (`labels[i]`, a series with no
-/// points) and all its curves in its colour under the name `label · curve`. Pinned markers keep
-/// their names, so the legend lists each kind of marker once.
+/// points) and all its curves, markers and shaded regions in its colour under the names
+/// `label · curve`, `label · marker`, `label · region` (a pinned marker's letter is left out).
 pub fn overlay(current: &Panel, k: usize, pins: &[Pin], labels: &[String]) -> Overlay {
     let mut panel = current.clone();
     for (s, c) in panel.series.iter_mut().zip(current.series_colors()) {
@@ -110,10 +152,13 @@ pub fn overlay(current: &Panel, k: usize, pins: &[Pin], labels: &[String]) -> Ov
     }
     let mut series = vec![Owner::Current; panel.series.len()];
     let mut markers = vec![Owner::Current; panel.markers.len()];
+    let mut regions = vec![Owner::Current; panel.regions.len()];
+    let mut entries = vec![None; pins.len()];
     for (i, (pin, label)) in pins.iter().zip(labels).enumerate() {
         let Some(p) = pin.figure.panels.get(k) else {
             continue;
         };
+        entries[i] = Some(panel.series.len());
         panel.add(Series::new(label.clone(), crate::figure::Style::Stable, Vec::new()).with_color(pin.color));
         series.push(Owner::Pin(i));
         for s in &p.series {
@@ -126,16 +171,26 @@ pub fn overlay(current: &Panel, k: usize, pins: &[Pin], labels: &[String]) -> Ov
         }
         for m in &p.markers {
             let mut m = m.clone();
+            m.name = format!("{label} · {}", m.name);
             m.color = Some(pin.color);
             m.label = None;
             panel.mark(m);
             markers.push(Owner::Pin(i));
+        }
+        for r in &p.regions {
+            let mut r = r.clone();
+            r.name = format!("{label} · {}", r.name);
+            r.color = Some(pin.color);
+            panel.regions.push(r);
+            regions.push(Owner::Pin(i));
         }
     }
     Overlay {
         panel,
         series,
         markers,
+        regions,
+        entries,
     }
 }
 

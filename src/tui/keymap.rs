@@ -177,13 +177,13 @@ pub const BINDINGS: &[Binding] = &[
         keys: &[KeyCode::Left, KeyCode::Char('[')],
         label: "← [",
         action: Action::PrevPanel,
-        help: "previous panel of the figure",
+        help: "previous panel of the figure (or click its tab)",
     },
     Binding {
         keys: &[KeyCode::Right, KeyCode::Char(']')],
         label: "→ ]",
         action: Action::NextPanel,
-        help: "next panel of the figure",
+        help: "next panel; each panel keeps its cursor and zoom",
     },
     Binding {
         keys: &[KeyCode::Char('p')],

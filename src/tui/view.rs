@@ -4,6 +4,7 @@
 //! bar, and the help and path-prompt overlays.
 
 use ratatui::Frame;
+use ratatui::crossterm::event::KeyCode;
 use ratatui::layout::{Constraint, Layout, Position, Rect};
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
@@ -355,24 +356,13 @@ fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect) {
         Constraint::Length(1),
     ])
     .areas(inner);
+    let mut layout = app.layout.get();
+    layout.tabs = Rect::default();
     if panels > 1
         && let Some(v) = view
     {
-        let mut spans = vec![Span::styled(
-            "panels (← →): ",
-            Style::default().fg(Color::DarkGray),
-        )];
-        for (k, p) in v.figure.panels.iter().enumerate() {
-            let label = if p.label.is_empty() {
-                format!("{}", k + 1)
-            } else {
-                p.label.clone()
-            };
-            let text = if p.title.is_empty() {
-                format!(" {label} ")
-            } else {
-                format!(" {label} {} ", p.title)
-            };
+        let mut spans = vec![Span::styled(TABS_PREFIX, Style::default().fg(Color::DarkGray))];
+        for (k, text) in panel_tabs(v).into_iter().enumerate() {
             let style = if k == app.panel() {
                 Style::default().bg(ACCENT).fg(Color::Black)
             } else {
@@ -381,7 +371,9 @@ fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect) {
             spans.push(Span::styled(text, style));
         }
         frame.render_widget(Line::from(spans), tabs_area);
+        layout.tabs = tabs_area;
     }
+    app.layout.set(layout);
     let mut geometry = None;
     match view {
         Some(v) if !app.show_info && !v.figure.panels.is_empty() => {
@@ -391,6 +383,7 @@ fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect) {
                     view: app.zoom(),
                     cursor: readout.as_ref().map(|r| r.point),
                     selection: app.selection(),
+                    listed: Some(drawn.current_counts()),
                 };
                 geometry = render_chart(&drawn.panel, &options, chart_area, frame.buffer_mut());
                 let mut layout = app.layout.get();
@@ -425,6 +418,67 @@ fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect) {
     }
     draw_gauge(frame, app, view, gauge_area);
 }
+
+/// What the panel tabs start with.
+pub const TABS_PREFIX: &str = "panels (← → or click): ";
+
+/// The text of each panel's tab: ` (a) title `.
+pub fn panel_tabs(view: &FigureView) -> Vec<String> {
+    view.figure
+        .panels
+        .iter()
+        .enumerate()
+        .map(|(k, p)| {
+            let label = if p.label.is_empty() {
+                format!("{}", k + 1)
+            } else {
+                p.label.clone()
+            };
+            if p.title.is_empty() {
+                format!(" {label} ")
+            } else {
+                format!(" {label} {} ", p.title)
+            }
+        })
+        .collect()
+}
+
+/// The panel whose tab covers `column` of a tab line drawn from `x`.
+pub fn tab_at(view: &FigureView, x: u16, column: u16) -> Option<usize> {
+    let mut left = x + Span::raw(TABS_PREFIX).width() as u16;
+    for (k, text) in panel_tabs(view).iter().enumerate() {
+        let right = left + Span::raw(text.as_str()).width() as u16;
+        if (left..right).contains(&column) {
+            return Some(k);
+        }
+        left = right;
+    }
+    None
+}
+
+/// The parts of the history overlay's last line, each a mouse target: what it says and the key
+/// it stands for.
+pub const HISTORY_FOOTER: [(&str, KeyCode); 3] = [
+    ("Enter reopens (no rerun)", KeyCode::Enter),
+    ("e exports", KeyCode::Char('e')),
+    ("Esc closes", KeyCode::Esc),
+];
+
+/// The key of the history footer's action at `column` of a footer drawn from `x`.
+pub fn footer_at(x: u16, column: u16) -> Option<KeyCode> {
+    let mut left = x + Span::raw(FOOTER_PREFIX).width() as u16;
+    for (text, key) in HISTORY_FOOTER {
+        let right = left + Span::raw(text).width() as u16;
+        if (left..right).contains(&column) {
+            return Some(key);
+        }
+        left = right + Span::raw(FOOTER_GAP).width() as u16;
+    }
+    None
+}
+
+const FOOTER_PREFIX: &str = " ↑ ↓ or click choose · ";
+const FOOTER_GAP: &str = " · ";
 
 /// Width of the results panel beside the chart.
 const RESULTS_WIDTH: u16 = 40;
@@ -504,10 +558,31 @@ fn draw_results(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, are
 }
 
 fn draw_history(frame: &mut Frame<'_>, app: &App, selected: usize, area: Rect) {
-    let mut lines: Vec<Line<'_>> = app
+    let n = app.history().len();
+    let width = 96.min(area.width);
+    let height = (n as u16 + 4).min(area.height);
+    let rect = Rect {
+        x: area.x + (area.width - width) / 2,
+        y: area.y + (area.height - height) / 2,
+        width,
+        height,
+    };
+    frame.render_widget(Clear, rect);
+    let block = Block::bordered()
+        .title(format!(" Run history — last {n} runs "))
+        .border_style(Style::default().fg(ACCENT));
+    let inner = block.inner(rect);
+    frame.render_widget(block, rect);
+    let footer_height = 2.min(inner.height);
+    let [rows_area, footer_area] =
+        Layout::vertical([Constraint::Min(0), Constraint::Length(footer_height)]).areas(inner);
+    let offset = scroll_offset(selected, rows_area.height as usize);
+    let lines: Vec<Line<'_>> = app
         .history()
         .iter()
         .enumerate()
+        .skip(offset)
+        .take(rows_area.height as usize)
         .map(|(k, e)| {
             let style = if k == selected {
                 Style::default().bg(Color::Blue).fg(Color::White)
@@ -517,28 +592,25 @@ fn draw_history(frame: &mut Frame<'_>, app: &App, selected: usize, area: Rect) {
             Line::styled(format!(" {}", history_line(app, e)), style)
         })
         .collect();
-    lines.push(Line::from(""));
-    lines.push(Line::styled(
-        " ↑ ↓ choose · Enter reopens (no rerun) · e exports · Esc closes",
-        Style::default().fg(Color::DarkGray),
-    ));
-    let width = 96.min(area.width);
-    let height = (lines.len() as u16 + 2).min(area.height);
-    let rect = Rect {
-        x: area.x + (area.width - width) / 2,
-        y: area.y + (area.height - height) / 2,
-        width,
-        height,
+    frame.render_widget(Paragraph::new(lines), rows_area);
+    let footer_row = Rect {
+        y: footer_area.bottom().saturating_sub(1),
+        height: footer_area.height.min(1),
+        ..footer_area
     };
-    frame.render_widget(Clear, rect);
+    let mut footer = FOOTER_PREFIX.to_string();
+    let parts: Vec<&str> = HISTORY_FOOTER.iter().map(|(t, _)| *t).collect();
+    footer.push_str(&parts.join(FOOTER_GAP));
     frame.render_widget(
-        Paragraph::new(lines).block(
-            Block::bordered()
-                .title(format!(" Run history — last {} runs ", app.history().len()))
-                .border_style(Style::default().fg(ACCENT)),
-        ),
-        rect,
+        Line::styled(footer, Style::default().fg(Color::DarkGray)),
+        footer_row,
     );
+    let mut layout = app.layout.get();
+    layout.overlay = rect;
+    layout.history = rows_area;
+    layout.history_offset = offset;
+    layout.history_footer = footer_row;
+    app.layout.set(layout);
 }
 
 fn draw_info(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, area: Rect) {
@@ -655,8 +727,10 @@ fn draw_help(frame: &mut Frame<'_>, area: Rect) {
                 " While editing a value: type, ← → Home End, Backspace Del, Ctrl-U clears;",
                 " invalid values turn red (✗) and block running; the last valid values are kept;",
                 " * marks a value changed from the dissertation's default.",
-                " Mouse: click a scene, a parameter or a point; drag on the chart zooms, right click and 0",
-                " show it whole; the wheel scrolls the lists and zooms the chart.",
+                " Mouse: click a scene, a parameter, a panel tab or a point; drag on the chart zooms, right",
+                " click and 0 show it whole; the wheel scrolls the lists and zooms the chart. In the history",
+                " a click chooses a run, a click on the chosen run reopens it; click the footer's actions.",
+                " Each panel keeps its cursor and zoom until new results change its axes.",
             ]
             .into_iter()
             .map(|t| Line::styled(t, Style::default().fg(Color::DarkGray))),

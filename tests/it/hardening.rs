@@ -593,6 +593,57 @@ fn model_failures_name_the_parameter_with_short_numbers() {
     }
 }
 
+// Issue 19, attribution in quick runs: a failure names only what the user changed (`--set`, a
+// preset), measured from the defaults in quick form, never the resolution quick mode itself
+// reduced (before: "`grid_points` = 6 (default 60), `points` = 7 (default 61)" for fig3.8).
+#[test]
+fn quick_run_failures_name_only_what_the_user_changed() {
+    let dir = tempfile::tempdir().unwrap();
+    for (fig, sets, needles, absent) in [
+        (
+            "fig3.8",
+            &["tip_radius=1e300"][..],
+            &["`tip_radius` = 1e300 (default 2.5e-5)"][..],
+            &["`grid_points`", "`points`"][..],
+        ),
+        (
+            "fig3.7d",
+            &["exponent=1e-300"][..],
+            &["`exponent` = 1e-300"][..],
+            &["`grid`"][..],
+        ),
+        // A resolution the user set in a quick run is named, with its quick-form default.
+        (
+            "fig3.8",
+            &["tip_radius=1e300", "points=5"][..],
+            &["`tip_radius` = 1e300", "`points` = 5 (default 7)"][..],
+            &["`grid_points`"][..],
+        ),
+    ] {
+        let mut args = vec!["--headless", "--quick", "--figure", fig, "--out", "o"];
+        for s in sets {
+            args.extend(["--set", s]);
+        }
+        // The unsharded run and the merge of a sharded sweep attribute alike.
+        let runs = if fig == "fig3.8" { 2 } else { 1 };
+        for run in 0..runs {
+            let mut args = args.clone();
+            if run == 1 {
+                let mut shard = args.clone();
+                shard.extend(["--shard", "0/1"]);
+                assert!(adhesion_in(dir.path(), &shard).status.success());
+                args.push("--merge");
+            }
+            let o = adhesion_in(dir.path(), &args);
+            assert_one_line_error(&o, needles);
+            let msg = String::from_utf8_lossy(&o.stderr);
+            for a in absent {
+                assert!(!msg.contains(a), "{args:?}: `{a}` named in {msg}");
+            }
+        }
+    }
+}
+
 // Item 16: preset syntax errors give the line and the key.
 #[test]
 fn preset_syntax_errors_give_line_and_key() {

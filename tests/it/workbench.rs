@@ -450,7 +450,10 @@ fn the_gauge_is_monotone_and_below_100_percent_before_a_long_scene_ends() {
         "{below} reports below 100 % of {}",
         seen.len()
     );
-    assert_eq!(seen.last().copied(), Some(1.0));
+    assert!(seen.windows(2).all(|w| w[1] >= w[0]), "{seen:?}");
+    let (last, before) = seen.split_last().expect("progress reported");
+    assert_eq!(*last, 1.0);
+    assert!(before.iter().all(|f| *f < 1.0), "100 % before `done`");
 
     // Through the UI: the gauge as drawn.
     let dir = tempfile::tempdir().expect("temp dir");
@@ -469,6 +472,74 @@ fn the_gauge_is_monotone_and_below_100_percent_before_a_long_scene_ends() {
     assert!(shown.windows(2).all(|w| w[1] >= w[0]), "{shown:?}");
     assert_eq!(time_left(0.25, 10.0), " · 10.0 s, about 30.0 s left");
     assert_eq!(time_left(0.5, 0.2), "");
+}
+
+/// The fractions a run of `id` (in quick form when `quick`, with `sets`) reports, in order.
+fn progress_of(id: &str, sets: &[&str], quick: bool) -> Vec<f64> {
+    let sc = scene(id);
+    let mut values = sc.defaults();
+    for a in sets {
+        values.set_assignment(a).expect("a valid assignment");
+    }
+    if quick {
+        values = sc.quick(&values).expect("quick form");
+    }
+    let seen = Arc::new(Mutex::new(Vec::new()));
+    let sink = Arc::clone(&seen);
+    let job = Job::with_sink(move |e| {
+        if let JobEvent::Progress { fraction, .. } = e {
+            sink.lock().expect("test mutex").push(*fraction);
+        }
+    });
+    sc.run(&values, &job).expect("the scene runs");
+    seen.lock().expect("test mutex").clone()
+}
+
+/// The scenes that take over a second report progress that means something, here in the
+/// forms that take a second or two: the fraction never moves back, stays below 1 until the
+/// run's last report (which is 1), advances in many small steps (per point, per step of a
+/// cycle, per sample) and never jumps by more than a quarter. Before, fig4.12 reported twice
+/// (0.5, 1.0: its cycles, then the top views at 100 %), fig4.9a went back from 1.0 to 0.33 for
+/// its second panel, fig4.10's points came as 9 reports, fig4.5-accuracy's cycles as 6.
+#[test]
+fn long_scenes_report_progress_that_advances_and_ends_only_at_the_end() {
+    let cases: &[(&str, &[&str], bool)] = &[
+        // Weighted cycles in parallel, then bisection cycles.
+        ("fig4.3", &[], true),
+        // Two panels of parallel cycles, weighted.
+        ("fig4.9a", &[], true),
+        // A sweep whose points are cycles.
+        ("fig4.10", &[], true),
+        // Parallel cycles, then the top views.
+        ("fig4.12", &[], true),
+        // Cycles on grids, weighted by their cost.
+        ("fig4.5-accuracy", &[], true),
+        // A sweep whose assembly computes a second grid.
+        ("fig3.8", &[], false),
+        // A reference cycle, then cycles weighted by their steps.
+        ("fig5.10-accuracy", &[], true),
+        // Surfaces weighted by their size.
+        ("figC.2-accuracy", &[], true),
+    ];
+    for (id, sets, quick) in cases {
+        let seen = progress_of(id, sets, *quick);
+        let (last, before) = seen.split_last().expect("progress reported");
+        assert_eq!(*last, 1.0, "{id} ends at 1: {seen:?}");
+        assert!(
+            before.iter().all(|f| *f < 1.0),
+            "{id}: 100 % before the end: {seen:?}"
+        );
+        assert!(seen.windows(2).all(|w| w[1] >= w[0]), "{id} moves back: {seen:?}");
+        let jump = seen.windows(2).map(|w| w[1] - w[0]).fold(seen[0], f64::max);
+        assert!(jump <= 0.25, "{id} jumps by {jump}: {seen:?}");
+        let mut distinct = seen.clone();
+        distinct.dedup();
+        assert!(
+            distinct.len() >= 20,
+            "{id}: {} distinct fractions: {seen:?}",
+            distinct.len()
+        );
+    }
 }
 
 /// The history keeps finished runs with their parameters and run times; Enter reopens one
@@ -567,4 +638,262 @@ fn help_lists_every_key_of_the_key_map() {
         let line = format!("{:<10}{}", b.label, b.help);
         assert!(screen.contains(&line), "`{line}` in the help:\n{screen}");
     }
+}
+
+/// A pinned run's markers and shaded region carry the run: named after its legend entry, drawn
+/// in its colour (the region as a dot fill under the curves), listed by symbol in its terminal
+/// legend entry, told apart by run in the CSV, and named in the cursor readout.
+#[test]
+fn pinned_markers_and_regions_carry_their_run() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = at_scene(dir.path(), "fig1.1");
+    run(&mut s);
+    press(&mut s, KeyCode::Char('p'));
+    set_param(&mut s, "max_depth_norm", "1.5");
+    run(&mut s);
+    let run_label = "#1 max_depth_norm = 2.5";
+    let pin_color = s.app().pins(0)[0].color;
+    let drawn = s.app().drawn().expect("a panel");
+    let pinned_markers: Vec<_> = drawn
+        .panel
+        .markers
+        .iter()
+        .filter(|m| m.name.starts_with(&format!("{run_label} · ")))
+        .collect();
+    let current = drawn.current_counts();
+    assert_eq!(pinned_markers.len(), current.0, "every marker of the pinned run");
+    assert!(pinned_markers.iter().all(|m| m.color == Some(pin_color)));
+    assert!(
+        pinned_markers
+            .iter()
+            .any(|m| m.name == format!("{run_label} · pull-off"))
+    );
+    assert_eq!(current.1, 1, "the current run's JKR hysteresis");
+    let region = &drawn.panel.regions[1];
+    assert_eq!(region.name, format!("{run_label} · JKR hysteresis"));
+    assert_eq!(region.color, Some(pin_color));
+
+    // The terminal legend: the run's entry lists its markers and region by symbol; the kinds
+    // of marker and the current loop are listed once, for the current run.
+    let screen = text(&draw_at(&s, 160, 48));
+    assert!(
+        screen.contains(&format!("{run_label} ▲●◆■░")),
+        "the pinned run's entry with its symbols:\n{screen}"
+    );
+    assert!(screen.contains("░ JKR hysteresis"), "{screen}");
+    assert!(screen.contains("■ pull-off"), "{screen}");
+    assert!(!screen.contains(&format!("{run_label} · pull-off")), "{screen}");
+
+    // The cursor reaches the pinned markers and names their run.
+    let mut names = Vec::new();
+    for _ in 0..drawn.panel.markers.len() {
+        press(&mut s, KeyCode::Char('m'));
+        names.push(s.app().readout().expect("a readout").name);
+    }
+    assert!(names.contains(&format!("{run_label} · pull-off")), "{names:?}");
+    assert!(names.contains(&"pull-off (D)".to_string()), "{names:?}");
+
+    // The export tells the runs apart: the pinned markers and loop rows are named after it.
+    press(&mut s, KeyCode::Char('e'));
+    let csv = std::fs::read_to_string(dir.path().join("out/fig1.1.csv")).expect("csv");
+    let rows = |series: &str, style: &str| {
+        csv.lines()
+            .filter(|l| l.starts_with(&format!("1,{series},{style},")))
+            .count()
+    };
+    assert_eq!(rows(&format!("{run_label} · pull-off"), "pull-off"), 1, "{csv}");
+    assert_eq!(rows("pull-off D", "pull-off"), 1);
+    let loop_rows = rows(&format!("{run_label} · JKR hysteresis"), "region");
+    assert!(loop_rows > 10, "{loop_rows} rows of the pinned loop");
+    assert!(rows("JKR hysteresis", "region") > 10);
+}
+
+/// A shaded region in the terminal: dots in its colour inside the polygon, none outside, under
+/// the curves that cross it, and a legend entry.
+#[test]
+fn a_shaded_region_is_drawn_as_a_dot_fill_under_the_curves() {
+    use adhesion::figure::{Axis, Panel, Series, Style};
+    use adhesion::render::terminal::{ChartOptions, color, render_chart};
+    let mut panel = Panel::new(Axis::linear("x", ""), Axis::linear("y", "")).titled("", "");
+    panel.x = panel.x.clone().with_range(0.0, 4.0);
+    panel.y = panel.y.clone().with_range(0.0, 4.0);
+    panel.shade(
+        "loop",
+        vec![(1.0, 1.0), (3.0, 1.0), (3.0, 3.0), (1.0, 3.0)],
+        Some(4),
+    );
+    panel.add(Series::new("line", Style::Stable, vec![(0.0, 2.0), (4.0, 2.0)]).with_color(0));
+    let area = ratatui::layout::Rect::new(0, 0, 60, 24);
+    let mut buf = Buffer::empty(area);
+    let g = render_chart(&panel, &ChartOptions::default(), area, &mut buf).expect("a chart");
+    let cell = |x: f64, y: f64| {
+        let (fx, fy) = g.fraction((x, y));
+        let col = g.graph.x + (fx * f64::from(g.graph.width)).floor() as u16;
+        let row = g.graph.bottom() - 1 - (fy * f64::from(g.graph.height)).floor() as u16;
+        buf[(col, row)].clone()
+    };
+    let braille = |c: &ratatui::buffer::Cell| {
+        c.symbol()
+            .chars()
+            .any(|ch| ('\u{2801}'..='\u{28ff}').contains(&ch))
+    };
+    // Inside: about every other cell has a dot of the region's colour.
+    let mut inside = 0;
+    let mut dotted = 0;
+    for i in 0..10 {
+        for j in 0..10 {
+            // Rows away from the line at y = 2.
+            let y = if j < 5 { 1.2 } else { 2.4 } + 0.1 * f64::from(j % 5);
+            let x = 1.2 + 0.16 * f64::from(i);
+            inside += 1;
+            let c = cell(x, y);
+            if braille(&c) {
+                assert_eq!(c.fg, color(4), "at ({x}, {y})");
+                dotted += 1;
+            }
+        }
+    }
+    assert!(dotted * 4 >= inside, "{dotted} of {inside} cells dotted");
+    // Outside: nothing.
+    for (x, y) in [(0.5, 0.5), (3.5, 3.5), (0.5, 3.2), (3.6, 1.2)] {
+        assert!(!braille(&cell(x, y)), "a dot outside at ({x}, {y})");
+    }
+    // The curve crossing the region is drawn over it: across the whole width.
+    let line_cells = buf
+        .content()
+        .iter()
+        .filter(|c| braille(c) && c.fg == color(0))
+        .count();
+    assert!(
+        line_cells + 1 >= usize::from(g.graph.width),
+        "{line_cells} cells of the line in {} columns",
+        g.graph.width
+    );
+    let screen = text(&buf);
+    assert!(screen.contains("░ loop"), "{screen}");
+}
+
+/// Each panel keeps its cursor and zoom: switching panels or scenes and coming back restores
+/// them (by key and by a click on the panel's tab); a rerun with the same results keeps them;
+/// results that change the axes reset them.
+#[test]
+fn each_panel_keeps_its_zoom_and_cursor_until_new_results_change_its_axes() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = session(dir.path(), vec![&PROBE, scene("fig1.1")]);
+    run(&mut s);
+    draw_at(&s, 140, 40);
+    press(&mut s, KeyCode::Char('c'));
+    press(&mut s, KeyCode::Char('>'));
+    press(&mut s, KeyCode::Char('+'));
+    let (cursor_a, zoom_a) = (s.app().cursor(), s.app().zoom());
+    assert!(cursor_a.is_some() && zoom_a.is_some());
+
+    // Panel (b) starts whole, without a cursor; it gets its own zoom.
+    press(&mut s, KeyCode::Char(']'));
+    assert_eq!(s.app().panel(), 1);
+    assert_eq!((s.app().cursor(), s.app().zoom()), (None, None));
+    press(&mut s, KeyCode::Char('-'));
+    let zoom_b = s.app().zoom();
+    assert!(zoom_b.is_some());
+
+    // Back to (a) by a click on its tab: its cursor and zoom again.
+    let screen = text(&draw_at(&s, 140, 40));
+    let (row, line) = screen
+        .lines()
+        .enumerate()
+        .find(|(_, l)| l.contains("panels (← → or click)"))
+        .expect("the panel tabs");
+    let column = line
+        .find("(a)")
+        .map(|b| line[..b].chars().count())
+        .expect("tab (a)") as u16;
+    mouse(
+        &mut s,
+        MouseEventKind::Down(MouseButton::Left),
+        column,
+        row as u16,
+    );
+    assert_eq!(s.app().panel(), 0);
+    assert_eq!((s.app().cursor(), s.app().zoom()), (cursor_a, zoom_a));
+    press(&mut s, KeyCode::Char(']'));
+    assert_eq!((s.app().cursor(), s.app().zoom()), (None, zoom_b));
+
+    // Another scene and back: the panel shown last, with its view.
+    press(&mut s, KeyCode::Down);
+    assert_eq!(s.app().scene().expect("a scene").info().id, "fig1.1");
+    assert_eq!(s.app().zoom(), None);
+    press(&mut s, KeyCode::Up);
+    assert_eq!(s.app().panel(), 1);
+    assert_eq!(s.app().zoom(), zoom_b);
+
+    // The same results again: kept.
+    run(&mut s);
+    assert_eq!(s.app().zoom(), zoom_b);
+    press(&mut s, KeyCode::Char('['));
+    assert_eq!((s.app().cursor(), s.app().zoom()), (cursor_a, zoom_a));
+
+    // Results that change the axes: both panels start afresh.
+    set_param(&mut s, "amplitude", "3");
+    run(&mut s);
+    assert_eq!((s.app().cursor(), s.app().zoom()), (None, None));
+    press(&mut s, KeyCode::Char(']'));
+    assert_eq!((s.app().cursor(), s.app().zoom()), (None, None));
+}
+
+/// The mouse in the run history: a click chooses a run, a click on the chosen one reopens it,
+/// the wheel moves the choice, the footer's actions work, a click outside closes; a click
+/// closes the key help.
+#[test]
+fn the_history_and_the_help_answer_the_mouse() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = session(dir.path(), vec![&PROBE]);
+    run(&mut s);
+    set_param(&mut s, "amplitude", "3");
+    run(&mut s);
+    press(&mut s, KeyCode::Char('h'));
+    let screen = text(&draw_at(&s, 140, 40));
+    let row_of = |needle: &str| {
+        screen
+            .lines()
+            .position(|l| l.contains("probe") && l.contains(needle))
+            .unwrap_or_else(|| panic!("`{needle}` in the history:\n{screen}")) as u16
+    };
+    let (newest, oldest) = (row_of("amplitude = 3 m"), row_of("defaults"));
+    mouse(&mut s, MouseEventKind::Down(MouseButton::Left), 40, oldest);
+    assert_eq!(s.app().mode(), &Mode::History { selected: 1 });
+    mouse(&mut s, MouseEventKind::ScrollUp, 40, oldest);
+    assert_eq!(s.app().mode(), &Mode::History { selected: 0 });
+    mouse(&mut s, MouseEventKind::ScrollDown, 40, newest);
+    assert_eq!(s.app().mode(), &Mode::History { selected: 1 });
+
+    // The footer: `e exports` exports the chosen run.
+    let footer = screen
+        .lines()
+        .position(|l| l.contains("e exports"))
+        .expect("the footer") as u16;
+    let column = screen
+        .lines()
+        .nth(usize::from(footer))
+        .and_then(|l| l.chars().position(|c| c == 'x'))
+        .expect("`exports`") as u16;
+    mouse(&mut s, MouseEventKind::Down(MouseButton::Left), column, footer);
+    let json = std::fs::read_to_string(dir.path().join("out/probe.json")).expect("exported");
+    assert!(json.contains("\"amplitude_m\": 1.0"), "{json}");
+
+    // A second click on the chosen run reopens it, without rerunning.
+    mouse(&mut s, MouseEventKind::Down(MouseButton::Left), 40, oldest);
+    assert_eq!(s.app().mode(), &Mode::Normal);
+    assert!(s.app().running().is_none());
+    let view = s.app().figure(0).expect("reopened");
+    assert_eq!(view.figure.result_value("amplitude_m"), Some(1.0));
+
+    // A click outside closes the history; a click closes the help.
+    press(&mut s, KeyCode::Char('h'));
+    draw_at(&s, 140, 40);
+    mouse(&mut s, MouseEventKind::Down(MouseButton::Left), 0, 0);
+    assert_eq!(s.app().mode(), &Mode::Normal);
+    press(&mut s, KeyCode::Char('?'));
+    draw_at(&s, 140, 40);
+    mouse(&mut s, MouseEventKind::Down(MouseButton::Left), 70, 20);
+    assert_eq!(s.app().mode(), &Mode::Normal);
 }

@@ -12,6 +12,15 @@ use crate::params::{Range, fmt_sig};
 use crate::scenes::Scene;
 use crate::scenes::sweep::Sweep;
 
+/// The relative cost of a cycle at the ring-width scale b (b ∝ σ⁴, (4.6)-(4.7b)), against the
+/// smallest `b_min` of the sweep: rings ∝ 1/b and a dense solve ∝ rings³, over a floor for
+/// what does not depend on b. Measured at the defaults (seconds per cycle): fig4.9b 20-64 at
+/// σ = 1 nm, 4.3 at 1.15 nm, 1.0 at 1.32 nm, 0.45 at 1.51 nm, 0.03 at 3 nm; fig4.10 20 at
+/// β = 0.12, 3.9 at 0.21, 1.05 at 0.37, 0.37 at 0.65, 0.1 at 2.
+fn cycle_cost(b: f64, b_min: f64) -> f64 {
+    (b_min / b).powi(3) + 0.003
+}
+
 /// P_adh/(2E*R²) and H/(2E*R³) of one cycle.
 fn adhesion_of(setup: &Setup, amplitude: f64, job: &Job) -> Result<(f64, f64)> {
     let (tip_cycle, scale) = (setup.cycle(amplitude, false, job)?, setup.scale());
@@ -123,6 +132,15 @@ impl Sweep for Fig4_9b {
             .collect()
     }
 
+    fn point_weights(p: &Self::Params) -> Vec<f64> {
+        let sigmas = geometric(p.sigma_min, p.sigma_max, p.sigma_points);
+        let one: Vec<f64> = sigmas
+            .iter()
+            .map(|s| cycle_cost(s.powi(4), p.sigma_min.powi(4)))
+            .collect();
+        [one.clone(), one.clone(), one].concat()
+    }
+
     fn run_point(p: &Self::Params, _context: &(), id: usize, job: &Job) -> Result<Vec<f64>> {
         let sigmas = geometric(p.sigma_min, p.sigma_max, p.sigma_points);
         let ratios = [p.amplitude_ratio_1, p.amplitude_ratio_2, p.amplitude_ratio_3];
@@ -132,7 +150,7 @@ impl Sweep for Fig4_9b {
         Ok(vec![force, loss])
     }
 
-    fn assemble(p: &Self::Params, points: &[Vec<f64>], _job: &Job) -> Result<Figure> {
+    fn assemble(p: &Self::Params, points: &[Vec<f64>], job: &Job) -> Result<Figure> {
         let sigmas = geometric(p.sigma_min, p.sigma_max, p.sigma_points);
         let ratios = [p.amplitude_ratio_1, p.amplitude_ratio_2, p.amplitude_ratio_3];
         let n = sigmas.len();
@@ -216,6 +234,7 @@ impl Sweep for Fig4_9b {
             ));
         }
         fig.panels.extend(panels);
+        job.progress(1.0, "done");
         Ok(fig)
     }
 }
@@ -342,6 +361,15 @@ impl Sweep for Fig4_10 {
             .collect()
     }
 
+    fn point_weights(p: &Self::Params) -> Vec<f64> {
+        let (alphas, betas) = p.grid();
+        let b_min = betas.iter().copied().fold(f64::INFINITY, f64::min);
+        betas
+            .iter()
+            .flat_map(|&b| alphas.iter().map(move |_| cycle_cost(b, b_min)))
+            .collect()
+    }
+
     fn run_point(p: &Self::Params, _context: &(), id: usize, job: &Job) -> Result<Vec<f64>> {
         let (alphas, betas) = p.grid();
         let (ia, ib) = (id % alphas.len(), id / alphas.len());
@@ -351,7 +379,7 @@ impl Sweep for Fig4_10 {
         Ok(vec![force, loss])
     }
 
-    fn assemble(p: &Self::Params, points: &[Vec<f64>], _job: &Job) -> Result<Figure> {
+    fn assemble(p: &Self::Params, points: &[Vec<f64>], job: &Job) -> Result<Figure> {
         let (alphas, betas) = p.grid();
         let (na, nb) = (alphas.len(), betas.len());
         let values: Vec<(f64, f64)> = points.iter().map(|v| (v[0], v[1])).collect();
@@ -420,6 +448,7 @@ impl Sweep for Fig4_10 {
                  beta falls.",
             );
         }
+        job.progress(1.0, "done");
         Ok(fig)
     }
 }
