@@ -660,6 +660,8 @@ pub fn coupled_cycle(
         refine_to: None,
         trial_iterations: opts.max_iterations,
         unstable_start_is_jump: true,
+        jump_iterations: opts.max_iterations,
+        retry_target: false,
     };
     let unloading: Vec<f64> = grid.iter().rev().copied().collect();
     let total = 2 * grid.len();

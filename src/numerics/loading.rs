@@ -83,6 +83,17 @@ pub struct PathOptions {
     /// on a branch that goes on (a softening contact edge), and each such step would be
     /// bisected for nothing.
     pub unstable_start_is_jump: bool,
+    /// Largest number of Newton iterations of the minimisation that takes a located jump
+    /// (from the first value past the fold); where it needs more, the jump is taken from
+    /// further past the fold. Equal to [`PathOptions::trial_iterations`] unless the model's
+    /// jumps are long descents (a contact zipping up node by node in a finite-element mesh),
+    /// which would otherwise be retried from ever further past the fold.
+    pub jump_iterations: usize,
+    /// After the first state a bisection accepts, try the target again from it (once per
+    /// target): a false alarm of the jump measure (a fast but smooth branch, whose tangent's
+    /// error over the full step reaches the measure while half the step's does not) then costs
+    /// two more minimisations instead of about log2(step/tolerance).
+    pub retry_target: bool,
 }
 
 /// One accepted state of the path, as handed to the visitor.
@@ -176,19 +187,15 @@ pub fn follow<C: Controlled>(
     };
     let mut lambda = lambda_start;
     let mut trial = x.clone();
-    let trial_opts = NewtonOptions {
-        max_iterations: opts.trial_iterations.min(opts.newton.max_iterations),
-        ..opts.newton
-    };
     // Minimise from `x` at `at` into `trial`: Some((report, jumped, stable)), or None when a
-    // bisection trial ran out of iterations (a jump under way).
+    // trial capped at `cap` iterations ran out of them (a jump under way).
     let mut rate = vec![0.0; x.len()];
     let mut predicted = Vec::with_capacity(x.len());
     let mut attempt = |x: &[f64],
                        trial: &mut Vec<f64>,
                        from: f64,
                        at: f64,
-                       bisecting: bool,
+                       cap: Option<usize>,
                        stats: &mut PathStats|
      -> Result<Option<(NewtonReport, bool, bool)>> {
         trial.clear();
@@ -210,10 +217,13 @@ pub fn follow<C: Controlled>(
             }
         }
         stats.minimisations += 1;
-        let newton = if bisecting { &trial_opts } else { &opts.newton };
-        let rep = match solver.minimize(&e, trial, newton) {
+        let newton = NewtonOptions {
+            max_iterations: cap.map_or(opts.newton.max_iterations, |c| c.min(opts.newton.max_iterations)),
+            ..opts.newton
+        };
+        let rep = match solver.minimize(&e, trial, &newton) {
             Ok(rep) => rep,
-            Err(Error::NoConvergence { iterations, .. }) if bisecting => {
+            Err(Error::NoConvergence { iterations, .. }) if cap.is_some() => {
                 stats.newton_iterations += iterations;
                 return Ok(None);
             }
@@ -232,7 +242,8 @@ pub fn follow<C: Controlled>(
     for (k, &target) in targets.iter().enumerate() {
         loop {
             let refine = opts.refine_to.filter(|&tol| (target - lambda).abs() > tol);
-            let first = attempt(x, &mut trial, lambda, target, refine.is_some(), &mut stats)?;
+            let trial_cap = Some(opts.trial_iterations);
+            let first = attempt(x, &mut trial, lambda, target, refine.and(trial_cap), &mut stats)?;
             if let Some((rep, jumped, stable)) = first
                 && (!jumped || refine.is_none())
             {
@@ -248,9 +259,11 @@ pub fn follow<C: Controlled>(
             // Bisect towards the fold: accept trial states that stay on the branch.
             let tol = refine.unwrap_or(0.0);
             let mut hi = target;
+            let mut retry = opts.retry_target;
+            let mut reached = false;
             while (hi - lambda).abs() > tol {
                 let mid = 0.5 * (lambda + hi);
-                match attempt(x, &mut trial, lambda, mid, true, &mut stats)? {
+                match attempt(x, &mut trial, lambda, mid, trial_cap, &mut stats)? {
                     Some((rep, false, stable)) => {
                         let mut current = Current {
                             x,
@@ -259,9 +272,28 @@ pub fn follow<C: Controlled>(
                             stats: &mut stats,
                         };
                         current.accept(&mut visit, mid, (rep, false, stable), k)?;
+                        if retry && hi == target {
+                            retry = false;
+                            if let Some((rep, false, stable)) =
+                                attempt(x, &mut trial, lambda, target, trial_cap, &mut stats)?
+                            {
+                                let mut current = Current {
+                                    x,
+                                    trial: &mut trial,
+                                    lambda: &mut lambda,
+                                    stats: &mut stats,
+                                };
+                                current.accept(&mut visit, target, (rep, false, stable), k)?;
+                                reached = true;
+                                break;
+                            }
+                        }
                     }
                     _ => hi = mid,
                 }
+            }
+            if reached {
+                break;
             }
             // `hi` is within the tolerance of the last state on the branch: jump there (or,
             // when the bisection found no jump after all, go on from here). Just past a fold
@@ -270,7 +302,8 @@ pub fn follow<C: Controlled>(
             let mut at = hi;
             let (rep, jumped, stable) = loop {
                 let full = (at - target).abs() <= f64::EPSILON * target.abs().max(1.0);
-                match attempt(x, &mut trial, lambda, at, !full, &mut stats)? {
+                let cap = (!full).then_some(opts.jump_iterations);
+                match attempt(x, &mut trial, lambda, at, cap, &mut stats)? {
                     Some(found) => break found,
                     None => {
                         let further = lambda + 2.0 * (at - lambda);
@@ -383,19 +416,27 @@ mod tests {
     }
 
     fn walk_model<C: Controlled>(model: &C, refine: Option<f64>) -> Walk {
+        walk_with(
+            model,
+            &PathOptions {
+                newton: NewtonOptions::default(),
+                refine_to: refine,
+                trial_iterations: 50,
+                unstable_start_is_jump: true,
+                jump_iterations: 50,
+                retry_target: false,
+            },
+        )
+    }
+
+    fn walk_with<C: Controlled>(model: &C, opts: &PathOptions) -> Walk {
         let mut solver = StableNewton::new(&WellAt(0.0)).expect("1x1 pattern");
         // Start in the left well at λ = -0.1 and tilt to the right until it vanishes.
         let mut x = vec![-1.0];
-        let opts = PathOptions {
-            newton: NewtonOptions::default(),
-            refine_to: refine,
-            trial_iterations: 50,
-            unstable_start_is_jump: true,
-        };
         let targets = targets();
         let mut states = Vec::new();
         let mut jumps = Vec::new();
-        let stats = follow(model, &mut solver, &mut x, -0.2, &targets, &opts, |v| {
+        let stats = follow(model, &mut solver, &mut x, -0.2, &targets, opts, |v| {
             states.push((v.lambda, v.x[0]));
             if let Some((l0, x0)) = v.jumped_from {
                 jumps.push((l0, v.lambda, x0[0]));
@@ -424,6 +465,106 @@ mod tests {
         assert!(stats.all_stable && stats.jumps == 1);
         // The states are visited in increasing λ.
         assert!(states.windows(2).all(|w| w[1].0 > w[0].0));
+    }
+
+    // A jump whose descent takes more iterations than a bisection trial may: with
+    // `jump_iterations` at the trial cap it is taken from further past the fold (the state
+    // after it lies beyond the tolerance), with a larger `jump_iterations` from the first value
+    // past the fold.
+    #[test]
+    fn a_long_jump_is_taken_from_the_first_value_past_the_fold() {
+        let fold = 2.0 / (3.0 * 3f64.sqrt());
+        let opts = |jump_iterations| PathOptions {
+            newton: NewtonOptions::default(),
+            refine_to: Some(1e-9),
+            trial_iterations: 4,
+            unstable_start_is_jump: true,
+            jump_iterations,
+            retry_target: false,
+        };
+        let (_, capped, _) = walk_with(&Well, &opts(4));
+        let (_, long, stats) = walk_with(&Well, &opts(100));
+        assert_eq!((capped.len(), long.len()), (1, 1));
+        assert!(capped[0].1 - fold > 1e-8, "{:?}", capped[0]);
+        assert!((long[0].1 - fold).abs() < 2e-9, "{:?}", long[0]);
+        assert!(stats.all_stable);
+    }
+
+    /// One unknown in the moving well E = ½ (x − 8λ²)², with its gradient rate: the minimum
+    /// moves smoothly but turns fast, so from λ = 0 the tangent's error over a step of 0.3 is
+    /// 8 × 0.3² = 0.72, more than half the jump measure's unit, while over half the step it is
+    /// 0.18.
+    struct Moving;
+    struct MovingAt(f64);
+    impl Energy for MovingAt {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn energy(&self, x: &[f64]) -> f64 {
+            0.5 * (x[0] - 8.0 * self.0 * self.0).powi(2)
+        }
+        fn gradient(&self, x: &[f64], g: &mut [f64]) {
+            g[0] = x[0] - 8.0 * self.0 * self.0;
+        }
+        fn hessian_pattern(&self) -> Vec<(usize, usize)> {
+            vec![(0, 0)]
+        }
+        fn hessian_values(&self, _: &[f64], v: &mut [f64]) {
+            v[0] = 1.0;
+        }
+    }
+    impl Controlled for Moving {
+        type At<'a> = MovingAt;
+        fn at(&self, lambda: f64) -> MovingAt {
+            MovingAt(lambda)
+        }
+        fn jump_measure(&self, before: &[f64], after: &[f64]) -> f64 {
+            (after[0] - before[0]).abs() / 0.5
+        }
+        fn gradient_rate(&self, lambda: f64, _: &[f64], out: &mut [f64]) -> bool {
+            out[0] = -16.0 * lambda;
+            true
+        }
+    }
+
+    // A false alarm of the jump measure on a fast smooth branch: the bisection finds no jump
+    // either way, and with `retry_target` the false alarm costs three minimisations (the full
+    // step, half of it, the rest) instead of one per halving down to the tolerance; the next
+    // step (0.15, from a tangent that turns with the branch) raises none.
+    #[test]
+    fn retrying_the_target_resolves_a_false_alarm_in_three_minimisations() {
+        let targets = [0.3, 0.45];
+        let run = |retry_target| {
+            let mut solver = StableNewton::new(&MovingAt(0.0)).expect("1x1 pattern");
+            let mut x = vec![0.0];
+            let opts = PathOptions {
+                newton: NewtonOptions::default(),
+                refine_to: Some(1e-6),
+                trial_iterations: 50,
+                unstable_start_is_jump: false,
+                jump_iterations: 50,
+                retry_target,
+            };
+            let mut at_targets = Vec::new();
+            let stats = follow(&Moving, &mut solver, &mut x, 0.0, &targets, &opts, |v| {
+                if targets.contains(&v.lambda) {
+                    at_targets.push((v.lambda, v.x[0]));
+                }
+                Ok(())
+            })
+            .expect("walk");
+            (at_targets, stats)
+        };
+        let (plain, plain_stats) = run(false);
+        let (retried, stats) = run(true);
+        assert_eq!((plain_stats.jumps, stats.jumps), (0, 0));
+        assert_eq!(plain.len(), targets.len());
+        for ((l, x), (l2, y)) in plain.iter().zip(&retried) {
+            assert_eq!(l, l2);
+            assert!((x - 8.0 * l * l).abs() < 1e-9 && (y - 8.0 * l * l).abs() < 1e-9);
+        }
+        assert_eq!(stats.minimisations, 4, "{stats:?}");
+        assert!(plain_stats.minimisations > 16, "{plain_stats:?}");
     }
 
     #[test]
