@@ -33,8 +33,11 @@ fn load<M: adhesion::models::axisymmetric::cycle::CycleModel>(
 // The body force (4.15) integrated through an undeformed column of a flat tip is the plate
 // traction (4.5): P/(π r0²) = −p(δ) + p(δ + h0) for the column from the gap δ to δ + h0, to
 // 1e-10 of the largest traction σ0, however thin or thick its elements (the integration is
-// exact in z). At δ = ζ0 the traction vanishes: attraction and repulsion cancel through the
-// column, so the error is measured against σ0, not against the traction itself.
+// exact in z), with the near field's Gauss rule in r everywhere. At δ = ζ0 the traction
+// vanishes: attraction and repulsion cancel through the column, so the error is measured
+// against σ0, not against the traction itself. With the default 2 Gauss points in r beyond
+// 30 ζ0 (where a chord ending on a sloping edge is no longer integrated exactly in r) the
+// force stays within 1e-8 σ0 (measured: 1.5e-9 at δ = 0.9 ζ0).
 #[test]
 fn body_force_column_integral_is_the_plate_traction() {
     let p = FeTipParams {
@@ -42,9 +45,15 @@ fn body_force_column_integral_is_the_plate_traction() {
         r0: 2e-7,
         h0: 3e-7,
         fine_radius: 5e-8,
+        far_quadrature_points: 4,
         ..FeTipParams::default()
     };
     let tip = FeTip::new(&p).expect("tip");
+    let far = FeTip::new(&FeTipParams {
+        far_quadrature_points: FeTipParams::default().far_quadrature_points,
+        ..p
+    })
+    .expect("tip");
     let law = LennardJones::new(&LennardJonesParams {
         c6: p.c6,
         c12: p.c12,
@@ -61,6 +70,12 @@ fn body_force_column_integral_is_the_plate_traction() {
             (force - exact).abs() < 1e-10 * law.max_traction(),
             "gap {delta} zeta0: {force} vs {exact}"
         );
+        let reduced = far.force(delta, &u) / (PI * p.r0 * p.r0);
+        eprintln!(
+            "column at {delta} zeta0: 2 Gauss points beyond 30 zeta0 off by {:.2e} sigma0",
+            (reduced - exact).abs() / law.max_traction()
+        );
+        assert!((reduced - exact).abs() < 1e-8 * law.max_traction());
     }
 }
 

@@ -12,6 +12,7 @@ use crate::error::{Error, Result};
 use crate::figure::{Axis, Figure, Marker, MarkerShape, Panel, Series, Style};
 use crate::job::Job;
 use crate::models::axisymmetric::cycle::{CycleModel, CycleOptions, TipCycle, run_cycle};
+use crate::models::body_force_fe::body::FAR_POINTS;
 use crate::models::body_force_fe::tip::{FeGeometry, FeTip, FeTipParams};
 use crate::models::lennard_jones::LennardJones;
 use crate::params::Range;
@@ -48,6 +49,7 @@ fn fe_tip(
         r0: size_over_radius * radius,
         h0: size_over_radius * radius,
         quadrature_points: 4,
+        far_quadrature_points: FAR_POINTS,
         geometry: FeGeometry::HalfSpace,
     })
 }
