@@ -7,6 +7,7 @@
 //! ([`crate::models::axisymmetric::cycle`]).
 
 pub mod assembly;
+pub mod body;
 pub mod element;
 pub mod mesh;
 pub mod tip;

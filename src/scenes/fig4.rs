@@ -24,6 +24,7 @@ use crate::figure::{Axis, Figure, Marker, MarkerShape, Panel, Series, Style};
 use crate::job::Job;
 use crate::models::axisymmetric::cycle::{CycleOptions, TipCycle, TipState, run_cycle};
 use crate::models::axisymmetric::tip::{Tip, TipParams};
+use crate::models::body_force_fe::tip::FeTip;
 use crate::models::lennard_jones::{LennardJones, LennardJonesParams};
 use crate::models::maugis_dugdale::MaugisDugdale;
 use crate::models::wavy_jkr::{WavyJkr, WavyJkrParams};
@@ -45,6 +46,12 @@ pub const SCENES: &[&dyn SceneDyn] = &[
     &Registered::<roughness::Fig4_11>::NEW,
     &Registered::<roughness::Fig4_12>::NEW,
 ];
+
+crate::param_choice! {
+    /// The model that computes a chapter 4 cycle: the axisymmetric surface model (seconds) or
+    /// the dissertation's finite-element model with the body force (4.15) (minutes).
+    pub enum TipModel { Surface = "surface", Fe = "fe" }
+}
 
 crate::scene_params! {
     /// Parameters of scene fig4.5 (section 4.4, the caption of Fig. 4.5). The maximum depth is
@@ -71,12 +78,18 @@ crate::scene_params! {
         h_start_over_zeta0: f64 = 12.0, unit = "", range = Range::between(1.0, 200.0);
         /// Depth step in units of ζ0.
         step_over_zeta0: f64 = 0.2, unit = "", range = Range::between(0.02, 1.0);
-        /// Ring width in units of b = ζ0²E*/w (0.25 and below: the contact edge does not hop from ring to ring).
+        /// Ring width (surface model) or width of the surface elements (finite elements) in units of b = ζ0²E*/w (0.25 and below: the contact edge does not hop from ring to ring).
         ring_width: f64 = 0.25, unit = "", range = Range::between(0.02, 2.0);
-        /// Gauss points per interval of the interaction energy.
+        /// Gauss points per interval of the interaction energy (per chord interval in r near the substrate for finite elements).
         quadrature_points: usize = 4, unit = "", range = Range::between(1.0, 16.0);
         /// Contact threshold of the gap (section 4.2.2: σ) [m].
         contact_gap: f64 = 1.0e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
+        /// Model of the tip: surface (the axisymmetric surface model, a few seconds) or fe (the dissertation's finite-element model with the body force (4.15): 22 266 unknowns at the defaults, about 40 s per cycle on 2 cores).
+        model: TipModel = TipModel::Surface, unit = "", range = Range::any();
+        /// Growth of the finite-element size with the distance from the contact zone (model = fe).
+        fe_grading: f64 = 0.15, unit = "", range = Range::between(0.05, 1.0);
+        /// Radius and height of the finite-element tip in units of R (model = fe).
+        fe_size_over_radius: f64 = 20.0, unit = "", range = Range::between(2.0, 1000.0);
     }
 }
 
@@ -135,6 +148,140 @@ fn tip_for(
     };
     params.fine_radius = params.fine_radius_for_depth(h_min)?;
     Tip::new(&params)
+}
+
+/// The quick form of the finite-element mesh of a scene: a coarse bulk (grading at least
+/// 0.4) in a tip of at most 4 R.
+fn fe_quick(grading: &mut f64, size_over_radius: &mut f64) {
+    *grading = grading.max(0.4);
+    *size_over_radius = size_over_radius.min(4.0);
+}
+
+/// The tip of a chapter 4 scene in the model its `model` parameter names.
+enum SceneTip {
+    /// The surface model.
+    Surface(Box<Tip>),
+    /// The finite-element model.
+    Fe(Box<FeTip>),
+}
+
+/// What a scene needs of its tip, beyond the surface model's parameters, to build either model.
+#[derive(Debug, Clone, Copy)]
+struct ModelChoice {
+    model: TipModel,
+    youngs_modulus: f64,
+    poisson_ratio: f64,
+    fe_grading: f64,
+    fe_size_over_radius: f64,
+}
+
+impl SceneTip {
+    /// The tip of a scene: the surface model of [`tip_for`], or the finite-element model with
+    /// the same fine zone, surface element width and Gauss points near the substrate.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming the parameter.
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        choice: ModelChoice,
+        lj: &LennardJones,
+        radius: f64,
+        amplitude: f64,
+        wavelength: f64,
+        h_min: f64,
+        ring_width: f64,
+        quadrature_points: usize,
+    ) -> Result<Self> {
+        let nu = choice.poisson_ratio;
+        let modulus = choice.youngs_modulus / (1.0 - nu * nu);
+        let surface = tip_for(
+            lj,
+            radius,
+            modulus,
+            amplitude,
+            wavelength,
+            h_min,
+            ring_width,
+            quadrature_points,
+        )?;
+        Ok(match choice.model {
+            TipModel::Surface => Self::Surface(Box::new(surface)),
+            TipModel::Fe => Self::Fe(Box::new(fe::fe_wavy_tip(
+                lj,
+                radius,
+                choice.youngs_modulus,
+                nu,
+                (amplitude, wavelength),
+                surface.params().fine_radius,
+                ring_width,
+                choice.fe_grading,
+                choice.fe_size_over_radius,
+                quadrature_points,
+            )?)),
+        })
+    }
+
+    /// Run one cycle ([`run_cycle`]).
+    ///
+    /// # Errors
+    /// As [`run_cycle`].
+    fn cycle(&self, opts: &CycleOptions, progress: impl FnMut(f64) -> Result<()>) -> Result<TipCycle> {
+        match self {
+            Self::Surface(t) => run_cycle(t.as_ref(), opts, progress),
+            Self::Fe(t) => run_cycle(t.as_ref(), opts, progress),
+        }
+    }
+
+    /// The name of the model's series.
+    fn label(&self) -> &'static str {
+        match self {
+            Self::Surface(_) => "surface model (LJ)",
+            Self::Fe(_) => "finite elements (LJ body force)",
+        }
+    }
+
+    /// Unknowns: rings of the surface model, displacement unknowns of the finite elements.
+    fn unknowns(&self) -> usize {
+        match self {
+            Self::Surface(t) => t.len(),
+            Self::Fe(t) => t.len(),
+        }
+    }
+
+    /// Radii [m] and gaps (normal units) of the surface points of a state at `depth` [m].
+    fn profile(&self, depth: f64, u: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        match self {
+            Self::Surface(t) => (t.radii(), t.gaps(t.approach(depth), u)),
+            Self::Fe(t) => t.surface_gaps(t.approach(depth), u),
+        }
+    }
+
+    /// The radial unit b = ζ0²E*/w [m].
+    fn radial_unit(&self) -> f64 {
+        match self {
+            Self::Surface(t) => t.scales().radial,
+            Self::Fe(t) => t.scales().radial,
+        }
+    }
+
+    /// A note on the model's discretisation.
+    fn describe(&self, width: f64, quadrature_points: usize) -> String {
+        match self {
+            Self::Surface(t) => format!(
+                "Surface model: {} rings of {width:.2} b (b = ζ0²E*/w = {:.2} nm), {quadrature_points} Gauss points per interval",
+                t.len(),
+                self.radial_unit() * 1e9
+            ),
+            Self::Fe(t) => format!(
+                "Finite elements: {} unknowns ({} triangles, surface elements of {width:.2} b, b = {:.2} nm, tip {:.0} R wide and high, bulk grading {})",
+                t.len(),
+                t.elements(),
+                self.radial_unit() * 1e9,
+                t.params().r0 / t.params().radius,
+                t.params().grading
+            ),
+        }
+    }
 }
 
 /// Draw a measured cycle into a P-h panel (h/R, P/(2E*R²)): loading and unloading solid,
@@ -201,7 +348,8 @@ impl Scene for Fig4_5 {
     const CAPTION: &'static str = "Displacement-controlled cycle of a smooth paraboloidal tip (R = 5 um, E = 4.4 MPa, \
         nu = 0.25) against a rigid flat with the Lennard-Jones interaction (C6 = 3, C12 = 1, sigma = 1 nm, \
         A_H = 2e-21 J), computed with the axisymmetric surface model (the body force (4.15) integrated \
-        through a column is the traction (4.19)), against the Maugis-Dugdale curve (3.3) at the same \
+        through a column is the traction (4.19)) or, with model = fe, the dissertation's finite-element \
+        model (section 4.2.2), against the Maugis-Dugdale curve (3.3) at the same \
         ell and chi (4.25): (a) P-h, (b) P-a with a the radius where the gap is below sigma. The model's \
         path is the measured one: stable states solid, jumps dashed; the MD reference shows its unstable \
         branch dashed and its loss shaded.";
@@ -228,7 +376,11 @@ impl Scene for Fig4_5 {
         ("pull_in_depth_norm", "h/R at the pull-in of the surface model"),
         ("pull_off_depth_norm", "h/R at the pull-off of the surface model"),
         ("jumps_count", "jumps on the cycle (2: one pull-in, one pull-off)"),
-        ("rings_count", "rings of the surface model"),
+        ("rings_count", "rings of the surface model (0 with model = fe)"),
+        (
+            "unknowns_count",
+            "unknowns of the model: rings (surface) or nodal displacements (fe)",
+        ),
         (
             "all_states_stable_count",
             "1 when every state was certified stable",
@@ -238,6 +390,7 @@ impl Scene for Fig4_5 {
     fn quick(p: &mut Self::Params) {
         p.h_min_over_zeta0 = p.h_min_over_zeta0.max(-3.0);
         p.step_over_zeta0 = p.step_over_zeta0.max(0.25);
+        fe_quick(&mut p.fe_grading, &mut p.fe_size_over_radius);
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
@@ -255,10 +408,16 @@ impl Scene for Fig4_5 {
         let (lj, modulus) = material(p.c6, p.c12, p.sigma, p.hamaker, p.youngs_modulus, p.poisson_ratio)?;
         let zeta0 = lj.zeta0();
         let w = lj.work_of_adhesion();
-        let tip = tip_for(
+        let tip = SceneTip::new(
+            ModelChoice {
+                model: p.model,
+                youngs_modulus: p.youngs_modulus,
+                poisson_ratio: p.poisson_ratio,
+                fe_grading: p.fe_grading,
+                fe_size_over_radius: p.fe_size_over_radius,
+            },
             &lj,
             p.radius,
-            modulus,
             0.0,
             1.0,
             p.h_min_over_zeta0 * zeta0,
@@ -275,7 +434,7 @@ impl Scene for Fig4_5 {
             unload_to: None,
         };
         // The cycle is nearly all of the run; the Maugis-Dugdale curves follow.
-        let cycle = run_cycle(&tip, &opts, |f| {
+        let cycle = tip.cycle(&opts, |f| {
             job.progress(0.98 * f, "cycle");
             job.check()
         })?;
@@ -289,7 +448,11 @@ impl Scene for Fig4_5 {
             .fold(0.0, f64::max)
             / p.radius;
 
-        let mut fig = Figure::new(Self::ID, Self::TITLE);
+        let title = match tip {
+            SceneTip::Surface(_) => Self::TITLE,
+            SceneTip::Fe(_) => "Smooth tip: Lennard-Jones finite-element model against Maugis-Dugdale",
+        };
+        let mut fig = Figure::new(Self::ID, title);
         let mut ph = Panel::new(
             Axis::linear("Indentation depth h/R", ""),
             Axis::linear("Contact force P/(2E*R²)", ""),
@@ -306,7 +469,7 @@ impl Scene for Fig4_5 {
             a_max.max(1e-6),
             300,
         )?;
-        draw_cycle(&mut ph, &cycle, "surface model (LJ)", 0, scale);
+        draw_cycle(&mut ph, &cycle, tip.label(), 0, scale);
         fig.panels.push(ph);
 
         let mut pa = Panel::new(
@@ -329,8 +492,12 @@ impl Scene for Fig4_5 {
                 .filter(|s| s.contact.radius() > 0.0)
                 .map(|s| (s.contact.radius() / p.radius, s.force / scale.1))
                 .collect();
+            let model = match tip {
+                SceneTip::Surface(_) => "surface model",
+                SceneTip::Fe(_) => "finite elements",
+            };
             pa.add(
-                Series::new(format!("surface model, {phase}"), Style::Stable, pts)
+                Series::new(format!("{model}, {phase}"), Style::Stable, pts)
                     .with_color(if phase == "loading" { 0 } else { 1 }),
             );
         }
@@ -373,18 +540,19 @@ impl Scene for Fig4_5 {
             fig.note("No instability on this cycle: the pull-in and pull-off depths are reported as 0.");
         }
         fig.result("jumps_count", cycle.jumps.len() as f64);
-        fig.result("rings_count", tip.len() as f64);
+        let rings = match tip {
+            SceneTip::Surface(_) => tip.unknowns(),
+            SceneTip::Fe(_) => 0,
+        };
+        fig.result("rings_count", rings as f64);
+        fig.result("unknowns_count", tip.unknowns() as f64);
         fig.result(
             "all_states_stable_count",
             f64::from(u8::from(cycle.stats.all_stable)),
         );
         fig.note(format!(
-            "Surface model: {} rings of {:.2} b (b = ζ0²E*/w = {:.2} nm), {} Gauss points per interval; \
-             {} states, jumps located to 1e-3 ζ0; every state certified stable: {}.",
-            tip.len(),
-            p.ring_width,
-            tip.scales().radial * 1e9,
-            p.quadrature_points,
+            "{}; {} states, jumps located to 1e-3 ζ0; every state certified stable: {}.",
+            tip.describe(p.ring_width, p.quadrature_points),
             cycle.stats.states,
             cycle.stats.all_stable
         ));
@@ -422,12 +590,31 @@ crate::scene_params! {
         h_start_over_zeta0: f64 = 25.0, unit = "", range = Range::between(1.0, 200.0);
         /// Depth step in units of ζ0.
         step_over_zeta0: f64 = 0.25, unit = "", range = Range::between(0.02, 1.0);
-        /// Ring width in units of b = ζ0²E*/w.
+        /// Ring width (surface model) or width of the surface elements (finite elements) in units of b = ζ0²E*/w.
         ring_width: f64 = 0.25, unit = "", range = Range::between(0.02, 2.0);
-        /// Gauss points per interval of the interaction energy.
+        /// Gauss points per interval of the interaction energy (per chord interval in r near the substrate for finite elements).
         quadrature_points: usize = 4, unit = "", range = Range::between(1.0, 16.0);
         /// Contact threshold of the gap (section 4.2.2: σ) [m].
         contact_gap: f64 = 1.0e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
+        /// Model of the tip: surface (the axisymmetric surface model, seconds) or fe (the dissertation's finite-element model with the body force (4.15): about 25 000 unknowns at the defaults and several minutes per figure on 2 cores).
+        model: TipModel = TipModel::Surface, unit = "", range = Range::any();
+        /// Growth of the finite-element size with the distance from the contact zone (model = fe).
+        fe_grading: f64 = 0.15, unit = "", range = Range::between(0.05, 1.0);
+        /// Radius and height of the finite-element tip in units of R (model = fe).
+        fe_size_over_radius: f64 = 20.0, unit = "", range = Range::between(2.0, 1000.0);
+    }
+}
+
+impl Fig4_7Params {
+    /// The model and its finite-element mesh.
+    fn model_choice(&self) -> ModelChoice {
+        ModelChoice {
+            model: self.model,
+            youngs_modulus: self.youngs_modulus,
+            poisson_ratio: self.poisson_ratio,
+            fe_grading: self.fe_grading,
+            fe_size_over_radius: self.fe_size_over_radius,
+        }
     }
 }
 
@@ -465,7 +652,7 @@ impl Scene for Fig4_7 {
     const TITLE: &'static str = "Wavy tip: depth-dependent hysteresis";
     const CAPTION: &'static str = "Displacement-controlled cycles of a wavy tip (4.10) (R = 10 um, E = 2.2 MPa, nu = 0.25, \
         A = 1.25 nm, lambda = 0.125 um; C6 = 3, C12 = 1, sigma = 1 nm, A_H = 1e-21 J) with the axisymmetric \
-        surface model: (a) cycles to |h_min|/R = 1.5e-4 (thin) and 7e-4 (thick): more asperity-level \
+        surface model (model = fe: the dissertation's finite-element model): (a) cycles to |h_min|/R = 1.5e-4 (thin) and 7e-4 (thick): more asperity-level \
         instabilities and more loss for the deeper cycle (DDH); A, B: the states before and after the pull-in \
         nearest h/R = -4e-4; C, D: the loading and unloading states at h/R = 6e-5; (b) the deep cycle against \
         the wavy JKR theory (4.26) (ERRATA reading, ell printed as chi), stable solid, unstable dashed.";
@@ -505,6 +692,7 @@ impl Scene for Fig4_7 {
         p.depth_2_over_radius = p.depth_2_over_radius.min(1.5e-4);
         p.step_over_zeta0 = p.step_over_zeta0.max(0.5);
         p.h_start_over_zeta0 = p.h_start_over_zeta0.min(20.0);
+        fe_quick(&mut p.fe_grading, &mut p.fe_size_over_radius);
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
@@ -522,10 +710,10 @@ impl Scene for Fig4_7 {
         let (lj, modulus) = material(p.c6, p.c12, p.sigma, p.hamaker, p.youngs_modulus, p.poisson_ratio)?;
         let zeta0 = lj.zeta0();
         let depths = [p.depth_1_over_radius * p.radius, p.depth_2_over_radius * p.radius];
-        let tip = tip_for(
+        let tip = SceneTip::new(
+            p.model_choice(),
             &lj,
             p.radius,
-            modulus,
             p.amplitude,
             p.wavelength,
             -depths[1],
@@ -553,13 +741,13 @@ impl Scene for Fig4_7 {
         );
         let (shallow, deep) = rayon::join(
             || {
-                run_cycle(&tip, &opts(depths[0], false), |f| {
+                tip.cycle(&opts(depths[0], false), |f| {
                     parts[0].progress(f, "shallow cycle");
                     job.check()
                 })
             },
             || {
-                run_cycle(&tip, &opts(depths[1], false), |f| {
+                tip.cycle(&opts(depths[1], false), |f| {
                     parts[1].progress(f, "deep cycle");
                     job.check()
                 })
@@ -582,7 +770,11 @@ impl Scene for Fig4_7 {
             )
         };
         let (x, y) = axes();
-        let mut a = Panel::new(x, y).titled("(a)", "surface model, two maximum depths");
+        let model = match tip {
+            SceneTip::Surface(_) => "surface model",
+            SceneTip::Fe(_) => "finite elements",
+        };
+        let mut a = Panel::new(x, y).titled("(a)", format!("{model}, two maximum depths"));
         // The deep cycle first: where the shallow one visits the same states it is drawn on top.
         for (cycle, depth, color) in [
             (&deep, p.depth_2_over_radius, 3),
@@ -633,7 +825,7 @@ impl Scene for Fig4_7 {
             let style = if stable { Style::Stable } else { Style::Unstable };
             b.add(Series::new("wavy JKR (4.26)", style, run).with_color(7));
         }
-        draw_cycle(&mut b, &deep, "surface model (LJ)", 3, scale);
+        draw_cycle(&mut b, &deep, tip.label(), 3, scale);
         fig.panels.push(b);
 
         let theory_1 = theory.cycle(p.depth_1_over_radius)?;
@@ -658,12 +850,14 @@ impl Scene for Fig4_7 {
             "all_states_stable_count",
             f64::from(u8::from(shallow.stats.all_stable && deep.stats.all_stable)),
         );
+        let discretisation = match &tip {
+            SceneTip::Surface(t) => format!("Surface model: {} rings of {:.2} b", t.len(), p.ring_width),
+            SceneTip::Fe(_) => tip.describe(p.ring_width, p.quadrature_points),
+        };
         fig.note(format!(
-            "Surface model: {} rings of {:.2} b; the tip's adhesive force and loss are below those of (4.26) \
+            "{discretisation}; the tip's adhesive force and loss are below those of (4.26) \
              and its instabilities come earlier, as section 4.5.1 finds for its finite-element model \
-             (finite interaction range against the JKR limit).",
-            tip.len(),
-            p.ring_width
+             (finite interaction range against the JKR limit)."
         ));
         job.progress(1.0, "done");
         Ok(fig)
@@ -679,7 +873,8 @@ impl Scene for Fig4_8 {
     const CHAPTER: &'static str = "4";
     const TITLE: &'static str = "Wavy tip: surface profiles at the states A-D";
     const CAPTION: &'static str = "Gap between the deformed wavy tip and the substrate against the radius at the states \
-        of Fig. 4.7a on the deep cycle (surface model; only the deep cycle's |h_min| is used): (a) A and B \
+        of Fig. 4.7a on the deep cycle (surface model, or the finite-element model with model = fe; only the \
+        deep cycle's |h_min| is used): (a) A and B \
         just before and after a pull-in near h/R = -4e-4, the contact grows across an asperity by a finite \
         amount; (b) C (loading) and D (unloading) at the same depth h/R = 6e-5, two metastable states with \
         different contact regions. The dotted line is the contact threshold sigma (section 4.2.2).";
@@ -701,13 +896,13 @@ impl Scene for Fig4_8 {
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        let (lj, modulus) = material(p.c6, p.c12, p.sigma, p.hamaker, p.youngs_modulus, p.poisson_ratio)?;
+        let (lj, _) = material(p.c6, p.c12, p.sigma, p.hamaker, p.youngs_modulus, p.poisson_ratio)?;
         let zeta0 = lj.zeta0();
         let depth = p.depth_2_over_radius * p.radius;
-        let tip = tip_for(
+        let tip = SceneTip::new(
+            p.model_choice(),
             &lj,
             p.radius,
-            modulus,
             p.amplitude,
             p.wavelength,
             -depth,
@@ -725,12 +920,11 @@ impl Scene for Fig4_8 {
             // recessions) is not drawn here.
             unload_to: Some(1.5e-4 * p.radius),
         };
-        let deep = run_cycle(&tip, &opts, |f| {
+        let deep = tip.cycle(&opts, |f| {
             job.progress(0.99 * f, "deep cycle");
             job.check()
         })?;
         let states = marked_states(&deep, p.radius);
-        let radii = tip.radii();
         let r_max = 1.3
             * deep
                 .loading
@@ -738,7 +932,7 @@ impl Scene for Fig4_8 {
                 .map(|s| s.contact.radius())
                 .fold(p.wavelength, f64::max);
         let profile = |s: &TipState| -> Vec<(f64, f64)> {
-            let gaps = tip.gaps(tip.approach(s.depth), &s.displacement);
+            let (radii, gaps) = tip.profile(s.depth, &s.displacement);
             radii
                 .iter()
                 .zip(gaps)

@@ -154,6 +154,8 @@ pub trait CycleModel: Controlled {
     fn linear_solver(&self) -> LinearSolver {
         LinearSolver::Auto
     }
+    /// Adapt how the path is followed (see [`PathOptions`]); by default nothing changes.
+    fn tune_path(&self, _path: &mut PathOptions) {}
 }
 
 impl CycleModel for Tip {
@@ -225,7 +227,7 @@ pub fn run_cycle<M: CycleModel>(
         max_iterations: 1000,
         linear: tip.linear_solver(),
     };
-    let path = PathOptions {
+    let mut path = PathOptions {
         newton,
         refine_to: Some(opts.refine_to / tip.length_unit()),
         trial_iterations: 40,
@@ -234,6 +236,7 @@ pub fn run_cycle<M: CycleModel>(
         indefinite_trial_is_beyond: true,
         retry_after_jump: true,
     };
+    tip.tune_path(&mut path);
     let start = approach(opts.h_start);
     let start_energy = tip.at(start);
     let mut solver = StableNewton::new(&start_energy)?;

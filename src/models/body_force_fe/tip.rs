@@ -34,12 +34,18 @@ use std::f64::consts::PI;
 use crate::error::{Error, Result};
 use crate::models::axisymmetric::cycle::CycleModel;
 use crate::models::axisymmetric::tip::{ContactSet, TipScales, start_shift};
+use rayon::prelude::*;
+
 use crate::models::body_force_fe::assembly::{Assembled, FIXED, assemble, held_top_dofs};
-use crate::models::body_force_fe::element::{Chord, Density, StrainForm, chords, elasticity_matrix};
+use crate::models::body_force_fe::body::{BodyForce, FAR_POINTS};
+use crate::models::body_force_fe::element::{Density, StrainForm, elasticity_matrix};
 use crate::models::body_force_fe::mesh::{Mesh, MeshSpec};
 use crate::models::lennard_jones::{LennardJones, LennardJonesParams};
-use crate::numerics::loading::Controlled;
+use crate::numerics::loading::{Controlled, PathOptions};
 use crate::numerics::newton::{Energy, LinearSolver};
+
+/// Rows (or elements) per parallel task of the elastic products.
+const ROWS_PER_TASK: usize = 1024;
 
 /// The body the mesh fills.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -92,6 +98,11 @@ pub struct FeTipParams {
     pub h0: f64,
     /// Gauss points in r per chord interval of an element [-].
     pub quadrature_points: usize,
+    /// Gauss points in r per chord interval of the elements far from the substrate (reference
+    /// height above [`FAR_HEIGHT`] normal units), at most `quadrature_points` [-].
+    ///
+    /// [`FAR_HEIGHT`]: crate::models::body_force_fe::body::FAR_HEIGHT
+    pub far_quadrature_points: usize,
     /// The body the mesh fills.
     pub geometry: FeGeometry,
 }
@@ -119,6 +130,7 @@ impl Default for FeTipParams {
             r0: 2e-5,
             h0: 2e-5,
             quadrature_points: 4,
+            far_quadrature_points: FAR_POINTS,
             geometry: FeGeometry::HalfSpace,
         }
     }
@@ -145,17 +157,11 @@ pub struct FeTip {
     row_start: Vec<usize>,
     cols: Vec<usize>,
     vals: Vec<f64>,
-    /// Chords of the body-force integral and their elements.
-    chords: Vec<Chord>,
-    chord_element: Vec<u32>,
+    /// The body-force integral over the mesh.
+    body: BodyForce,
     /// Reference height of each node above the plane of the undeformed apex (z, plus the
     /// profile for [`FeGeometry::HalfSpace`]).
     height: Vec<f64>,
-    /// z-dofs of each element's nodes.
-    element_z: Vec<[usize; 3]>,
-    /// Pattern positions of the z-z couplings (0,0), (1,1), (2,2), (1,0), (2,0), (2,1).
-    element_zz: Vec<[usize; 6]>,
-    density: Density,
 }
 
 impl FeTip {
@@ -182,12 +188,13 @@ impl FeTip {
                 "must be zero or positive",
             ));
         }
-        if !(1..=16).contains(&p.quadrature_points) {
-            return Err(Error::invalid(
-                "quadrature_points",
-                p.quadrature_points,
-                "must be between 1 and 16",
-            ));
+        for (name, points) in [
+            ("quadrature_points", p.quadrature_points),
+            ("far_quadrature_points", p.far_quadrature_points),
+        ] {
+            if !(1..=16).contains(&points) {
+                return Err(Error::invalid(name, points, "must be between 1 and 16"));
+            }
         }
         let law = LennardJones::new(&LennardJonesParams {
             c6: p.c6,
@@ -228,24 +235,22 @@ impl FeTip {
         // Pattern and stiffness.
         let d = elasticity_matrix(p.youngs_modulus / pref, nu);
         let assembled = assemble(&mesh, &dofs, n, &d);
-        let mut element_z = Vec::with_capacity(mesh.triangles.len());
-        let mut element_zz = Vec::with_capacity(mesh.triangles.len());
-        let mut chord_list = Vec::new();
-        let mut chord_element = Vec::new();
-        for (e, tri) in mesh.triangles.iter().enumerate() {
-            let z = tri.map(|k| dofs[k][1]);
-            element_zz.push(
-                [(0, 0), (1, 1), (2, 2), (1, 0), (2, 0), (2, 1)]
-                    .map(|(a, b)| assembled.slot(z[a], z[b]).unwrap_or(FIXED)),
-            );
-            element_z.push(z);
-            let before = chord_list.len();
-            chords(tri.map(|k| mesh.nodes[k]), p.quadrature_points, &mut chord_list);
-            for ch in &mut chord_list[before..] {
-                ch.z_lo += offset(ch.r);
-            }
-            chord_element.extend(std::iter::repeat_n(e as u32, chord_list.len() - before));
-        }
+        let lp = law.params();
+        let density = Density {
+            a3: lp.hamaker * lp.c6 / (6.0 * PI) / (l.powi(3) * pref),
+            a9: lp.hamaker * lp.c12 * lp.sigma.powi(6) / (45.0 * PI) / (l.powi(9) * pref),
+        };
+        let body = BodyForce::new(
+            &mesh,
+            &dofs,
+            [
+                p.quadrature_points,
+                p.far_quadrature_points.min(p.quadrature_points),
+            ],
+            offset,
+            |a, b| assembled.slot(a, b).unwrap_or(FIXED),
+            density,
+        );
         let Assembled {
             pattern,
             values: stiffness,
@@ -271,11 +276,6 @@ impl FeTip {
             }
             row_start.push(cols.len());
         }
-        let lp = law.params();
-        let density = Density {
-            a3: lp.hamaker * lp.c6 / (6.0 * PI) / (l.powi(3) * pref),
-            a9: lp.hamaker * lp.c12 * lp.sigma.powi(6) / (45.0 * PI) / (l.powi(9) * pref),
-        };
         Ok(Self {
             params: *p,
             scales,
@@ -289,12 +289,8 @@ impl FeTip {
             row_start,
             cols,
             vals,
-            chords: chord_list,
-            chord_element,
+            body,
             height,
-            element_z,
-            element_zz,
-            density,
         })
     }
 
@@ -334,20 +330,6 @@ impl FeTip {
         self.dofs[k].map(|i| if i == FIXED { 0.0 } else { u[i] })
     }
 
-    /// Height above the substrate at the two ends of a chord: (d_lo, d_hi − d_lo).
-    fn chord_heights(&self, delta: f64, u: &[f64], c: usize) -> (f64, f64) {
-        let ch = &self.chords[c];
-        let z = &self.element_z[self.chord_element[c] as usize];
-        let (mut d, mut dd) = (delta + ch.z_lo, ch.length);
-        for k in 0..3 {
-            if z[k] != FIXED {
-                d += ch.n_lo[k] * u[z[k]];
-                dd += ch.dn[k] * u[z[k]];
-            }
-        }
-        (d, dd)
-    }
-
     /// Radii [m] and gaps (normal units) of the surface nodes, by increasing radius.
     pub fn surface_gaps(&self, delta: f64, u: &[f64]) -> (Vec<f64>, Vec<f64>) {
         let l = self.scales.length;
@@ -363,13 +345,12 @@ impl FeTip {
 
     /// Force on the tip P = −∫ B_z dV, compressive positive [N].
     pub fn force(&self, delta: f64, u: &[f64]) -> f64 {
-        let mut p = 0.0;
-        for c in 0..self.chords.len() {
-            let (d, dd) = self.chord_heights(delta, u, c);
-            let ch = &self.chords[c];
-            p -= ch.weight * ch.length * self.density.force_moments(d, dd)[0];
-        }
-        p * self.scales.traction * self.scales.length * self.scales.length
+        -self.body.body_force(delta, u) * self.scales.traction * self.scales.length * self.scales.length
+    }
+
+    /// Number of chords of the body-force integral.
+    pub fn chords(&self) -> usize {
+        self.body.len()
     }
 
     /// Indentation depth h = δ − ζ0 [m] (as [`crate::models::axisymmetric::tip::Tip::depth`]).
@@ -422,16 +403,42 @@ impl FeTip {
         FeEnergy { tip: self, delta }
     }
 
-    /// y = K x.
+    /// y = K x (rows in parallel).
     fn multiply(&self, x: &[f64], y: &mut [f64]) {
-        for (i, yi) in y.iter_mut().enumerate() {
-            let (a, b) = (self.row_start[i], self.row_start[i + 1]);
-            *yi = self.cols[a..b]
-                .iter()
-                .zip(&self.vals[a..b])
-                .map(|(&c, v)| v * x[c])
-                .sum();
-        }
+        y.par_chunks_mut(ROWS_PER_TASK)
+            .enumerate()
+            .for_each(|(chunk, ys)| {
+                for (j, yi) in ys.iter_mut().enumerate() {
+                    let i = chunk * ROWS_PER_TASK + j;
+                    let (a, b) = (self.row_start[i], self.row_start[i + 1]);
+                    *yi = self.cols[a..b]
+                        .iter()
+                        .zip(&self.vals[a..b])
+                        .map(|(&c, v)| v * x[c])
+                        .sum();
+                }
+            });
+    }
+
+    /// The strain energy ½ ∫ εᵀ D ε dV of the displacements `u` (elements in parallel chunks,
+    /// summed in order).
+    fn strain_energy(&self, u: &[f64]) -> f64 {
+        let partial: Vec<f64> = self
+            .mesh
+            .triangles
+            .par_chunks(ROWS_PER_TASK)
+            .zip(self.strain_forms.par_chunks(ROWS_PER_TASK))
+            .map(|(tris, forms)| {
+                tris.iter()
+                    .zip(forms)
+                    .map(|(tri, form)| {
+                        let [a, b, c] = tri.map(|k| self.node_displacement(u, k));
+                        form.energy(&self.elasticity, [a[0], b[0], c[0]], [a[1], b[1], c[1]])
+                    })
+                    .sum::<f64>()
+            })
+            .collect();
+        partial.iter().sum()
     }
 }
 
@@ -448,39 +455,16 @@ impl Energy for FeEnergy<'_> {
     }
 
     fn energy(&self, u: &[f64]) -> f64 {
-        let t = self.tip;
-        let mut elastic = 0.0;
-        for (tri, form) in t.mesh.triangles.iter().zip(&t.strain_forms) {
-            let [a, b, c] = tri.map(|k| t.node_displacement(u, k));
-            elastic += form.energy(&t.elasticity, [a[0], b[0], c[0]], [a[1], b[1], c[1]]);
+        let body = self.tip.body.energy(self.delta, u);
+        if !body.is_finite() {
+            return f64::INFINITY;
         }
-        let mut body = 0.0;
-        for c in 0..t.chords.len() {
-            let (d, dd) = t.chord_heights(self.delta, u, c);
-            if d <= 0.0 || d + dd <= 0.0 {
-                return f64::INFINITY;
-            }
-            let ch = &t.chords[c];
-            body += ch.weight * t.density.energy_on_chord(d, dd, ch.length);
-        }
-        elastic + body
+        self.tip.strain_energy(u) + body
     }
 
     fn gradient(&self, u: &[f64], g: &mut [f64]) {
-        let t = self.tip;
-        t.multiply(u, g);
-        for c in 0..t.chords.len() {
-            let (d, dd) = t.chord_heights(self.delta, u, c);
-            let ch = &t.chords[c];
-            let [i0, i1] = t.density.force_moments(d, dd);
-            let z = &t.element_z[t.chord_element[c] as usize];
-            let s = ch.weight * ch.length;
-            for k in 0..3 {
-                if z[k] != FIXED {
-                    g[z[k]] += s * (ch.n_lo[k] * i0 + ch.dn[k] * i1);
-                }
-            }
-        }
+        self.tip.multiply(u, g);
+        self.tip.body.add_gradient(self.delta, u, g, false);
     }
 
     fn hessian_pattern(&self) -> Vec<(usize, usize)> {
@@ -488,22 +472,8 @@ impl Energy for FeEnergy<'_> {
     }
 
     fn hessian_values(&self, u: &[f64], values: &mut [f64]) {
-        let t = self.tip;
-        values.copy_from_slice(&t.stiffness);
-        const PAIRS: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (1, 0), (2, 0), (2, 1)];
-        for c in 0..t.chords.len() {
-            let (d, dd) = t.chord_heights(self.delta, u, c);
-            let ch = &t.chords[c];
-            let [i0, i1, i2] = t.density.tangent_moments(d, dd);
-            let at = &t.element_zz[t.chord_element[c] as usize];
-            let s = ch.weight * ch.length;
-            for (m, &(a, b)) in PAIRS.iter().enumerate() {
-                if at[m] != FIXED {
-                    let (na, nb, da, db) = (ch.n_lo[a], ch.n_lo[b], ch.dn[a], ch.dn[b]);
-                    values[at[m]] += s * (na * nb * i0 + (na * db + da * nb) * i1 + da * db * i2);
-                }
-            }
-        }
+        values.copy_from_slice(&self.tip.stiffness);
+        self.tip.body.add_hessian(self.delta, u, values);
     }
 }
 
@@ -534,18 +504,7 @@ impl Controlled for FeTip {
     /// ∂g/∂δ = ∫ ψ''(d) N dV on the z-dofs (the elastic part does not depend on δ).
     fn gradient_rate(&self, delta: f64, u: &[f64], out: &mut [f64]) -> bool {
         out.iter_mut().for_each(|v| *v = 0.0);
-        for c in 0..self.chords.len() {
-            let (d, dd) = self.chord_heights(delta, u, c);
-            let ch = &self.chords[c];
-            let [i0, i1, _] = self.density.tangent_moments(d, dd);
-            let z = &self.element_z[self.chord_element[c] as usize];
-            let s = ch.weight * ch.length;
-            for k in 0..3 {
-                if z[k] != FIXED {
-                    out[z[k]] += s * (ch.n_lo[k] * i0 + ch.dn[k] * i1);
-                }
-            }
-        }
+        self.body.add_gradient(delta, u, out, true);
         true
     }
 
@@ -583,5 +542,15 @@ impl CycleModel for FeTip {
     }
     fn linear_solver(&self) -> LinearSolver {
         LinearSolver::Direct
+    }
+    /// A jump of the finite-element tip is a long descent (the contact zips up or peels off
+    /// node by node, each node crossing the steep repulsive wall in a few iterations: about
+    /// 170 iterations for the pull-in of Fig. 4.5), so the landing after a located jump runs
+    /// to the minimiser's own limit instead of being retried from further past the fold after
+    /// the surface model's 160. (The retry of a step after a false alarm of the jump measure,
+    /// a receding contact edge that outruns the tangent over a full step but not over half of
+    /// it, is on for every tip.)
+    fn tune_path(&self, path: &mut PathOptions) {
+        path.landing_iterations = path.newton.max_iterations;
     }
 }

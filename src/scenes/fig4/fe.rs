@@ -12,12 +12,13 @@ use crate::error::{Error, Result};
 use crate::figure::{Axis, Figure, Marker, MarkerShape, Panel, Series, Style};
 use crate::job::Job;
 use crate::models::axisymmetric::cycle::{CycleModel, CycleOptions, TipCycle, run_cycle};
+use crate::models::body_force_fe::body::FAR_POINTS;
 use crate::models::body_force_fe::tip::{FeGeometry, FeTip, FeTipParams};
 use crate::models::lennard_jones::LennardJones;
 use crate::params::Range;
 use crate::scenes::Scene;
 
-/// The finite-element tip of a scene: its material, interaction and mesh.
+/// The finite-element tip of a smooth tip in a scene: its material, interaction and mesh.
 #[allow(clippy::too_many_arguments)]
 fn fe_tip(
     lj: &LennardJones,
@@ -29,6 +30,35 @@ fn fe_tip(
     grading: f64,
     size_over_radius: f64,
 ) -> Result<FeTip> {
+    fe_wavy_tip(
+        lj,
+        radius,
+        youngs_modulus,
+        poisson_ratio,
+        (0.0, 1.0),
+        fine_radius,
+        element_width,
+        grading,
+        size_over_radius,
+        4,
+    )
+}
+
+/// The finite-element tip of a scene with the waviness `(amplitude, wavelength)` [m] of (4.10)
+/// and `quadrature_points` Gauss points in r near the substrate.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn fe_wavy_tip(
+    lj: &LennardJones,
+    radius: f64,
+    youngs_modulus: f64,
+    poisson_ratio: f64,
+    (amplitude, wavelength): (f64, f64),
+    fine_radius: f64,
+    element_width: f64,
+    grading: f64,
+    size_over_radius: f64,
+    quadrature_points: usize,
+) -> Result<FeTip> {
     let p = lj.params();
     FeTip::new(&FeTipParams {
         radius,
@@ -38,8 +68,8 @@ fn fe_tip(
         c12: p.c12,
         sigma: p.sigma,
         hamaker: p.hamaker,
-        amplitude: 0.0,
-        wavelength: 1.0,
+        amplitude,
+        wavelength,
         element_width,
         fine_radius,
         first_layer: 0.1,
@@ -47,7 +77,8 @@ fn fe_tip(
         grading,
         r0: size_over_radius * radius,
         h0: size_over_radius * radius,
-        quadrature_points: 4,
+        quadrature_points,
+        far_quadrature_points: FAR_POINTS.min(quadrature_points),
         geometry: FeGeometry::HalfSpace,
     })
 }
