@@ -99,8 +99,9 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
         for scene in scenes::all() {
             let id = scene.info().id;
             let info = scene.info();
-            // Sweeps (minutes each at their defaults) run in their quick form here.
-            let outcome = resolve_values(scene, None, &[], cli.quick || scene.info().sweep)
+            // Sweeps and long runs (minutes each at their defaults) run in their quick form here.
+            let quick = cli.quick || info.sweep || info.long;
+            let outcome = resolve_values(scene, None, &[], quick)
                 .and_then(|values| export_scene(scene, &values, &cli.out, &formats, &progress_job(id)));
             let image = [Format::Png, Format::Svg]
                 .into_iter()
@@ -262,6 +263,11 @@ pub fn describe(id: &str) -> Result<String> {
         out.push_str(
             "A sweep of many independent cycles: `--all` runs it in its quick form; export it \
              with --figure for the full grid.\n\n",
+        );
+    } else if info.long {
+        out.push_str(
+            "A run of minutes at these defaults: `--all` runs it in its quick form (as --quick \
+             does); export it with --figure for the full model.\n\n",
         );
     }
     out.push_str("Parameters (SI units; set with --set NAME=VALUE):\n");

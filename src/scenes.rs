@@ -44,6 +44,9 @@ pub trait Scene: Send + Sync + 'static {
     /// Whether the scene is a sweep of many independent runs (minutes at its defaults):
     /// `--all` runs it in its quick form, and `--describe` says so.
     const SWEEP: bool = false;
+    /// Whether one run takes minutes at the defaults (the finite-element scenes): `--all` runs
+    /// it in its quick form, and `--describe` says so. Sweeps are long by [`Scene::SWEEP`].
+    const LONG: bool = false;
 
     /// Checks across fields (ranges of single fields are checked by their specs).
     ///
@@ -86,6 +89,8 @@ pub struct SceneInfo {
     pub results: &'static [(&'static str, &'static str)],
     /// A sweep of many runs ([`Scene::SWEEP`]).
     pub sweep: bool,
+    /// A single run of minutes at the defaults ([`Scene::LONG`]).
+    pub long: bool,
 }
 
 /// Object-safe view of a [`Scene`], used by the front ends.
@@ -226,6 +231,7 @@ impl<S: Scene> SceneDyn for Registered<S> {
             caption: S::CAPTION,
             results: S::RESULTS,
             sweep: S::SWEEP,
+            long: S::LONG,
         }
     }
 

@@ -348,7 +348,7 @@ pub fn render_chart(
                 .graph_type(s.kind)
                 .style(TuiStyle::default().fg(s.color));
             if let Some(n) = &s.name {
-                d = d.name(n.clone());
+                d = d.name(super::text::terminal(n));
             }
             d
         })
@@ -359,14 +359,14 @@ pub fn render_chart(
     let chart = Chart::new(datasets)
         .x_axis(
             TuiAxis::default()
-                .title(x_labels.title.clone())
+                .title(super::text::terminal(&x_labels.title))
                 .bounds(xb_)
                 .labels(vec![Line::from(""), blank(1)])
                 .style(TuiStyle::default().fg(Color::Gray)),
         )
         .y_axis(
             TuiAxis::default()
-                .title(y_labels.title.clone())
+                .title(super::text::terminal(&y_labels.title))
                 .bounds(yb_)
                 .labels(vec![blank(y_width), blank(y_width)])
                 .style(TuiStyle::default().fg(Color::Gray)),

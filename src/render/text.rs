@@ -197,6 +197,14 @@ fn parse_into(chars: &[char], script: Script, accent: Accent, runs: &mut Vec<Run
                     i = j;
                 }
             }
+            '\\' if chars
+                .get(i + 1)
+                .is_some_and(|n| matches!(n, '_' | '^' | '\\' | '{' | '}')) =>
+            {
+                // An escaped markup character, e.g. in a parameter's name (see [`escape`]).
+                push(runs, chars[i + 1], script, accent);
+                i += 2;
+            }
             '\\' => {
                 let mut j = i + 1;
                 while j < chars.len() && chars[j].is_ascii_alphabetic() {
@@ -257,9 +265,55 @@ fn parse_into(chars: &[char], script: Script, accent: Accent, runs: &mut Vec<Run
     }
 }
 
+/// `text` as markup that reads as written: `_`, `^`, `\`, `{` and `}` escaped with a backslash
+/// (identifiers such as parameter names in legends).
+pub fn escape(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        if matches!(c, '_' | '^' | '\\' | '{' | '}') {
+            out.push('\\');
+        }
+        out.push(c);
+    }
+    out
+}
+
 /// The plain text of the markup (accents dropped), e.g. for width estimates of fallbacks.
 pub fn plain(src: &str) -> String {
     parse(src).into_iter().map(|r| r.text).collect()
+}
+
+/// The markup as a terminal shows it: scripts in Unicode sub- and superscript letters where
+/// every character of the run has one (`m^4` → `m⁴`, `h_o` → `hₒ`), else after a `_` or `^`
+/// without braces (`P_{adh}` → `P_adh`); bars and hats as combining marks on a one-letter run.
+pub fn terminal(src: &str) -> String {
+    const SUB: (&str, &str) = (
+        "0123456789+-−=()aehijklmnoprstuvx",
+        "₀₁₂₃₄₅₆₇₈₉₊₋₋₌₍₎ₐₑₕᵢⱼₖₗₘₙₒₚᵣₛₜᵤᵥₓ",
+    );
+    const SUPER: (&str, &str) = (
+        "0123456789+-−=()*abcdefghijklmnoprstuvwxyzABDEGHIJKLMNOPRTUVW",
+        "⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻⁻⁼⁽⁾*ᵃᵇᶜᵈᵉᶠᵍʰⁱʲᵏˡᵐⁿᵒᵖʳˢᵗᵘᵛʷˣʸᶻᴬᴮᴰᴱᴳᴴᴵᴶᴷᴸᴹᴺᴼᴾᴿᵀᵁⱽᵂ",
+    );
+    let map = |text: &str, (from, to): (&str, &str)| -> Option<String> {
+        text.chars()
+            .map(|c| from.chars().position(|f| f == c).and_then(|k| to.chars().nth(k)))
+            .collect()
+    };
+    let mut out = String::new();
+    for run in parse(src) {
+        let text = match run.accent {
+            Accent::Bar if run.text.chars().count() == 1 => format!("{}\u{304}", run.text),
+            Accent::Hat if run.text.chars().count() == 1 => format!("{}\u{302}", run.text),
+            _ => run.text,
+        };
+        match run.script {
+            Script::Normal => out.push_str(&text),
+            Script::Sub => out.push_str(&map(&text, SUB).unwrap_or_else(|| format!("_{text}"))),
+            Script::Super => out.push_str(&map(&text, SUPER).unwrap_or_else(|| format!("^{text}"))),
+        }
+    }
+    out
 }
 
 /// The embedded fonts (regular, bold).
@@ -588,6 +642,19 @@ mod tests {
         assert_eq!(kinds("2^-7")[1], ("−7".into(), Script::Super, Accent::None));
         assert_eq!(kinds("E^{*} [Pa]")[1], ("*".into(), Script::Super, Accent::None));
         assert_eq!(kinds("a_{x y}")[1], ("x y".into(), Script::Sub, Accent::None));
+    }
+
+    #[test]
+    fn terminal_text_uses_unicode_scripts_where_every_letter_has_one() {
+        assert_eq!(terminal("σ_rms/h_o"), "σᵣₘₛ/hₒ");
+        assert_eq!(terminal("P_{adh}/(πwR)"), "P_adh/(πwR)");
+        assert_eq!(terminal("H/(2E^{*}R^3)"), "H/(2E*R³)");
+        assert_eq!(terminal("m^4 2^-7"), "m⁴ 2⁻⁷");
+        assert_eq!(terminal("\\bar{d} = d"), "d\u{304} = d");
+        assert_eq!(terminal("plain text [nm]"), "plain text [nm]");
+        let name = "max_depth_norm = 2^10 {a} \\b";
+        assert_eq!(terminal(&escape(name)), name);
+        assert_eq!(plain(&escape(name)), name);
     }
 
     #[test]

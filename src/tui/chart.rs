@@ -15,6 +15,7 @@ use crate::figure::{Figure, Panel, Scale};
 use crate::params::ParamValues;
 use crate::render::labels::fmt_quantity;
 use crate::render::terminal::{ChartGeometry, View, shown_range};
+use crate::render::text::terminal;
 
 /// Runs the history keeps.
 pub const HISTORY_LEN: usize = 20;
@@ -757,15 +758,15 @@ fn cursor_point(drawn: &Overlay, at: CursorAt) -> Option<(f64, f64)> {
 pub fn readout(drawn: &Overlay, at: CursorAt) -> Option<Readout> {
     let point = cursor_point(drawn, at)?;
     let name = match at {
-        CursorAt::Point { series, .. } => drawn.panel.series[series].name.clone(),
+        CursorAt::Point { series, .. } => terminal(&drawn.panel.series[series].name),
         CursorAt::Marker(k) => {
             let m = &drawn.panel.markers[k];
-            m.label
-                .as_ref()
-                .map_or(m.name.clone(), |l| format!("{} ({l})", m.name))
+            let name = terminal(&m.name);
+            m.label.as_ref().map_or(name.clone(), |l| format!("{name} ({l})"))
         }
     };
-    let axis = |a: &crate::figure::Axis, v: f64| format!("{} = {}", a.label, fmt_quantity(v, &a.unit));
+    let axis =
+        |a: &crate::figure::Axis, v: f64| format!("{} = {}", terminal(&a.label), fmt_quantity(v, &a.unit));
     Some(Readout {
         point,
         name,

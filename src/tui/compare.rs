@@ -67,16 +67,18 @@ pub fn difference(pinned: &ParamValues, current: &ParamValues) -> String {
 }
 
 /// The legend label of pin `k` (from 1) against the current parameters, at most `width`
-/// characters.
+/// characters as shown; in the figures' markup, with the parameters' names escaped so that
+/// `max_depth_norm` reads as written rather than with subscripts.
 pub fn pin_label(k: usize, pin: &Pin, current: &ParamValues, width: usize) -> String {
     let text = format!("#{k} {}", difference(&pin.values, current));
-    if text.chars().count() > width && width > 1 {
+    let shown = if text.chars().count() > width && width > 1 {
         let mut s: String = text.chars().take(width - 1).collect();
         s.push('…');
         s
     } else {
         text
-    }
+    };
+    crate::render::text::escape(&shown)
 }
 
 /// Who drew an element of an overlaid panel.

@@ -437,7 +437,7 @@ pub fn panel_tabs(view: &FigureView) -> Vec<String> {
             if p.title.is_empty() {
                 format!(" {label} ")
             } else {
-                format!(" {label} {} ", p.title)
+                format!(" {label} {} ", crate::render::text::terminal(&p.title))
             }
         })
         .collect()

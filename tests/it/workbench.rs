@@ -652,13 +652,16 @@ fn pinned_markers_and_regions_carry_their_run() {
     set_param(&mut s, "max_depth_norm", "1.5");
     run(&mut s);
     let run_label = "#1 max_depth_norm = 2.5";
+    // In the figure (and its CSV) the label is markup with the parameter's name escaped; the
+    // terminal and the PNG show it as written.
+    let run_markup = adhesion::render::text::escape(run_label);
     let pin_color = s.app().pins(0)[0].color;
     let drawn = s.app().drawn().expect("a panel");
     let pinned_markers: Vec<_> = drawn
         .panel
         .markers
         .iter()
-        .filter(|m| m.name.starts_with(&format!("{run_label} · ")))
+        .filter(|m| m.name.starts_with(&format!("{run_markup} · ")))
         .collect();
     let current = drawn.current_counts();
     assert_eq!(pinned_markers.len(), current.0, "every marker of the pinned run");
@@ -666,11 +669,11 @@ fn pinned_markers_and_regions_carry_their_run() {
     assert!(
         pinned_markers
             .iter()
-            .any(|m| m.name == format!("{run_label} · pull-off"))
+            .any(|m| m.name == format!("{run_markup} · pull-off"))
     );
     assert_eq!(current.1, 1, "the current run's JKR hysteresis");
     let region = &drawn.panel.regions[1];
-    assert_eq!(region.name, format!("{run_label} · JKR hysteresis"));
+    assert_eq!(region.name, format!("{run_markup} · JKR hysteresis"));
     assert_eq!(region.color, Some(pin_color));
 
     // The terminal legend: the run's entry lists its markers and region by symbol; the kinds
@@ -701,9 +704,9 @@ fn pinned_markers_and_regions_carry_their_run() {
             .filter(|l| l.starts_with(&format!("1,{series},{style},")))
             .count()
     };
-    assert_eq!(rows(&format!("{run_label} · pull-off"), "pull-off"), 1, "{csv}");
+    assert_eq!(rows(&format!("{run_markup} · pull-off"), "pull-off"), 1, "{csv}");
     assert_eq!(rows("pull-off D", "pull-off"), 1);
-    let loop_rows = rows(&format!("{run_label} · JKR hysteresis"), "region");
+    let loop_rows = rows(&format!("{run_markup} · JKR hysteresis"), "region");
     assert!(loop_rows > 10, "{loop_rows} rows of the pinned loop");
     assert!(rows("JKR hysteresis", "region") > 10);
 }
@@ -896,4 +899,21 @@ fn the_history_and_the_help_answer_the_mouse() {
     draw_at(&s, 140, 40);
     mouse(&mut s, MouseEventKind::Down(MouseButton::Left), 70, 20);
     assert_eq!(s.app().mode(), &Mode::Normal);
+}
+
+/// The figures' label markup reads in the terminal as Unicode scripts, never as raw markup:
+/// fig1.4b's `d/h_o` axis is drawn `d/hₒ`, its legend `σᵣₘₛ/hₒ` (the form's parameter help
+/// is plain text and keeps its underscores).
+#[test]
+fn the_terminal_chart_shows_label_markup_as_unicode_scripts() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = at_scene(dir.path(), "fig1.4b");
+    run(&mut s);
+    let screen = text(&draw_at(&s, 160, 48));
+    assert!(screen.contains("Separation d/hₒ"), "{screen}");
+    assert!(screen.contains("σᵣₘₛ/hₒ = 0.5"), "{screen}");
+    assert!(
+        !screen.contains("d/h_o") && !screen.contains("_{") && !screen.contains("^{"),
+        "{screen}"
+    );
 }

@@ -119,6 +119,7 @@ impl Scene for Fig4_4 {
     type Params = Fig4_4Params;
     const ID: &'static str = "fig4.4";
     const CHAPTER: &'static str = "4";
+    const LONG: bool = true;
     const TITLE: &'static str = "Adhesionless finite-element contact against Hertz";
     const CAPTION: &'static str = "Finite-element model of the tip (axisymmetric linear triangles, the repulsive \
         body force of (4.15) with C6 = 0; R = 10 um, E = 1.1 MPa, nu = 0.25, C12 = 1, sigma = 1 nm, A_H = 2e-21 J) \
@@ -676,6 +677,7 @@ impl Scene for Fig4_6 {
     type Params = Fig4_6Params;
     const ID: &'static str = "fig4.6";
     const CHAPTER: &'static str = "4";
+    const LONG: bool = true;
     const TITLE: &'static str = "Fields in the tip after the pull-in (finite elements)";
     const CAPTION: &'static str = "The smooth tip of Fig. 4.5 (finite-element model) loaded past its pull-in: (a) the \
         vertical displacement u_z in the tip near the contact (the neck-like profile of the contact zone), \
