@@ -506,18 +506,21 @@ pub fn number(v: f64, digits: usize) -> String {
 /// Distance from `p` to the polyline `line`.
 fn polyline_distance(p: (f64, f64), line: &[(f64, f64)]) -> f64 {
     line.windows(2)
-        .map(|w| {
-            let (a, b) = (w[0], w[1]);
-            let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-            let len2 = dx * dx + dy * dy;
-            let t = if len2 > 0.0 {
-                (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            (a.0 + t * dx - p.0).hypot(a.1 + t * dy - p.1)
-        })
+        .map(|w| segment_distance(p, w[0], w[1]))
         .fold(f64::INFINITY, f64::min)
+}
+
+/// Distance from `p` to the segment `a`-`b` (also the renderer's coverage of a stroke).
+pub(crate) fn segment_distance(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let len2 = dx * dx + dy * dy;
+    let t = if len2 > 0.0 {
+        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let (qx, qy) = (a.0 + t * dx - p.0, a.1 + t * dy - p.1);
+    (qx * qx + qy * qy).sqrt()
 }
 
 /// Join line segments sharing end points into polylines.

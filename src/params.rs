@@ -140,13 +140,13 @@ impl Range {
     pub fn describe(&self) -> String {
         let lo = match self.min {
             Bound::Open => "(-inf".to_string(),
-            Bound::Inclusive(v) => format!("[{v}"),
-            Bound::Exclusive(v) => format!("({v}"),
+            Bound::Inclusive(v) => format!("[{}", fmt_float(v)),
+            Bound::Exclusive(v) => format!("({}", fmt_float(v)),
         };
         let hi = match self.max {
             Bound::Open => "inf)".to_string(),
-            Bound::Inclusive(v) => format!("{v}]"),
-            Bound::Exclusive(v) => format!("{v})"),
+            Bound::Inclusive(v) => format!("{}]", fmt_float(v)),
+            Bound::Exclusive(v) => format!("{})", fmt_float(v)),
         };
         format!("{lo}, {hi}")
     }

@@ -87,19 +87,6 @@ fn bounds(points: &[(f64, f64)]) -> (f64, f64, f64, f64) {
     )
 }
 
-/// Distance from `p` to the segment `a`-`b`.
-fn segment_distance(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let len2 = dx * dx + dy * dy;
-    let t = if len2 > 0.0 {
-        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let (qx, qy) = (a.0 + t * dx - p.0, a.1 + t * dy - p.1);
-    (qx * qx + qy * qy).sqrt()
-}
-
 /// Largest bounding box (pixels) of one accumulated piece of a stroke: a long curve across a
 /// figure is split into pieces of about this size, so that the buffer cleared for each stays
 /// small (the pieces share their end points; only the pixels of those joins are blended twice).
@@ -154,7 +141,7 @@ fn stroke_piece(points: &[(f64, f64)], width: f64, put: impl FnMut(i32, i32, f64
         let (dx, dy) = (b.0 - a.0, b.1 - a.1);
         let len = (dx * dx + dy * dy).sqrt();
         let cover = |x: i32, y: i32| {
-            let d = segment_distance((f64::from(x), f64::from(y)), a, b);
+            let d = crate::figure::segment_distance((f64::from(x), f64::from(y)), a, b);
             scale * (r_eff + 0.5 - d).clamp(0.0, 1.0)
         };
         // March along the major axis; across it, the pixels within reach of the line.

@@ -557,10 +557,9 @@ fn draw_results(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, are
     frame.render_widget(Paragraph::new(lines), inner);
 }
 
-fn draw_history(frame: &mut Frame<'_>, app: &App, selected: usize, area: Rect) {
-    let n = app.history().len();
-    let width = 96.min(area.width);
-    let height = (n as u16 + 4).min(area.height);
+/// A bordered box of `width` × `height` centred in `area` over what is drawn there, with
+/// `title`: the box and the area inside its border.
+fn overlay_box(frame: &mut Frame<'_>, area: Rect, width: u16, height: u16, title: String) -> (Rect, Rect) {
     let rect = Rect {
         x: area.x + (area.width - width) / 2,
         y: area.y + (area.height - height) / 2,
@@ -569,10 +568,24 @@ fn draw_history(frame: &mut Frame<'_>, app: &App, selected: usize, area: Rect) {
     };
     frame.render_widget(Clear, rect);
     let block = Block::bordered()
-        .title(format!(" Run history — last {n} runs "))
+        .title(title)
         .border_style(Style::default().fg(ACCENT));
     let inner = block.inner(rect);
     frame.render_widget(block, rect);
+    (rect, inner)
+}
+
+fn draw_history(frame: &mut Frame<'_>, app: &App, selected: usize, area: Rect) {
+    let n = app.history().len();
+    let width = 96.min(area.width);
+    let height = (n as u16 + 4).min(area.height);
+    let (rect, inner) = overlay_box(
+        frame,
+        area,
+        width,
+        height,
+        format!(" Run history — last {n} runs "),
+    );
     let footer_height = 2.min(inner.height);
     let [rows_area, footer_area] =
         Layout::vertical([Constraint::Min(0), Constraint::Length(footer_height)]).areas(inner);
@@ -745,18 +758,7 @@ fn draw_help(frame: &mut Frame<'_>, area: Rect) {
         keys.len().div_ceil(2)
     };
     let height = ((key_rows + lines.len()) as u16 + 2).min(area.height);
-    let rect = Rect {
-        x: area.x + (area.width - width) / 2,
-        y: area.y + (area.height - height) / 2,
-        width,
-        height,
-    };
-    frame.render_widget(Clear, rect);
-    let block = Block::bordered()
-        .title(" Keys — any key closes ")
-        .border_style(Style::default().fg(ACCENT));
-    let inner = block.inner(rect);
-    frame.render_widget(block, rect);
+    let (_, inner) = overlay_box(frame, area, width, height, " Keys — any key closes ".to_string());
     let [keys_area, notes_area] =
         Layout::vertical([Constraint::Length(key_rows as u16), Constraint::Min(0)]).areas(inner);
     if one_column {
