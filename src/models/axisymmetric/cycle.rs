@@ -156,7 +156,23 @@ pub trait CycleModel: Controlled {
     }
     /// Adapt how the path is followed (see [`PathOptions`]); by default nothing changes.
     fn tune_path(&self, _path: &mut PathOptions) {}
+    /// Seconds of one core an accepted state of a cycle costs, about; `None` where no
+    /// estimate is known. [`run_cycle`] refuses a cycle estimated above
+    /// [`MAX_CYCLE_SECONDS`].
+    fn seconds_per_state(&self) -> Option<f64> {
+        None
+    }
 }
+
+/// Longest cycle [`run_cycle`] starts, in estimated seconds of one core: a run of hours at a
+/// fine depth step over a deep cycle is refused at once rather than left running.
+pub const MAX_CYCLE_SECONDS: f64 = 3600.0;
+
+/// Seconds of one core per accepted state and per ring³ of the surface model (its dense
+/// factorisations): Fig. 4.5's smooth cycle, 354 rings and 270 states, takes 1.52 s (median
+/// of `cargo bench --bench ch4`), Fig. 4.7's deep wavy cycle 3.1 s for 505 rings and 264
+/// states (this constant predicts 4.3 s).
+const SECONDS_PER_STATE_AND_RING3: f64 = 1.3e-10;
 
 impl CycleModel for Tip {
     fn unknowns(&self) -> usize {
@@ -177,6 +193,9 @@ impl CycleModel for Tip {
     fn contact(&self, delta: f64, u: &[f64], threshold: f64) -> ContactSet {
         Tip::contact(self, delta, u, threshold)
     }
+    fn seconds_per_state(&self) -> Option<f64> {
+        Some(SECONDS_PER_STATE_AND_RING3 * (self.len() as f64).powi(3))
+    }
 }
 
 /// Run one cycle. `progress(fraction)` is called after every accepted state, and with the last
@@ -184,8 +203,8 @@ impl CycleModel for Tip {
 /// (cancellation), which a long minimisation then honours at its next iteration.
 ///
 /// # Errors
-/// [`Error::InvalidParameter`] for an empty or reversed depth range or a non-positive step;
-/// minimiser failures; errors of `progress`.
+/// [`Error::InvalidParameter`] for an empty or reversed depth range, a non-positive step or a
+/// cycle estimated above [`MAX_CYCLE_SECONDS`]; minimiser failures; errors of `progress`.
 pub fn run_cycle<M: CycleModel>(
     tip: &M,
     opts: &CycleOptions,
@@ -208,6 +227,23 @@ pub fn run_cycle<M: CycleModel>(
             opts.step,
             format!("gives {n_steps} steps per phase, more than 1e6"),
         ));
+    }
+    if let Some(per_state) = tip.seconds_per_state() {
+        let seconds = per_state * (2 * n_steps) as f64;
+        if seconds > MAX_CYCLE_SECONDS {
+            return Err(Error::invalid(
+                "step",
+                opts.step,
+                format!(
+                    "a cycle of {} depth steps on {} unknowns would take about {:.0} min of one core \
+                     (at most {:.0} min): take larger depth steps, a shallower cycle or wider rings",
+                    2 * n_steps,
+                    tip.unknowns(),
+                    seconds / 60.0,
+                    MAX_CYCLE_SECONDS / 60.0
+                ),
+            ));
+        }
     }
     let depths: Vec<f64> = (0..=n_steps)
         .map(|k| opts.h_start - (opts.h_start - opts.h_min) * k as f64 / n_steps as f64)
@@ -358,5 +394,40 @@ mod tests {
             stats: PathStats::default(),
         };
         assert!((cycle.hysteresis() - 0.5).abs() < 1e-15, "{}", cycle.hysteresis());
+    }
+
+    /// A cycle estimated at 1.5 hours (Fig. 4.5's tip in steps of about 1e-4 ζ0) is refused at
+    /// once with the estimate, before any minimisation; Fig. 4.5's default cycle is not.
+    #[test]
+    fn a_cycle_of_hours_is_refused_before_it_starts() {
+        use crate::models::axisymmetric::tip::TipParams;
+        // Fig. 4.5's tip with the benchmark's fine zone: 354 rings.
+        let tip = Tip::new(&TipParams {
+            fine_radius: 4e-7,
+            ..TipParams::default()
+        })
+        .expect("tip");
+        let z = tip.scales().length;
+        let per_state = tip.seconds_per_state().expect("an estimate");
+        let opts = |step: f64| CycleOptions {
+            h_start: 12.0 * z,
+            h_min: -15.0 * z,
+            step: step * z,
+            refine_to: 1e-3 * z,
+            contact_gap: 1e-9,
+            keep_profiles: false,
+            unload_to: None,
+        };
+        let fine = MAX_CYCLE_SECONDS / per_state / 2.0 * 1.5;
+        let step = 27.0 / fine;
+        let started = std::time::Instant::now();
+        let err = run_cycle(&tip, &opts(step), |_| Ok(())).expect_err("refused");
+        assert!(started.elapsed().as_secs_f64() < 1.0);
+        let msg = err.to_string();
+        assert!(msg.contains("min of one core") && !msg.contains('\n'), "{msg}");
+        assert!(
+            per_state * 2.0 * (27.0 / 0.2) < 10.0,
+            "the default cycle is estimated in seconds"
+        );
     }
 }
