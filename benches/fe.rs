@@ -2,7 +2,9 @@
 //! axisymmetric elasticity problem (the size of `benches/fe_skfem.py`, run there with
 //! scikit-fem for comparison), the set-up of the finite-element tip of Fig. 4.5, and one
 //! finite-element cycle of Fig. 4.5's smooth tip to 15 ζ0 (timed over 3 runs, median: a cycle
-//! takes minutes, too long for criterion's ten samples).
+//! takes minutes, too long for criterion's ten samples). Whether condensing the bulk onto the
+//! surface layers (a Schur complement) would make the Newton steps cheaper: `benches/fe_schur.rs`
+//! (it does not).
 
 use std::f64::consts::PI;
 use std::hint::black_box;
