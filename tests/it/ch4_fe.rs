@@ -85,8 +85,9 @@ fn body_force_column_integral_is_the_plate_traction() {
 /// The finite-element tip of the Hertz test of Fig. 4.4 (R = 10 µm, E = 1.1 MPa, ν = 0.25,
 /// C6 = 0, C12 = 1, σ = 1 nm, A_H = 2e-21 J): surface elements of 3.3 nm over a fine zone of
 /// 2.1 µm (the contact radius at 300 σ is 1.73 µm), in a tip of radius and height `size` R
-/// whose elements grow by `grading` with the distance from the fine zone.
-fn hertz_tip(size: f64, grading: f64) -> FeTip {
+/// whose elements grow by `grading` with the distance from the fine zone; the surface elements
+/// `width` times as wide and the first layer `layer` times as thick (0.1 σ).
+fn hertz_tip(size: f64, grading: f64, width: f64, layer: f64) -> FeTip {
     let radius = 10e-6;
     FeTip::new(&FeTipParams {
         radius,
@@ -94,7 +95,8 @@ fn hertz_tip(size: f64, grading: f64) -> FeTip {
         poisson_ratio: 0.25,
         c6: 0.0,
         // b = σE*/p_ref is 0.66 µm without attraction: elements of 3.3 nm.
-        element_width: 0.005,
+        element_width: 0.005 * width,
+        first_layer: 0.1 * layer,
         fine_radius: 2.1e-6,
         grading,
         r0: size * radius,
@@ -198,13 +200,23 @@ fn hertz_fit(states: &[(f64, f64, f64)]) -> HertzFit {
 
 /// One row of the Hertz study: the fit, the unknowns, the wall-clock time [s] and the path.
 fn hertz_row(size: f64, grading: f64, step: f64) -> (HertzFit, usize, f64, TipCycle) {
+    hertz_row_with(size, grading, step, (1.0, 1.0))
+}
+
+/// [`hertz_row`] with the surface layers `(width, layer)` of [`hertz_tip`].
+fn hertz_row_with(
+    size: f64,
+    grading: f64,
+    step: f64,
+    (width, layer): (f64, f64),
+) -> (HertzFit, usize, f64, TipCycle) {
     let clock = Instant::now();
-    let tip = hertz_tip(size, grading);
+    let tip = hertz_tip(size, grading, width, layer);
     let (states, c) = press(&tip, step);
     let fit = hertz_fit(&states);
     let seconds = clock.elapsed().as_secs_f64();
     eprintln!(
-        "hertz study: size {size} R, grading {grading}, step {step} sigma: {} unknowns, {seconds:.1} s, {} Newton iterations, {} factorizations, jumps {}, stable {}: deviation {:.3e} (offset {:.2} sigma), line fit c - 1 = {:+.3e} (offset {:.2} sigma), central-gap offset {:.2} sigma: deviation {:.3e}",
+        "hertz study: size {size} R, grading {grading}, step {step} sigma, surface width x{width}, first layer x{layer}: {} unknowns, {seconds:.1} s, {} Newton iterations, {} factorizations, jumps {}, stable {}: deviation {:.3e} (offset {:.2} sigma), line fit c - 1 = {:+.3e} (offset {:.2} sigma), central-gap offset {:.2} sigma: deviation {:.3e}",
         tip.len(),
         c.stats.newton_iterations,
         c.stats.factorizations,
@@ -220,8 +232,9 @@ fn hertz_row(size: f64, grading: f64, step: f64) -> (HertzFit, usize, f64, TipCy
     (fit, tip.len(), seconds, c)
 }
 
-// The study of the Hertz test's error: `HERTZ_STUDY="size:grading:step,…"` (tip size in R,
-// bulk grading, depth step in σ), one configuration after the other, e.g.
+// The study of the Hertz test's error: `HERTZ_STUDY="size:grading:step[:width:layer],…"` (tip
+// size in R, bulk grading, depth step in σ, and optionally the surface elements' width and the
+// first layer's thickness relative to the test's), one configuration after the other, e.g.
 // `RAYON_NUM_THREADS=1 HERTZ_STUDY=16:0.3:20,128:0.07:20 cargo test --release --test it
 // hertz_study -- --ignored --nocapture`.
 #[test]
@@ -233,7 +246,8 @@ fn hertz_study() {
             .split(':')
             .map(|x| x.trim().parse().expect("number"))
             .collect();
-        hertz_row(v[0], v[1], v[2]);
+        let surface = (v.get(3).copied().unwrap_or(1.0), v.get(4).copied().unwrap_or(1.0));
+        hertz_row_with(v[0], v[1], v[2], surface);
     }
 }
 
