@@ -210,6 +210,44 @@ pub fn run_cycle<M: CycleModel>(
     opts: &CycleOptions,
     progress: impl FnMut(f64) -> Result<()>,
 ) -> Result<TipCycle> {
+    walk(tip, opts, false, progress)
+}
+
+/// Press a tip whose energy is convex in its unknowns at every depth, such as a tip without
+/// attraction (C6 = 0: the repulsive ψ(d) ∝ d⁻⁸ of the body force (4.15) and the strain energy
+/// are convex), from `opts.h_start` to `opts.h_min` in steps of about `opts.step`: the loading
+/// half of [`run_cycle`], with no unloading (`opts.unload_to` is not used).
+///
+/// A convex energy has one equilibrium at each depth, which the stable minimiser reaches from
+/// any start in its domain, so the path has no jump to locate: each step is one minimisation
+/// from the previous state, however far it moves (no bisection of the steps that
+/// [`Controlled::jump_measure`] would take for jumps: on the adhesionless tip of Fig. 4.4
+/// pressed to 300 σ, 18 312 unknowns, 76 steps of 4 σ cost 1 497 Newton iterations and 14 s,
+/// 16 steps of 20 σ 317 and 3.2 s, 4 steps of 100 σ 95 and 1.3 s, with the same deviation from
+/// Hertz to four digits, where [`run_cycle`] took 12 minutes for two such paths of 76 states,
+/// of 18 312 and 32 215 unknowns, most of it bisecting steps that moved the contact by more
+/// than the jump measure's unit). A state whose minimisation
+/// started from an indefinite Hessian (impossible for a convex energy: it would show that the
+/// model is not) is recorded as a jump, and every state is certified stable as in
+/// [`run_cycle`].
+///
+/// # Errors
+/// As [`run_cycle`].
+pub fn run_convex_loading<M: CycleModel>(
+    tip: &M,
+    opts: &CycleOptions,
+    progress: impl FnMut(f64) -> Result<()>,
+) -> Result<TipCycle> {
+    walk(tip, opts, true, progress)
+}
+
+/// [`run_cycle`], or with `convex` [`run_convex_loading`].
+fn walk<M: CycleModel>(
+    tip: &M,
+    opts: &CycleOptions,
+    convex: bool,
+    progress: impl FnMut(f64) -> Result<()>,
+) -> Result<TipCycle> {
     if !(opts.h_min < opts.h_start && opts.h_min.is_finite() && opts.h_start.is_finite()) {
         return Err(Error::invalid(
             "h_min",
@@ -250,13 +288,17 @@ pub fn run_cycle<M: CycleModel>(
         .collect();
     let approach = |h: f64| tip.approach(h);
     let loading: Vec<f64> = depths.iter().skip(1).map(|&h| approach(h)).collect();
-    let unloading: Vec<f64> = depths
-        .iter()
-        .rev()
-        .skip(1)
-        .take_while(|&&h| opts.unload_to.is_none_or(|end| h <= end))
-        .map(|&h| approach(h))
-        .collect();
+    let unloading: Vec<f64> = if convex {
+        Vec::new()
+    } else {
+        depths
+            .iter()
+            .rev()
+            .skip(1)
+            .take_while(|&&h| opts.unload_to.is_none_or(|end| h <= end))
+            .map(|&h| approach(h))
+            .collect()
+    };
     let newton = NewtonOptions {
         gradient_tol: 1e-7,
         step_tol: 1e-6,
@@ -273,6 +315,12 @@ pub fn run_cycle<M: CycleModel>(
         retry_after_jump: true,
     };
     tip.tune_path(&mut path);
+    if convex {
+        // One minimisation per step, run to the minimiser's limit: no jump to locate.
+        path.refine_to = None;
+        path.retry_after_jump = false;
+        path.indefinite_trial_is_beyond = false;
+    }
     let start = approach(opts.h_start);
     let start_energy = tip.at(start);
     let mut solver = StableNewton::new(&start_energy)?;
@@ -313,9 +361,27 @@ pub fn run_cycle<M: CycleModel>(
                     v.lambda,
                     v.x,
                     v.stable,
-                    opts.keep_profiles || v.jumped_from.is_some(),
+                    opts.keep_profiles || (!convex && v.jumped_from.is_some()),
                 );
-                if let Some((l0, x0)) = v.jumped_from {
+                if convex {
+                    // A convex energy's step moves far without jumping: its only sign of an
+                    // instability is an unstable start (the state before is the last one
+                    // recorded, with its displacements only where profiles are kept).
+                    if v.report.left_unstable_state() {
+                        let before = if phase {
+                            cycle.loading.last()
+                        } else {
+                            cycle.unloading.last()
+                        };
+                        if let Some(before) = before.cloned() {
+                            cycle.jumps.push(TipJump {
+                                loading: phase,
+                                before,
+                                after: s.clone(),
+                            });
+                        }
+                    }
+                } else if let Some((l0, x0)) = v.jumped_from {
                     cycle.jumps.push(TipJump {
                         loading: phase,
                         before: state(l0, x0, true, true),
@@ -339,6 +405,10 @@ pub fn run_cycle<M: CycleModel>(
         cycle.stats.factorizations += stats.factorizations;
         cycle.stats.jumps += stats.jumps;
         cycle.stats.all_stable &= stats.all_stable;
+    }
+    if convex {
+        // The walk's steps move far without jumping: only unstable starts count (see above).
+        cycle.stats.jumps = cycle.jumps.len();
     }
     Ok(cycle)
 }

@@ -11,7 +11,7 @@ use super::{draw_cycle, material, tip_for};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Figure, Marker, MarkerShape, Panel, Series, Style};
 use crate::job::Job;
-use crate::models::axisymmetric::cycle::{CycleModel, CycleOptions, TipCycle, run_cycle};
+use crate::models::axisymmetric::cycle::{CycleModel, CycleOptions, TipCycle, run_convex_loading, run_cycle};
 use crate::models::body_force_fe::body::FAR_POINTS;
 use crate::models::body_force_fe::tip::{FeGeometry, FeTip, FeTipParams};
 use crate::models::lennard_jones::LennardJones;
@@ -101,14 +101,14 @@ crate::scene_params! {
         hamaker: f64 = 2.0e-21, unit = "J", range = Range::between(1.0e-23, 1.0e-17);
         /// Deepest penetration in units of σ.
         depth_over_sigma: f64 = 300.0, unit = "", range = Range::between(20.0, 2000.0);
-        /// Depth step in units of σ.
-        step_over_sigma: f64 = 4.0, unit = "", range = Range::between(0.5, 50.0);
+        /// Depth step in units of σ (the states do not depend on it: one equilibrium per depth).
+        step_over_sigma: f64 = 10.0, unit = "", range = Range::between(0.5, 100.0);
         /// Width of the surface elements over the contact zone [m].
         element_width: f64 = 3.3e-9, unit = "m", range = Range::between(1.0e-10, 1.0e-7);
-        /// Growth of the element size with the distance from the contact zone.
-        grading: f64 = 0.15, unit = "", range = Range::between(0.05, 1.0);
-        /// Radius and height of the tip in units of R.
-        size_over_radius: f64 = 16.0, unit = "", range = Range::between(2.0, 100.0);
+        /// Growth of the element size with the distance from the contact zone (excess stiffness over Hertz 0.15 % at 0.07).
+        grading: f64 = 0.07, unit = "", range = Range::between(0.05, 1.0);
+        /// Radius and height of the tip in units of R (excess stiffness over Hertz of the held top about 17 % R/h0).
+        size_over_radius: f64 = 128.0, unit = "", range = Range::between(2.0, 1000.0);
     }
 }
 
@@ -141,7 +141,10 @@ impl Scene for Fig4_4 {
         ),
         ("unknowns_count", "displacement unknowns of the mesh"),
         ("triangles_count", "triangles of the mesh"),
-        ("jumps_count", "jumps on the path (0: no instability)"),
+        (
+            "jumps_count",
+            "states reached from an unstable start (0: no instability; the adhesionless energy is convex)",
+        ),
         (
             "all_states_stable_count",
             "1 when every state was certified stable",
@@ -202,10 +205,12 @@ impl Scene for Fig4_4 {
             refine_to: 1e-3 * l,
             contact_gap: s,
             keep_profiles: false,
-            unload_to: Some(-(p.depth_over_sigma - 0.5 * p.step_over_sigma) * s),
+            unload_to: None,
         };
         let start = Instant::now();
-        let cycle = run_cycle(&tip, &opts, |f| {
+        // Without attraction the energy is convex: one equilibrium per depth, no jump to
+        // locate, one minimisation per step.
+        let cycle = run_convex_loading(&tip, &opts, |f| {
             job.progress(0.99 * f, "finite-element loading");
             job.check()
         })?;
