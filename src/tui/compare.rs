@@ -27,7 +27,7 @@ pub struct Pin {
 /// scenes use for their own curves).
 const PIN_COLORS: [usize; 10] = [5, 3, 4, 9, 6, 8, 2, 1, 0, 7];
 
-/// The colour for a new pin: the first of [`PIN_COLORS`] that neither the current figure's
+/// The colour for a new pin: the first of the pin palette (`PIN_COLORS`) that neither the current figure's
 /// first panel nor an earlier pin uses.
 pub fn pin_color(current: &Figure, pins: &[Pin]) -> usize {
     let used: Vec<usize> = current
