@@ -8,6 +8,8 @@
 //! ERRATA reads E = 1.1 MPa as more likely. Fig. 4.9a draws both; Fig. 4.11 (whose caption
 //! refers to Fig. 4.7a) uses 2.2 MPa, Fig. 4.12 (whose caption refers to Fig. 4.9a) 1.1 MPa.
 
+use rayon::prelude::*;
+
 use super::{draw_cycle, tip_for};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Field, Figure, Panel};
@@ -166,10 +168,12 @@ impl Setup {
         (self.radius, 2.0 * self.modulus * self.radius * self.radius)
     }
 
-    /// One cycle of the tip with amplitude `amplitude`, to the set depth.
-    pub(super) fn cycle(&self, amplitude: f64, keep_profiles: bool, job: &Job) -> Result<(Tip, TipCycle)> {
-        let zeta0 = self.lj.zeta0();
-        let tip = tip_for(
+    /// The tip with amplitude `amplitude`, its rings set for the set depth.
+    ///
+    /// # Errors
+    /// A ring grid the model refuses, naming the parameter that set it.
+    pub(super) fn tip(&self, amplitude: f64) -> Result<Tip> {
+        tip_for(
             &self.lj,
             self.radius,
             self.modulus,
@@ -178,7 +182,18 @@ impl Setup {
             -self.depth,
             self.ring_width,
             self.quadrature_points,
-        )?;
+        )
+    }
+
+    /// The tips of several amplitudes, in the order given: built before any cycle runs, so
+    /// that a grid the model refuses fails at once, not after the other cycles.
+    pub(super) fn tips(&self, amplitudes: &[f64]) -> Result<Vec<Tip>> {
+        amplitudes.par_iter().map(|&a| self.tip(a)).collect()
+    }
+
+    /// One cycle of `tip` to the set depth.
+    fn cycle_of(&self, tip: &Tip, keep_profiles: bool, job: &Job) -> Result<TipCycle> {
+        let zeta0 = self.lj.zeta0();
         let opts = CycleOptions {
             h_start: self.h_start_over_zeta0 * zeta0,
             h_min: -self.depth,
@@ -188,26 +203,33 @@ impl Setup {
             keep_profiles,
             unload_to: None,
         };
-        let cycle = run_cycle(&tip, &opts, |f| {
+        run_cycle(tip, &opts, |f| {
             job.progress(f, "cycle");
             job.check()
-        })?;
+        })
+    }
+
+    /// One cycle of the tip with amplitude `amplitude`, to the set depth.
+    pub(super) fn cycle(&self, amplitude: f64, keep_profiles: bool, job: &Job) -> Result<(Tip, TipCycle)> {
+        let tip = self.tip(amplitude)?;
+        let cycle = self.cycle_of(&tip, keep_profiles, job)?;
         Ok((tip, cycle))
     }
 
-    /// Cycles of several amplitudes in parallel, in the order given; each fills an equal part
-    /// of `job`'s progress step by step.
+    /// Cycles of several tips ([`Setup::tips`]) in parallel, in the order given; each fills an
+    /// equal part of `job`'s progress step by step.
     fn cycles(
         &self,
-        amplitudes: &[f64],
+        tips: Vec<Tip>,
         keep_profiles: bool,
         job: &Job,
         what: &str,
     ) -> Result<Vec<(Tip, TipCycle)>> {
-        let weights = vec![1.0; amplitudes.len()];
-        job.map_parallel_parts(amplitudes, &weights, what, (0.0, 1.0), |&a, part| {
-            self.cycle(a, keep_profiles, part)
-        })
+        let weights = vec![1.0; tips.len()];
+        let cycles = job.map_parallel_parts(&tips, &weights, what, (0.0, 1.0), |tip, part| {
+            self.cycle_of(tip, keep_profiles, part)
+        })?;
+        Ok(tips.into_iter().zip(cycles).collect())
     }
 }
 
@@ -329,9 +351,14 @@ impl Scene for Fig4_9a {
             0.0,
             0.99,
         );
-        for (k, setup) in setups.iter().enumerate() {
+        // Every tip of both panels first: a grid the model refuses is an error at once.
+        let tips = setups
+            .iter()
+            .map(|s| s.tips(&amplitudes))
+            .collect::<Result<Vec<_>>>()?;
+        for (k, (setup, tips)) in setups.iter().zip(tips).enumerate() {
             let cycles = setup.cycles(
-                &amplitudes,
+                tips,
                 false,
                 &parts[k],
                 if k == 0 { "panel (a)" } else { "panel (b)" },
@@ -435,7 +462,7 @@ impl Scene for Fig4_11 {
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
         let amplitudes = [p.amplitude_1, p.amplitude_2, p.amplitude_3, p.amplitude_4];
         let setup = p.setup(p.youngs_modulus, p.sigma, p.contact_gap)?;
-        let cycles = setup.cycles(&amplitudes, true, &job.part(0.0, 0.98), "cycles")?;
+        let cycles = setup.cycles(setup.tips(&amplitudes)?, true, &job.part(0.0, 0.98), "cycles")?;
         let states: Vec<&TipState> = cycles
             .iter()
             .map(|(_, c)| at_adhesive_force(c).ok_or_else(|| no_states(Self::ID)))
@@ -572,7 +599,7 @@ impl Scene for Fig4_12 {
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
         let amplitudes = [p.amplitude_1, p.amplitude_2];
         let setup = p.setup(p.youngs_modulus, p.sigma, p.contact_gap)?;
-        let cycles = setup.cycles(&amplitudes, true, &job.part(0.0, 0.98), "cycles")?;
+        let cycles = setup.cycles(setup.tips(&amplitudes)?, true, &job.part(0.0, 0.98), "cycles")?;
         let mut fig = Figure::new(Self::ID, Self::TITLE);
         let labels = [["(a)", "(b)", "(c)"], ["(d)", "(e)", "(f)"]];
         let mut notes = Vec::new();
