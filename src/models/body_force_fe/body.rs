@@ -180,6 +180,24 @@ impl BodyForce {
             .map(move |ch| (ch, base + ch.height + b * ch.r + c * ch.z, ch.length * (1.0 + c)))
     }
 
+    /// `f` of every element, evaluated in parallel chunks of [`CHUNK`] and returned in element
+    /// order, so that what is summed from it does not depend on the thread count.
+    fn per_element<const N: usize>(
+        &self,
+        f: impl Fn(&BodyElement) -> [f64; N] + Sync + Send,
+    ) -> Vec<[f64; N]> {
+        let mut local = vec![[0.0; N]; self.elements.len()];
+        local
+            .par_chunks_mut(CHUNK)
+            .zip(self.elements.par_chunks(CHUNK))
+            .for_each(|(out, chunk)| {
+                for (o, e) in out.iter_mut().zip(chunk) {
+                    *o = f(e);
+                }
+            });
+        local
+    }
+
     /// ∫ ψ(d) dV over the tip (ψ of [`Density`]); `f64::INFINITY` where a chord reaches the
     /// substrate (d ≤ 0).
     pub fn energy(&self, delta: f64, u: &[f64]) -> f64 {
@@ -223,31 +241,27 @@ impl BodyForce {
     /// Add ∫ ψ'(d) N_k dV (the gradient of [`BodyForce::energy`]) to the z-dofs of `g`, or
     /// with `rate` ∫ ψ''(d) N_k dV (its derivative with the approach δ).
     pub fn add_gradient(&self, delta: f64, u: &[f64], g: &mut [f64], rate: bool) {
-        let mut local = vec![[0.0; 3]; self.elements.len()];
-        local
-            .par_chunks_mut(CHUNK)
-            .zip(self.elements.par_chunks(CHUNK))
-            .for_each(|(out, chunk)| {
-                for (o, e) in out.iter_mut().zip(chunk) {
-                    // Moments (Σ s i0, Σ s i0 r, Σ s (i0 z + i1 L)), s = weight × length.
-                    let mut m = [0.0; 3];
-                    for (ch, d, dd) in self.heights(e, delta, u) {
-                        let [i0, i1] = if rate {
-                            let t = self.density.tangent_moments(d, dd);
-                            [t[0], t[1]]
-                        } else {
-                            self.density.force_moments(d, dd)
-                        };
-                        let s = ch.weight * ch.length;
-                        m[0] += s * i0;
-                        m[1] += s * i0 * ch.r;
-                        m[2] += s * (i0 * ch.z + i1 * ch.length);
-                    }
-                    for (ok, slope) in o.iter_mut().zip(&e.slope) {
-                        *ok = m[0] / 3.0 + slope[0] * m[1] + slope[1] * m[2];
-                    }
-                }
-            });
+        let local = self.per_element(|e| {
+            // Moments (Σ s i0, Σ s i0 r, Σ s (i0 z + i1 L)), s = weight × length.
+            let mut m = [0.0; 3];
+            for (ch, d, dd) in self.heights(e, delta, u) {
+                let [i0, i1] = if rate {
+                    let t = self.density.tangent_moments(d, dd);
+                    [t[0], t[1]]
+                } else {
+                    self.density.force_moments(d, dd)
+                };
+                let s = ch.weight * ch.length;
+                m[0] += s * i0;
+                m[1] += s * i0 * ch.r;
+                m[2] += s * (i0 * ch.z + i1 * ch.length);
+            }
+            let mut o = [0.0; 3];
+            for (ok, slope) in o.iter_mut().zip(&e.slope) {
+                *ok = m[0] / 3.0 + slope[0] * m[1] + slope[1] * m[2];
+            }
+            o
+        });
         for (e, o) in self.elements.iter().zip(&local) {
             for k in 0..3 {
                 if e.z[k] != FIXED {
@@ -260,40 +274,36 @@ impl BodyForce {
     /// Add ∫ ψ''(d) N_a N_b dV (the Hessian of [`BodyForce::energy`]) to the Hessian `values`
     /// at the positions the constructor's `slot` gave.
     pub fn add_hessian(&self, delta: f64, u: &[f64], values: &mut [f64]) {
-        let mut local = vec![[0.0; 6]; self.elements.len()];
-        local
-            .par_chunks_mut(CHUNK)
-            .zip(self.elements.par_chunks(CHUNK))
-            .for_each(|(out, chunk)| {
-                for (o, e) in out.iter_mut().zip(chunk) {
-                    // The symmetric 3 × 3 moments M of the basis (1, r, z) and the chord
-                    // direction: M00, M01, M02, M11, M12, M22.
-                    let mut m = [0.0; 6];
-                    for (ch, d, dd) in self.heights(e, delta, u) {
-                        let [t0, t1, t2] = self.density.tangent_moments(d, dd);
-                        let s = ch.weight * ch.length;
-                        let (r, z, l) = (ch.r, ch.z, ch.length);
-                        m[0] += s * t0;
-                        m[1] += s * t0 * r;
-                        m[2] += s * (t0 * z + t1 * l);
-                        m[3] += s * t0 * r * r;
-                        m[4] += s * r * (t0 * z + t1 * l);
-                        m[5] += s * (t0 * z * z + 2.0 * t1 * z * l + t2 * l * l);
-                    }
-                    let v = |k: usize| [1.0 / 3.0, e.slope[k][0], e.slope[k][1]];
-                    let mv = |w: [f64; 3]| {
-                        [
-                            m[0] * w[0] + m[1] * w[1] + m[2] * w[2],
-                            m[1] * w[0] + m[3] * w[1] + m[4] * w[2],
-                            m[2] * w[0] + m[4] * w[1] + m[5] * w[2],
-                        ]
-                    };
-                    for (slot, &(a, b)) in o.iter_mut().zip(&PAIRS) {
-                        let (va, mb) = (v(a), mv(v(b)));
-                        *slot = va[0] * mb[0] + va[1] * mb[1] + va[2] * mb[2];
-                    }
-                }
-            });
+        let local = self.per_element(|e| {
+            // The symmetric 3 × 3 moments M of the basis (1, r, z) and the chord
+            // direction: M00, M01, M02, M11, M12, M22.
+            let mut m = [0.0; 6];
+            for (ch, d, dd) in self.heights(e, delta, u) {
+                let [t0, t1, t2] = self.density.tangent_moments(d, dd);
+                let s = ch.weight * ch.length;
+                let (r, z, l) = (ch.r, ch.z, ch.length);
+                m[0] += s * t0;
+                m[1] += s * t0 * r;
+                m[2] += s * (t0 * z + t1 * l);
+                m[3] += s * t0 * r * r;
+                m[4] += s * r * (t0 * z + t1 * l);
+                m[5] += s * (t0 * z * z + 2.0 * t1 * z * l + t2 * l * l);
+            }
+            let v = |k: usize| [1.0 / 3.0, e.slope[k][0], e.slope[k][1]];
+            let mv = |w: [f64; 3]| {
+                [
+                    m[0] * w[0] + m[1] * w[1] + m[2] * w[2],
+                    m[1] * w[0] + m[3] * w[1] + m[4] * w[2],
+                    m[2] * w[0] + m[4] * w[1] + m[5] * w[2],
+                ]
+            };
+            let mut o = [0.0; 6];
+            for (slot, &(a, b)) in o.iter_mut().zip(&PAIRS) {
+                let (va, mb) = (v(a), mv(v(b)));
+                *slot = va[0] * mb[0] + va[1] * mb[1] + va[2] * mb[2];
+            }
+            o
+        });
         for (e, o) in self.elements.iter().zip(&local) {
             for (&at, v) in e.zz.iter().zip(o) {
                 if at != FIXED {
