@@ -6,16 +6,18 @@
 //! surface layers (a Schur complement) would make the Newton steps cheaper: `benches/fe_schur.rs`
 //! (it does not).
 
+mod common;
+
+use common::fig4_5_fe;
 use std::f64::consts::PI;
 use std::hint::black_box;
 use std::time::Instant;
 
 use adhesion::models::axisymmetric::cycle::{CycleOptions, run_cycle};
-use adhesion::models::axisymmetric::tip::TipParams;
 use adhesion::models::body_force_fe::assembly::{FIXED, assemble, held_top_dofs};
 use adhesion::models::body_force_fe::element::elasticity_matrix;
 use adhesion::models::body_force_fe::mesh::Mesh;
-use adhesion::models::body_force_fe::tip::{FeTip, FeTipParams};
+use adhesion::models::body_force_fe::tip::FeTip;
 use criterion::Criterion;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::SupernodalThreshold;
@@ -81,19 +83,6 @@ fn elasticity(n: usize) -> f64 {
     rhs[dofs[mesh.surface[0]][1]]
 }
 
-fn fig4_5_fe() -> FeTipParams {
-    let surface = TipParams::default();
-    FeTipParams {
-        fine_radius: surface
-            .fine_radius_for_depth(-15.0 * 0.5946e-9)
-            .expect("fine zone"),
-        grading: 0.15,
-        r0: 1e-4,
-        h0: 1e-4,
-        ..FeTipParams::default()
-    }
-}
-
 fn main() {
     let mut c = Criterion::default().configure_from_args().sample_size(10);
     {
@@ -114,7 +103,9 @@ fn main() {
         group.finish();
     }
     c.final_summary();
-    if std::env::args().any(|a| a == "--skip-cycle") {
+    // The cycle takes minutes: `FE_BENCH_SKIP_CYCLE=1 cargo bench --bench fe` leaves it out
+    // (criterion's own argument parser refuses unknown flags).
+    if std::env::var_os("FE_BENCH_SKIP_CYCLE").is_some() {
         return;
     }
     let tip = FeTip::new(&fig4_5_fe()).expect("tip");

@@ -67,12 +67,14 @@
 //! cube, so a larger fine zone makes it worse; it would break even only for a fine zone about
 //! a fifth of Fig. 4.5's (at best: the sparse step shrinks with it). Not integrated.
 
+mod common;
+
+use common::fig4_5_fe;
 use std::hint::black_box;
 use std::time::Instant;
 
-use adhesion::models::axisymmetric::tip::TipParams;
 use adhesion::models::body_force_fe::assembly::{FIXED, held_top_dofs};
-use adhesion::models::body_force_fe::tip::{FeTip, FeTipParams};
+use adhesion::models::body_force_fe::tip::FeTip;
 use adhesion::numerics::loading::Controlled;
 use adhesion::numerics::newton::{Energy, LinearSolver, NewtonOptions, StableNewton};
 use criterion::Criterion;
@@ -99,19 +101,6 @@ const SUPERNODAL: f64 = 0.25;
 
 /// Columns per block of the multi-right-hand-side solve that forms S.
 const BLOCK: usize = 128;
-
-fn fig4_5_fe() -> FeTipParams {
-    let surface = TipParams::default();
-    FeTipParams {
-        fine_radius: surface
-            .fine_radius_for_depth(-15.0 * 0.5946e-9)
-            .expect("fine zone"),
-        grading: 0.15,
-        r0: 1e-4,
-        h0: 1e-4,
-        ..FeTipParams::default()
-    }
-}
 
 /// A symmetric sparse matrix (lower triangle `pattern`, `values`) with its symbolic Cholesky
 /// factorisation, as `StableNewton` analyses it.

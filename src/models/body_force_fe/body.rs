@@ -198,44 +198,41 @@ impl BodyForce {
         local
     }
 
+    /// The sum of `f` over the elements in chunks of [`CHUNK`]: the chunks in parallel, their
+    /// partial sums added in chunk order (independent of the thread count).
+    fn chunk_sum(&self, f: impl Fn(&[BodyElement]) -> f64 + Sync + Send) -> f64 {
+        let partial: Vec<f64> = self.elements.par_chunks(CHUNK).map(f).collect();
+        partial.iter().sum()
+    }
+
     /// ∫ ψ(d) dV over the tip (ψ of [`Density`]); `f64::INFINITY` where a chord reaches the
     /// substrate (d ≤ 0).
     pub fn energy(&self, delta: f64, u: &[f64]) -> f64 {
-        let partial: Vec<f64> = self
-            .elements
-            .par_chunks(CHUNK)
-            .map(|chunk| {
-                let mut sum = 0.0;
-                for e in chunk {
-                    for (ch, d, dd) in self.heights(e, delta, u) {
-                        if d <= 0.0 || d + dd <= 0.0 {
-                            return f64::INFINITY;
-                        }
-                        sum += ch.weight * self.density.energy_on_chord(d, dd, ch.length);
+        self.chunk_sum(|chunk| {
+            let mut sum = 0.0;
+            for e in chunk {
+                for (ch, d, dd) in self.heights(e, delta, u) {
+                    if d <= 0.0 || d + dd <= 0.0 {
+                        return f64::INFINITY;
                     }
+                    sum += ch.weight * self.density.energy_on_chord(d, dd, ch.length);
                 }
-                sum
-            })
-            .collect();
-        partial.iter().sum()
+            }
+            sum
+        })
     }
 
     /// ∫ ψ'(d) dV = ∫ B_z dV over the tip (the force is its negative).
     pub fn body_force(&self, delta: f64, u: &[f64]) -> f64 {
-        let partial: Vec<f64> = self
-            .elements
-            .par_chunks(CHUNK)
-            .map(|chunk| {
-                let mut sum = 0.0;
-                for e in chunk {
-                    for (ch, d, dd) in self.heights(e, delta, u) {
-                        sum += ch.weight * ch.length * self.density.force_moments(d, dd)[0];
-                    }
+        self.chunk_sum(|chunk| {
+            let mut sum = 0.0;
+            for e in chunk {
+                for (ch, d, dd) in self.heights(e, delta, u) {
+                    sum += ch.weight * ch.length * self.density.force_moments(d, dd)[0];
                 }
-                sum
-            })
-            .collect();
-        partial.iter().sum()
+            }
+            sum
+        })
     }
 
     /// Add ∫ ψ'(d) N_k dV (the gradient of [`BodyForce::energy`]) to the z-dofs of `g`, or
