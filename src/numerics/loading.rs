@@ -246,89 +246,78 @@ pub fn follow<C: Controlled>(
         max_iterations: opts.landing_iterations.min(opts.newton.max_iterations),
         ..opts.newton
     };
-    // Minimise from `x` at `at` into `trial`: Some((report, jumped, stable)), or None when a
+    // Minimise from the walk's state at `at` into its trial: Some((report, jumped, stable)), or None when a
     // capped trial ran out of iterations (a jump under way) or, with
     // `indefinite_trial_is_beyond`, a bisection trial met an indefinite Hessian.
     let mut rate = vec![0.0; n];
     let mut predicted = Vec::with_capacity(n);
-    let mut attempt = |x: &[f64],
-                       trial: &mut Vec<f64>,
-                       from: f64,
-                       at: f64,
-                       kind: Trial,
-                       stats: &mut PathStats|
-     -> Result<Option<(NewtonReport, bool, bool)>> {
-        trial.clear();
-        trial.extend_from_slice(x);
-        model.prepare_start(from, at, trial);
-        let e = model.at(at);
-        let mut on_tangent = false;
-        if model.gradient_rate(from, x, &mut rate[..])
-            && solver.solve_at(&model.at(from), x, &mut rate[..])?
-        {
-            // `rate` now holds −dx/dλ.
-            predicted.clear();
-            predicted.extend(x.iter().zip(rate.iter()).map(|(xi, ri)| xi - (at - from) * ri));
-            if model.jump_measure(x, &predicted[..]) <= PREDICTOR_MAX_MEASURE
-                && e.energy(&predicted[..]) < e.energy(trial)
+    let mut attempt =
+        |w: &mut Current<'_>, at: f64, kind: Trial| -> Result<Option<(NewtonReport, bool, bool)>> {
+            let (x, trial, from, stats) = (&*w.x, &mut w.trial, w.lambda, &mut w.stats);
+            trial.clear();
+            trial.extend_from_slice(x);
+            model.prepare_start(from, at, trial);
+            let e = model.at(at);
+            let mut on_tangent = false;
+            if model.gradient_rate(from, x, &mut rate[..])
+                && solver.solve_at(&model.at(from), x, &mut rate[..])?
             {
-                trial.copy_from_slice(&predicted);
-                on_tangent = true;
+                // `rate` now holds −dx/dλ.
+                predicted.clear();
+                predicted.extend(x.iter().zip(rate.iter()).map(|(xi, ri)| xi - (at - from) * ri));
+                if model.jump_measure(x, &predicted[..]) <= PREDICTOR_MAX_MEASURE
+                    && e.energy(&predicted[..]) < e.energy(trial)
+                {
+                    trial.copy_from_slice(&predicted);
+                    on_tangent = true;
+                }
             }
-        }
-        stats.minimisations += 1;
-        let capped = match kind {
-            Trial::Step => opts.refine_to.is_some_and(|tol| (at - from).abs() > tol),
-            Trial::Bisect => true,
-            Trial::Land(at_target) => !at_target,
+            stats.minimisations += 1;
+            let capped = match kind {
+                Trial::Step => opts.refine_to.is_some_and(|tol| (at - from).abs() > tol),
+                Trial::Bisect => true,
+                Trial::Land(at_target) => !at_target,
+            };
+            let newton = match kind {
+                Trial::Land(false) => &landing_opts,
+                _ if capped => &trial_opts,
+                _ => &opts.newton,
+            };
+            let leave_on_indefinite = kind == Trial::Bisect && opts.indefinite_trial_is_beyond;
+            let mut watch = |rep: &NewtonReport| {
+                interrupt()?;
+                if leave_on_indefinite && rep.left_unstable_state() {
+                    Err(Error::NoConvergence {
+                        method: "bisection trial (indefinite Hessian: beyond the fold)",
+                        iterations: rep.iterations,
+                        residual: f64::NAN,
+                    })
+                } else {
+                    Ok(())
+                }
+            };
+            let rep = match solver.minimize_watched(&e, trial, newton, &mut watch) {
+                Ok(rep) => rep,
+                Err(Error::NoConvergence { iterations, .. }) if capped => {
+                    stats.newton_iterations += iterations;
+                    return Ok(None);
+                }
+                Err(e) => return Err(e),
+            };
+            stats.newton_iterations += rep.iterations;
+            // A jump leaves the branch: measured from the tangent's prediction where it was used
+            // (a fast but smooth branch, a receding contact edge, is not a jump), else from the
+            // previous state.
+            let origin: &[f64] = if on_tangent { &predicted } else { x };
+            let jumped = (opts.unstable_start_is_jump && rep.left_unstable_state())
+                || model.jump_measure(origin, trial) >= 1.0;
+            let stable = solver.is_stable(&e, trial)?;
+            Ok(Some((rep, jumped, stable)))
         };
-        let newton = match kind {
-            Trial::Land(false) => &landing_opts,
-            _ if capped => &trial_opts,
-            _ => &opts.newton,
-        };
-        let leave_on_indefinite = kind == Trial::Bisect && opts.indefinite_trial_is_beyond;
-        let mut watch = |rep: &NewtonReport| {
-            interrupt()?;
-            if leave_on_indefinite && rep.left_unstable_state() {
-                Err(Error::NoConvergence {
-                    method: "bisection trial (indefinite Hessian: beyond the fold)",
-                    iterations: rep.iterations,
-                    residual: f64::NAN,
-                })
-            } else {
-                Ok(())
-            }
-        };
-        let rep = match solver.minimize_watched(&e, trial, newton, &mut watch) {
-            Ok(rep) => rep,
-            Err(Error::NoConvergence { iterations, .. }) if capped => {
-                stats.newton_iterations += iterations;
-                return Ok(None);
-            }
-            Err(e) => return Err(e),
-        };
-        stats.newton_iterations += rep.iterations;
-        // A jump leaves the branch: measured from the tangent's prediction where it was used
-        // (a fast but smooth branch, a receding contact edge, is not a jump), else from the
-        // previous state.
-        let origin: &[f64] = if on_tangent { &predicted } else { x };
-        let jumped = (opts.unstable_start_is_jump && rep.left_unstable_state())
-            || model.jump_measure(origin, trial) >= 1.0;
-        let stable = solver.is_stable(&e, trial)?;
-        Ok(Some((rep, jumped, stable)))
-    };
     for (k, &target) in targets.iter().enumerate() {
         'step: loop {
             let refine = opts.refine_to.filter(|&tol| (target - walk.lambda).abs() > tol);
-            let first = attempt(
-                walk.x,
-                &mut walk.trial,
-                walk.lambda,
-                target,
-                Trial::Step,
-                &mut walk.stats,
-            )?;
+            let first = attempt(&mut walk, target, Trial::Step)?;
             if let Some((rep, jumped, stable)) = first
                 && (!jumped || refine.is_none())
             {
@@ -347,26 +336,12 @@ pub fn follow<C: Controlled>(
             let mut hi = target;
             while (hi - walk.lambda).abs() > tol {
                 let mid = 0.5 * (walk.lambda + hi);
-                match attempt(
-                    walk.x,
-                    &mut walk.trial,
-                    walk.lambda,
-                    mid,
-                    Trial::Bisect,
-                    &mut walk.stats,
-                )? {
+                match attempt(&mut walk, mid, Trial::Bisect)? {
                     Some((rep, false, stable)) => {
                         walk.accept(&mut visit, mid, (rep, false, stable), k)?;
                         if retries > 0 {
                             retries -= 1;
-                            match attempt(
-                                walk.x,
-                                &mut walk.trial,
-                                walk.lambda,
-                                hi,
-                                Trial::Step,
-                                &mut walk.stats,
-                            )? {
+                            match attempt(&mut walk, hi, Trial::Step)? {
                                 Some((rep, false, stable)) => {
                                     walk.accept(&mut visit, hi, (rep, false, stable), k)?;
                                     if hi == target {
@@ -389,14 +364,7 @@ pub fn follow<C: Controlled>(
             let mut at = hi;
             let (rep, jumped, stable) = loop {
                 let full = (at - target).abs() <= f64::EPSILON * target.abs().max(1.0);
-                match attempt(
-                    walk.x,
-                    &mut walk.trial,
-                    walk.lambda,
-                    at,
-                    Trial::Land(full),
-                    &mut walk.stats,
-                )? {
+                match attempt(&mut walk, at, Trial::Land(full))? {
                     Some(found) => break found,
                     None => {
                         let further = walk.lambda + 2.0 * (at - walk.lambda);

@@ -266,23 +266,6 @@ fn walk<M: CycleModel>(
             format!("gives {n_steps} steps per phase, more than 1e6"),
         ));
     }
-    if let Some(per_state) = tip.seconds_per_state() {
-        let seconds = per_state * (2 * n_steps) as f64;
-        if seconds > MAX_CYCLE_SECONDS {
-            return Err(Error::invalid(
-                "step",
-                opts.step,
-                format!(
-                    "a cycle of {} depth steps on {} unknowns would take about {:.0} min of one core \
-                     (at most {:.0} min): take larger depth steps, a shallower cycle or wider rings",
-                    2 * n_steps,
-                    tip.unknowns(),
-                    seconds / 60.0,
-                    MAX_CYCLE_SECONDS / 60.0
-                ),
-            ));
-        }
-    }
     let depths: Vec<f64> = (0..=n_steps)
         .map(|k| opts.h_start - (opts.h_start - opts.h_min) * k as f64 / n_steps as f64)
         .collect();
@@ -299,6 +282,24 @@ fn walk<M: CycleModel>(
             .map(|&h| approach(h))
             .collect()
     };
+    if let Some(per_state) = tip.seconds_per_state() {
+        let states = loading.len() + unloading.len();
+        let seconds = per_state * states as f64;
+        if seconds > MAX_CYCLE_SECONDS {
+            return Err(Error::invalid(
+                "step",
+                opts.step,
+                format!(
+                    "a cycle of {} depth steps on {} unknowns would take about {:.0} min of one core \
+                     (at most {:.0} min): take larger depth steps, a shallower cycle or wider rings",
+                    states,
+                    tip.unknowns(),
+                    seconds / 60.0,
+                    MAX_CYCLE_SECONDS / 60.0
+                ),
+            ));
+        }
+    }
     let newton = NewtonOptions {
         gradient_tol: 1e-7,
         step_tol: 1e-6,
