@@ -84,7 +84,7 @@ crate::scene_params! {
         quadrature_points: usize = 4, unit = "", range = Range::between(1.0, 16.0);
         /// Contact threshold of the gap (section 4.2.2: σ) [m].
         contact_gap: f64 = 1.0e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
-        /// Model of the tip: surface (the axisymmetric surface model, a few seconds) or fe (the dissertation's finite-element model with the body force (4.15): 22 266 unknowns at the defaults, about 40 s per cycle on 2 cores).
+        /// Model of the tip: surface (the axisymmetric surface model, a few seconds) or fe (the dissertation's finite-element model with the body force (4.15): 22 282 unknowns at the defaults, about 50 s per cycle on 2 cores).
         model: TipModel = TipModel::Surface, unit = "", range = Range::any();
         /// Growth of the finite-element size with the distance from the contact zone (model = fe).
         fe_grading: f64 = 0.15, unit = "", range = Range::between(0.05, 1.0);
