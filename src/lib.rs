@@ -20,6 +20,7 @@
 //! | output | [`figure`], [`render`] | backend-free figure; PNG/SVG, CSV/JSON, terminal chart |
 //! | models | [`models`] | one module per theory, equations only |
 //! | numerics | [`numerics`] | roots, quadrature; no physics |
+//! | data in | [`readers`] | instrument files (force curves, maps) to typed records with units |
 //! | plumbing | [`error`], [`job`], [`params`], [`reproduction`] | errors, progress/cancel, parameters, printed numbers |
 //!
 //! ## Notation
@@ -57,6 +58,7 @@ pub mod job;
 pub mod models;
 pub mod numerics;
 pub mod params;
+pub mod readers;
 pub mod render;
 pub mod reproduction;
 pub mod scenes;
