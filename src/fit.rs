@@ -30,6 +30,8 @@ use crate::error::{Error, Result};
 use crate::figure::{Axis, Figure, Series, Style};
 use crate::models::machine_stiffness::{Experiment, Instability, TipGeometry};
 pub mod engine;
+pub mod instrument;
+pub mod map;
 pub mod predictions;
 
 pub use engine::ContactModel;
@@ -39,19 +41,40 @@ pub use predictions::{Predictions, ph_panel, predictions};
 /// Options of the `--fit` command (flattened into [`crate::cli::Cli`]).
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct FitArgs {
-    /// Fit a measured force-indentation cycle (CSV) with --headless.
-    #[arg(long, value_name = "FILE.csv")]
+    /// Fit a measured force curve with --headless: a depth/force CSV, or an instrument file
+    /// (JPK .jpk-force, .jpk-force-map, .jpk-qi-data/-series, Asylum .ibw, NT-MDT text, AFM
+    /// Workshop CSV, afmformats .tab), the format read from the content. A file of many curves
+    /// (a force map) is fitted curve by curve into maps.
+    #[arg(long, value_name = "FILE")]
     pub fit: Option<PathBuf>,
     /// Tip radius R in metres (for --fit).
     #[arg(long, value_name = "METRES", requires = "fit")]
     pub tip_radius: Option<f64>,
-    /// Cantilever (machine) stiffness k_s in N/m (for --fit): predicts the pull-in and pull-off.
+    /// Cantilever (machine) stiffness k_s in N/m (for --fit): predicts the pull-in and pull-off;
+    /// for an instrument file it overrides the file's value (and the run says so).
     #[arg(long, value_name = "N_PER_M", requires = "fit")]
     pub spring_constant: Option<f64>,
-    /// Model drawn and reported first (for --fit): jkr, or machine-stiffness (needs
-    /// --spring-constant). Default: machine-stiffness with a spring constant, else jkr.
+    /// Deflection sensitivity (InvOLS) in m/V, for instrument files that lack it (for --fit).
+    #[arg(long, value_name = "M_PER_V", requires = "fit")]
+    pub sensitivity: Option<f64>,
+    /// Model (for --fit): hertz, dmt, jkr, or machine-stiffness (needs a spring constant: the
+    /// file's or --spring-constant). Default: machine-stiffness with a spring constant, else jkr.
     #[arg(long, value_enum, requires = "fit")]
     pub model: Option<FitModel>,
+    /// Segment fitted (for --fit): approach, retract or both. Default: approach for hertz, retract
+    /// for the adhesive models.
+    #[arg(long, value_enum, requires = "fit")]
+    pub segment: Option<SegmentChoice>,
+    /// Poisson's ratio of the sample, to report Young's modulus E = E*(1 - nu^2) (for --fit).
+    #[arg(long, value_name = "NU", requires = "fit")]
+    pub poisson: Option<f64>,
+    /// Fit only this curve of a multi-curve file (0-based index; for --fit).
+    #[arg(long, value_name = "INDEX", requires = "fit")]
+    pub curve: Option<usize>,
+    /// Remove the baseline's slope as well as its offset in preprocessing (for --fit with an
+    /// instrument file).
+    #[arg(long, requires = "fit")]
+    pub baseline_tilt: bool,
 }
 
 /// The model of a fit.
@@ -346,8 +369,8 @@ pub fn detect_contact(
     let f = &curve.force;
     let n = f.len();
     let p_max = f.iter().fold(0.0f64, |m, p| m.max(p.abs()));
-    let start = baseline(|k| f[k], n, p_max);
-    let end = baseline(|k| f[n - 1 - k], n, p_max);
+    let start = baseline(|k| f[k], n, p_max, true);
+    let end = baseline(|k| f[n - 1 - k], n, p_max, true);
     // Baselines shorter than the minimum are not trusted (their σ would be noise itself).
     let start = start.filter(|b| b.0 >= MIN_BASELINE_ROWS);
     let end = end.filter(|b| b.0 >= MIN_BASELINE_ROWS);
@@ -394,8 +417,14 @@ pub fn detect_contact(
 
 /// The zero-force baseline at one end of a curve: `f(k)` is the k-th force from that end
 /// inwards, `n` the rows. Returns its length and noise level, or `None` if the end is in
-/// contact (see [`detect_contact`]).
-fn baseline(f: impl Fn(usize) -> f64, n: usize, p_max: f64) -> Option<(usize, f64)> {
+/// contact (see [`detect_contact`]). With `zero_level` false the baseline may lie at any force
+/// (an instrument's offset); `p_max` is then the force range.
+pub(crate) fn baseline(
+    f: impl Fn(usize) -> f64,
+    n: usize,
+    p_max: f64,
+    zero_level: bool,
+) -> Option<(usize, f64)> {
     if n < 2 * MIN_BASELINE_ROWS {
         return None;
     }
@@ -409,7 +438,7 @@ fn baseline(f: impl Fn(usize) -> f64, n: usize, p_max: f64) -> Option<(usize, f6
     let mut deviations: Vec<f64> = head.iter().map(|x| (x - level).abs()).collect();
     deviations.sort_by(f64::total_cmp);
     let sigma = noise_level(&head).max(1.4826 * deviations[deviations.len() / 2]);
-    if level.abs() > (5.0 * sigma).max(0.02 * p_max) {
+    if zero_level && level.abs() > (5.0 * sigma).max(0.02 * p_max) {
         return None;
     }
     let tol = (6.0 * sigma).max(0.005 * p_max);
@@ -1075,36 +1104,221 @@ pub fn simulate_cycle(x: &Experiment, delta_min: f64, delta_max: f64, samples: u
     Ok(curve)
 }
 
-/// The `--fit` command: read, fit, and write `DIR/fit.json`, `fit.png`, `fit.svg`, `fit.csv`.
-/// Everything is computed and rendered before the first file is written.
+/// Whether a file's bytes are a depth/force CSV of [`parse_curve`]'s format: UTF-8 text whose
+/// first line that is neither empty nor a comment names a depth and a force column.
+pub fn looks_like_curve_csv(bytes: &[u8]) -> bool {
+    let head = &bytes[..bytes.len().min(1 << 16)];
+    let text = match std::str::from_utf8(head) {
+        Ok(t) => t,
+        Err(e) if e.error_len().is_none() => std::str::from_utf8(&head[..e.valid_up_to()]).unwrap_or(""),
+        Err(_) => return false,
+    };
+    let text = crate::params::normalise_line_ends(text);
+    let Some(header) = text
+        .lines()
+        .map(|l| l.trim_start_matches('\u{feff}').trim())
+        .find(|l| !l.is_empty() && !l.starts_with('#'))
+    else {
+        return false;
+    };
+    let names: Vec<String> = split_row(header).iter().map(|c| name_and_unit(c).0).collect();
+    names.iter().any(|n| DEPTH_NAMES.contains(&n.as_str()))
+        && names.iter().any(|n| FORCE_NAMES.contains(&n.as_str()))
+}
+
+/// The JSON of the fit of one curve of an instrument file: the fit's report with the file's
+/// format, the curve's place and the preprocessing.
+#[derive(Debug, Serialize)]
+struct InstrumentFitJson<'a> {
+    format: &'a str,
+    #[serde(flatten)]
+    curve: &'a instrument::CurveFit,
+}
+
+/// The JSON of a force map's fits.
+#[derive(Debug, Serialize)]
+struct MapJson<'a> {
+    file: String,
+    format: &'a str,
+    model: FitModel,
+    tip_radius_m: f64,
+    curves: usize,
+    fitted: usize,
+    failed: Vec<map::Failure>,
+    layout: map::Layout,
+    fits: Vec<&'a instrument::CurveFit>,
+}
+
+/// The `--fit` command: read, fit, and write `DIR/fit.json`, `fit.png`, `fit.svg`, `fit.csv`
+/// (one curve), or `DIR/fit-map.json`, `.png`, `.svg`, `.csv` (a file of many curves: the maps,
+/// and one CSV row per curve). Everything is computed and rendered before the first file is
+/// written.
 ///
 /// # Errors
-/// Bad input (one line naming the file and line), fit failures, I/O.
+/// Bad input (one line naming the file and line or curve), fit failures (of a single curve),
+/// I/O.
 pub fn command(args: &FitArgs, out: &Path) -> Result<Vec<PathBuf>> {
     let path = args
         .fit
         .as_deref()
-        .ok_or_else(|| Error::invalid("fit", "", "give the CSV file of a measured curve"))?;
+        .ok_or_else(|| Error::invalid("fit", "", "give the file of a measured curve"))?;
     let radius = args
         .tip_radius
         .ok_or_else(|| Error::invalid("tip-radius", "", "--fit needs --tip-radius (metres)"))?;
-    let curve = read_curve(path)?;
-    let report = fit_curve(&curve, path, radius, args.spring_constant, args.model)?;
-    for w in &report.warnings {
-        eprintln!("warning: {}: {w}", path.display());
+    if !(radius.is_finite() && radius > 0.0) {
+        return Err(Error::invalid("tip-radius", radius, "must be positive (metres)"));
     }
-    let fig = fit_figure(&curve, &report)?;
-    let json = serde_json::to_string_pretty(&report).expect("the report has finite numbers and string keys");
-    let files = [
-        (out.join("fit.png"), crate::render::plot::png_bytes(&fig)?),
-        (
-            out.join("fit.svg"),
-            crate::render::plot::svg_string(&fig)?.into_bytes(),
-        ),
-        (out.join("fit.csv"), crate::render::data::csv(&fig).into_bytes()),
-        (out.join("fit.json"), json.into_bytes()),
-    ];
+    let settings = FitSettings {
+        radius,
+        spring_constant: args.spring_constant,
+        model: args.model,
+        segment: args.segment,
+        poisson: args.poisson,
+    };
+    let bytes = std::fs::read(path).map_err(|e| Error::data_file(path, 0, format!("cannot read: {e}")))?;
+    let files: Vec<(PathBuf, Vec<u8>)> = if looks_like_curve_csv(&bytes) {
+        if args.curve.is_some() || args.baseline_tilt || args.sensitivity.is_some() {
+            return Err(Error::Usage(
+                "--curve, --baseline-tilt and --sensitivity apply to instrument files, not to a depth/force CSV".into(),
+            ));
+        }
+        let text = String::from_utf8(bytes).map_err(|_| Error::data_file(path, 0, "not UTF-8 text"))?;
+        let curve = parse_curve(&text, path)?;
+        let report = fit_with(&curve, path, &settings)?;
+        for w in &report.warnings {
+            eprintln!("warning: {}: {w}", path.display());
+        }
+        let fig = fit_figure(&curve, &report)?;
+        let json =
+            serde_json::to_string_pretty(&report).expect("the report has finite numbers and string keys");
+        fit_files(out, "fit", &fig, json)?
+    } else {
+        let file = crate::readers::read_force_file(
+            path,
+            &crate::readers::ReadOptions {
+                spring_constant: args.spring_constant,
+                sensitivity: args.sensitivity,
+            },
+        )?;
+        if let Some(k) = args.spring_constant {
+            eprintln!(
+                "note: {}: spring constant {} N/m from --spring-constant, not the file's",
+                path.display(),
+                crate::params::fmt_sig(k)
+            );
+        }
+        let opts = instrument::PrepareOptions {
+            spring_constant: None,
+            baseline_tilt: args.baseline_tilt,
+        };
+        let curves: Vec<crate::readers::ForceCurve> = match args.curve {
+            Some(i) => match file.curves.get(i) {
+                Some(c) => vec![c.clone()],
+                None => {
+                    return Err(Error::invalid(
+                        "curve",
+                        i,
+                        format!("the file holds {} curve(s), indexed from 0", file.curves.len()),
+                    ));
+                }
+            },
+            None => file.curves.clone(),
+        };
+        if curves.is_empty() {
+            return Err(Error::data_file(path, 0, "the file holds no curve"));
+        }
+        if curves.len() == 1 {
+            let (curve, fit) = instrument::fit_curve(&curves[0], path, &opts, &settings)?;
+            for w in &fit.fit.warnings {
+                eprintln!("warning: {} (curve {}): {w}", path.display(), fit.curve);
+            }
+            let mut fig = fit_figure(&curve, &fit.fit)?;
+            fig.note(format!("{}, curve {}", file.format, fit.curve));
+            let json = serde_json::to_string_pretty(&InstrumentFitJson {
+                format: &file.format,
+                curve: &fit,
+            })
+            .expect("the report has finite numbers and string keys");
+            fit_files(out, "fit", &fig, json)?
+        } else {
+            let fits = instrument::fit_all(&curves, path, &opts, &settings);
+            let mut failed = Vec::new();
+            for (c, f) in curves.iter().zip(&fits) {
+                match f {
+                    Err(e) => {
+                        eprintln!("error: {}: curve {} not fitted: {e}", path.display(), c.index);
+                        failed.push(map::Failure {
+                            curve: c.index,
+                            grid_index: c.meta.grid_index,
+                            reason: e.to_string(),
+                        });
+                    }
+                    Ok(f) if !f.fit.warnings.is_empty() => {
+                        eprintln!(
+                            "warning: {} (curve {}): {}",
+                            path.display(),
+                            c.index,
+                            f.fit.warnings.join("; ")
+                        );
+                    }
+                    Ok(_) => {}
+                }
+            }
+            let title = format!("Fits of a force map ({}, {} curves)", file.format, curves.len());
+            let fig = map::map_figure(&curves, &fits, &title)?;
+            let ok: Vec<&instrument::CurveFit> = fits.iter().filter_map(|f| f.as_ref().ok()).collect();
+            let model = ok
+                .first()
+                .map_or(settings.model.unwrap_or(FitModel::MachineStiffness), |f| {
+                    f.fit.model
+                });
+            let json = serde_json::to_string_pretty(&MapJson {
+                file: path.display().to_string(),
+                format: &file.format,
+                model,
+                tip_radius_m: radius,
+                curves: curves.len(),
+                fitted: ok.len(),
+                failed,
+                layout: map::layout(&curves),
+                fits: ok,
+            })
+            .expect("the report has finite numbers and string keys");
+            let mut files = vec![
+                (out.join("fit-map.png"), crate::render::plot::png_bytes(&fig)?),
+                (
+                    out.join("fit-map.svg"),
+                    crate::render::plot::svg_string(&fig)?.into_bytes(),
+                ),
+                (
+                    out.join("fit-map.csv"),
+                    map::table_csv(&curves, &fits).into_bytes(),
+                ),
+            ];
+            files.push((out.join("fit-map.json"), json.into_bytes()));
+            files
+        }
+    };
     std::fs::create_dir_all(out).map_err(Error::file("creating the folder", out))?;
     crate::render::write_set(&files)?;
     Ok(files.into_iter().map(|(p, _)| p).collect())
+}
+
+/// The rendered files of one fit's figure: `<stem>.png`, `.svg`, `.csv` and `.json`.
+fn fit_files(out: &Path, stem: &str, fig: &Figure, json: String) -> Result<Vec<(PathBuf, Vec<u8>)>> {
+    Ok(vec![
+        (
+            out.join(format!("{stem}.png")),
+            crate::render::plot::png_bytes(fig)?,
+        ),
+        (
+            out.join(format!("{stem}.svg")),
+            crate::render::plot::svg_string(fig)?.into_bytes(),
+        ),
+        (
+            out.join(format!("{stem}.csv")),
+            crate::render::data::csv(fig).into_bytes(),
+        ),
+        (out.join(format!("{stem}.json")), json.into_bytes()),
+    ])
 }

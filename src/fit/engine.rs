@@ -454,7 +454,7 @@ pub fn fit(model: ContactModel, radius: f64, data: &FitData) -> Result<EngineFit
     let starts: Vec<Vec<f64>> = match model {
         ContactModel::Hertz => {
             let (dc, k, f0) = hertz_start(data, 5);
-            if !(k > 0.0) {
+            if k.is_nan() || k <= 0.0 {
                 return Err(unresolvable(
                     "no part of the curve rises above its baseline".into(),
                 ));
