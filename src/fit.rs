@@ -638,10 +638,10 @@ fn check_meaningful_data(h: &[f64], p: &[f64], path: &Path, lines: (usize, usize
         .filter(|(hh, _)| **hh >= h_max - 0.1 * (h_max - h_lo))
         .map(|(_, pp)| *pp)
         .collect();
-    deep.sort_by(f64::total_cmp);
     let mut all = p.to_vec();
-    all.sort_by(f64::total_cmp);
-    if deep[deep.len() / 2] <= all[all.len() / 2] {
+    let (mid_deep, mid_all) = (deep.len() / 2, all.len() / 2);
+    let deep_median = *deep.select_nth_unstable_by(mid_deep, f64::total_cmp).1;
+    if deep_median <= *all.select_nth_unstable_by(mid_all, f64::total_cmp).1 {
         return Err(at(
             "the deepest rows are not in compression (positive depth is indentation, positive force compression): is the sign of one column flipped?"
                 .into(),

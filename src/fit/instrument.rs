@@ -207,9 +207,8 @@ pub fn prepare(curve: &ForceCurve, path: &Path, opts: &PrepareOptions) -> Result
         }
     }
     if baseline_rows > 0 {
-        let mut sorted = force[..baseline_rows].to_vec();
-        sorted.sort_by(f64::total_cmp);
-        offset += sorted[sorted.len() / 2];
+        let mut rows = force[..baseline_rows].to_vec();
+        offset += *rows.select_nth_unstable_by(baseline_rows / 2, f64::total_cmp).1;
     }
     for f in &mut force {
         *f -= offset;

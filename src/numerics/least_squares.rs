@@ -77,6 +77,21 @@ pub fn jacobian_fd(f: &dyn Fn(&[f64]) -> Vec<f64>, x: &[f64], r0: &[f64], rel_st
     jac
 }
 
+/// JᵀJ of a tall m × n Jacobian from the dot products of its (contiguous) columns: the n(n+1)/2
+/// products vectorise, where the general product does not.
+fn gram(jac: &DMatrix<f64>) -> DMatrix<f64> {
+    let n = jac.ncols();
+    let mut g = DMatrix::zeros(n, n);
+    for i in 0..n {
+        for j in i..n {
+            let v = jac.column(i).dot(&jac.column(j));
+            g[(i, j)] = v;
+            g[(j, i)] = v;
+        }
+    }
+    g
+}
+
 /// Minimise ½‖r(x)‖² from `x0` by Levenberg-Marquardt (Marquardt's diagonal scaling, adaptive
 /// damping). `jacobian`, if given, returns the m × n matrix ∂r/∂x.
 ///
@@ -121,8 +136,8 @@ pub fn levenberg_marquardt(
     while iterations < opts.max_iterations {
         iterations += 1;
         let rv = DVector::from_column_slice(&r);
-        let jtj = jac.transpose() * &jac;
-        let g = jac.transpose() * &rv;
+        let jtj = gram(&jac);
+        let g = DVector::from_fn(n, |i, _| jac.column(i).dot(&rv));
         if g.amax() <= opts.gradient_tol * (1.0 + c) {
             converged = true;
             break;
@@ -175,7 +190,7 @@ pub fn levenberg_marquardt(
     }
     let dof = (m - n).max(1) as f64;
     let s2 = 2.0 * c / dof;
-    let jtj = jac.transpose() * &jac;
+    let jtj = gram(&jac);
     let (covariance, std_errors) = match jtj.try_inverse() {
         Some(inv) => {
             let cov = inv * s2;
