@@ -90,6 +90,8 @@ pub enum FitModel {
     /// The machine-stiffness model of chapter 2, (2.31)-(2.32): the JKR contact relation with
     /// the jumps of a cantilever of stiffness k_s.
     MachineStiffness,
+    /// Maugis-Dugdale (3.3): w, ℰ and the range Z₀ of the Dugdale zone.
+    MaugisDugdale,
 }
 
 impl FitModel {
@@ -99,6 +101,7 @@ impl FitModel {
             FitModel::Hertz => ContactModel::Hertz,
             FitModel::Dmt => ContactModel::Dmt,
             FitModel::Jkr | FitModel::MachineStiffness => ContactModel::Jkr,
+            FitModel::MaugisDugdale => ContactModel::MaugisDugdale,
         }
     }
 
@@ -556,6 +559,10 @@ pub struct FitReport {
     /// Force baseline F₀ [N] fitted with the model (after any offset removed in
     /// preprocessing): the model force is P(δ) + F₀.
     pub baseline_n: Estimate,
+    /// Range Z₀ of the Dugdale interaction [m] (Maugis-Dugdale).
+    pub interaction_range_m: Option<Estimate>,
+    /// Maugis parameter λ at the fitted values (Maugis-Dugdale).
+    pub maugis_lambda: Option<f64>,
     /// Correlations of the fitted parameters.
     pub correlation: Correlation,
     /// Root-mean-square force residual [N].
@@ -849,7 +856,7 @@ pub fn fit_with(curve: &Curve, path: &Path, settings: &FitSettings) -> Result<Fi
             pull_off_depth_m: jkr_pred.jkr_pull_off_depth,
         };
         let (alpha, machine) = match settings.spring_constant {
-            Some(k) if model != FitModel::Dmt => {
+            Some(k) if matches!(model, FitModel::Jkr | FitModel::MachineStiffness) => {
                 let x = x_for(k)?;
                 let pr: Predictions = predictions(&x)?;
                 let rep = |i: &Instability, o: &Instability| InstabilityReport {
@@ -885,6 +892,14 @@ pub fn fit_with(curve: &Curve, path: &Path, settings: &FitSettings) -> Result<Fi
         poisson_ratio: settings.poisson,
         contact_point_m: dc_est,
         baseline_n: f0_est,
+        interaction_range_m: fit.interaction_range.map(|z| Estimate {
+            value: z,
+            std_error: se[4],
+        }),
+        maugis_lambda: fit.interaction_range.map(|z| {
+            let pi = std::f64::consts::PI;
+            crate::models::maugis_dugdale::maugis_lambda(w / (e * z), pi * w / (e * radius))
+        }),
         correlation,
         rms_residual_n: fit.rms_residual,
         points_total: curve.depth.len(),
@@ -917,7 +932,7 @@ pub fn fit_figure(curve: &Curve, report: &FitReport) -> Result<Figure> {
     let f0 = report.baseline_n.value;
     let h_max = curve.depth.iter().copied().fold(f64::NEG_INFINITY, f64::max) - dc;
     let mut panel = match report.work_of_adhesion_j_per_m2 {
-        Some(w) if report.model != FitModel::Dmt => {
+        Some(w) if matches!(report.model, FitModel::Jkr | FitModel::MachineStiffness) => {
             let k = report.spring_constant_n_per_m.unwrap_or(1.0);
             let x = Experiment::new(TipGeometry::Sphere { radius }, e, w.value, k)?;
             let depth_norm = (h_max / x.scales().h).max(1.0) * 1.05;
@@ -936,6 +951,8 @@ pub fn fit_figure(curve: &Curve, report: &FitReport) -> Result<Figure> {
                 modulus: e,
                 contact_point: 0.0,
                 baseline: 0.0,
+                interaction_range: report.interaction_range_m.map(|z| z.value),
+                deepest: h_max,
                 std_errors: Vec::new(),
                 correlation: Vec::new(),
                 rms_residual: 0.0,
@@ -948,10 +965,10 @@ pub fn fit_figure(curve: &Curve, report: &FitReport) -> Result<Figure> {
                     (d * 1e9, fit.force_at(radius, d, true) * 1e9)
                 })
                 .collect();
-            let name = if report.model == FitModel::Hertz {
-                "Hertz"
-            } else {
-                "DMT"
+            let name = match report.model {
+                FitModel::Hertz => "Hertz",
+                FitModel::Dmt => "DMT",
+                _ => "Maugis-Dugdale",
             };
             let mut panel = crate::figure::Panel::new(
                 Axis::linear("Indentation depth h", "nm"),
@@ -1051,6 +1068,8 @@ fn residual_panel(curve: &Curve, report: &FitReport) -> Result<crate::figure::Pa
         modulus: report.plane_strain_modulus_pa.value,
         contact_point: report.contact_point_m.value,
         baseline: report.baseline_n.value,
+        interaction_range: report.interaction_range_m.map(|z| z.value),
+        deepest: curve.depth.iter().copied().fold(f64::NEG_INFINITY, f64::max),
         std_errors: Vec::new(),
         correlation: Vec::new(),
         rms_residual: 0.0,

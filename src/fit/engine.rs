@@ -40,6 +40,9 @@ pub enum ContactModel {
     Dmt,
     /// JKR (1.2), the contact relation (2.31b)-(2.32b) of the machine-stiffness model.
     Jkr,
+    /// Maugis-Dugdale (3.3): the stable contact branch of the Dugdale zone model, with the
+    /// range Z₀ of the interaction fitted as well.
+    MaugisDugdale,
 }
 
 impl ContactModel {
@@ -52,6 +55,13 @@ impl ContactModel {
     pub fn parameter_names(self) -> &'static [&'static str] {
         match self {
             ContactModel::Hertz => &["plane_strain_modulus", "contact_point", "baseline"],
+            ContactModel::MaugisDugdale => &[
+                "work_of_adhesion",
+                "plane_strain_modulus",
+                "contact_point",
+                "baseline",
+                "interaction_range",
+            ],
             _ => &[
                 "work_of_adhesion",
                 "plane_strain_modulus",
@@ -89,6 +99,10 @@ pub struct EngineFit {
     pub contact_point: f64,
     /// Baseline F₀ [N].
     pub baseline: f64,
+    /// Range Z₀ of the Dugdale interaction [m] (Maugis-Dugdale only).
+    pub interaction_range: Option<f64>,
+    /// The deepest row's depth [m] (data origin): the Maugis-Dugdale branch is tabulated to it.
+    pub deepest: f64,
     /// Standard errors in the order of [`ContactModel::parameter_names`] (SI).
     pub std_errors: Vec<f64>,
     /// Correlation matrix (row-major) in the same order.
@@ -106,8 +120,10 @@ impl EngineFit {
             w: self.work_of_adhesion,
             e: self.modulus,
             dc: self.contact_point,
+            z0: self.interaction_range.unwrap_or(0.0),
         };
-        self.baseline + Model::new(self.model, radius, &p).force(d, in_contact).0
+        let reach = self.deepest.max(d) - self.contact_point;
+        self.baseline + Model::new(self.model, radius, &p, reach).force(d, in_contact).0
     }
 }
 
@@ -116,10 +132,12 @@ struct Params {
     w: f64,
     e: f64,
     dc: f64,
+    /// Range Z₀ of the Dugdale zone (Maugis-Dugdale).
+    z0: f64,
 }
 
 /// The model at fixed parameters, its scales computed once per evaluation of the residuals.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 struct Model {
     model: ContactModel,
     /// Contact point d_c [m].
@@ -132,10 +150,59 @@ struct Model {
     p_hat: f64,
     /// JKR depth scale ĥ = â²/R, â = (9πwR²/8ℰ)^(1/3) [m].
     h_hat: f64,
+    /// Maugis-Dugdale: the stable contact branch as (δ, P) with δ increasing [m, N].
+    branch: Vec<(f64, f64)>,
+}
+
+/// The stable branch of the Maugis-Dugdale curve (3.3) through deep contact, as (δ, P) in SI with
+/// δ = −h the indentation, increasing: the zone branch (ā = 0) and the contact branch sampled
+/// along their parameters (c̄, then τ = ln t from the junction to a contact radius past
+/// `reach`), and the last stable run of them kept (where h̄ decreases into contact). Empty
+/// where the model cannot be built at these parameters.
+fn md_branch(radius: f64, p: &Params, reach: f64) -> Vec<(f64, f64)> {
+    use crate::models::maugis_dugdale::MaugisDugdale;
+    let pi = std::f64::consts::PI;
+    let chi = p.w / (p.e * p.z0);
+    let ell = pi * p.w / (p.e * radius);
+    let Ok(md) = MaugisDugdale::new(chi, ell) else {
+        return Vec::new();
+    };
+    // Past the deepest row: Hertz's ā² = δ/R with a margin for the adhesive part.
+    let a_max = (2.0 * reach / radius)
+        .sqrt()
+        .max(4.0 * md.junction_radius())
+        .max(1e-12);
+    let Ok(deep) = md.contact_state(a_max) else {
+        return Vec::new();
+    };
+    let mut states = Vec::with_capacity(2600);
+    let c_star = md.junction_radius();
+    for k in 0..100 {
+        states.push(md.zone_state(c_star * k as f64 / 100.0));
+    }
+    let (tau_lo, tau_hi) = (deep.t.ln(), deep.t.ln().max(0.0) + 14.0);
+    let n = 2400;
+    for k in (0..=n).rev() {
+        let tau = tau_lo + (tau_hi - tau_lo) * k as f64 / n as f64;
+        states.push(md.contact_state_at_t(tau.exp()));
+    }
+    let end = states.len();
+    let start = states
+        .iter()
+        .rposition(|s| !s.stable || !s.h.is_finite())
+        .map_or(0, |i| i + 1);
+    let (force, length) = (2.0 * p.e * radius * radius, radius);
+    let mut out: Vec<(f64, f64)> = states[start..end]
+        .iter()
+        .filter(|s| s.h.is_finite() && s.p.is_finite())
+        .map(|s| (-s.h * length, s.p * force))
+        .collect();
+    out.dedup_by(|a, b| a.0 <= b.0);
+    out
 }
 
 impl Model {
-    fn new(model: ContactModel, radius: f64, p: &Params) -> Self {
+    fn new(model: ContactModel, radius: f64, p: &Params, reach: f64) -> Self {
         let pi = std::f64::consts::PI;
         let (p_hat, h_hat) = if model == ContactModel::Jkr {
             let a_hat = (9.0 * pi * p.w * radius * radius / (8.0 * p.e)).cbrt();
@@ -150,6 +217,11 @@ impl Model {
             adhesion: 2.0 * pi * p.w * radius,
             p_hat,
             h_hat,
+            branch: if model == ContactModel::MaugisDugdale {
+                md_branch(radius, p, reach)
+            } else {
+                Vec::new()
+            },
         }
     }
 
@@ -196,6 +268,27 @@ impl Model {
                 let p = self.p_hat * pb;
                 let d_e = self.p_hat * slope * (2.0 / 3.0) * hb;
                 (p, [p - d_e, d_e, -self.p_hat * slope / self.h_hat])
+            }
+            ContactModel::MaugisDugdale => {
+                // Interpolated on the stable branch (clamped at its ends); the derivatives are
+                // taken by differences of whole evaluations.
+                if !in_contact {
+                    return (0.0, [0.0; 3]);
+                }
+                let b = &self.branch;
+                if b.is_empty() {
+                    return (f64::NAN, [0.0; 3]);
+                }
+                let i = b.partition_point(|q| q.0 < delta);
+                let p = if i == 0 {
+                    b[0].1
+                } else if i == b.len() {
+                    b[b.len() - 1].1
+                } else {
+                    let (l, r) = (b[i - 1], b[i]);
+                    l.1 + (r.1 - l.1) * (delta - l.0) / (r.0 - l.0)
+                };
+                (p, [0.0; 3])
             }
         }
     }
@@ -286,6 +379,8 @@ struct Scales {
     length: f64,
     /// Force scale [N].
     force: f64,
+    /// The deepest row's depth [m] (data origin).
+    reach: f64,
 }
 
 fn unpack(model: ContactModel, x: &[f64], s: Scales) -> (Params, f64) {
@@ -295,6 +390,7 @@ fn unpack(model: ContactModel, x: &[f64], s: Scales) -> (Params, f64) {
                 w: 0.0,
                 e: x[0].exp(),
                 dc: x[1] * s.length,
+                z0: 0.0,
             },
             x[2] * s.force,
         ),
@@ -303,6 +399,7 @@ fn unpack(model: ContactModel, x: &[f64], s: Scales) -> (Params, f64) {
                 w: x[0].exp(),
                 e: x[1].exp(),
                 dc: x[2] * s.length,
+                z0: x.get(4).map_or(0.0, |v| v.exp()),
             },
             x[3] * s.force,
         ),
@@ -318,7 +415,7 @@ fn evaluate(
     x: &[f64],
 ) -> (Vec<f64>, Vec<[f64; 3]>) {
     let (p, f0) = unpack(model, x, s);
-    let m = Model::new(model, radius, &p);
+    let m = Model::new(model, radius, &p, s.reach - p.dc);
     let mut r = Vec::with_capacity(data.depth.len());
     let mut g = Vec::with_capacity(data.depth.len());
     for ((&d, &f), &c) in data.depth.iter().zip(data.force).zip(data.in_contact) {
@@ -356,6 +453,24 @@ fn cost(model: ContactModel, radius: f64, data: &FitData, s: Scales, x: &[f64]) 
     } else {
         f64::INFINITY
     }
+}
+
+/// Central differences of the residuals in the (order-one) fitted parameters, with an absolute
+/// step: the Maugis-Dugdale branch is a table, whose derivatives are not in closed form.
+fn fd_jacobian(f: &dyn Fn(&[f64]) -> Vec<f64>, x: &[f64]) -> nalgebra::DMatrix<f64> {
+    let h = 1e-6;
+    let mut xp = x.to_vec();
+    let cols: Vec<Vec<f64>> = (0..x.len())
+        .map(|j| {
+            xp[j] = x[j] + h;
+            let rp = f(&xp);
+            xp[j] = x[j] - h;
+            let rm = f(&xp);
+            xp[j] = x[j];
+            rp.iter().zip(&rm).map(|(a, b)| (a - b) / (2.0 * h)).collect()
+        })
+        .collect();
+    nalgebra::DMatrix::from_fn(cols[0].len(), x.len(), |i, j| cols[j][i])
 }
 
 /// The Hertz fit at a fixed contact point: P = K·max(δ, 0)^(3/2) + F₀ is linear in (K, F₀).
@@ -567,6 +682,7 @@ pub fn fit(model: ContactModel, radius: f64, data: &FitData) -> Result<EngineFit
     let s = Scales {
         length: span,
         force: p_scale,
+        reach: d_hi,
     };
     let starts: Vec<Vec<f64>> = match model {
         ContactModel::Hertz => {
@@ -629,6 +745,27 @@ pub fn fit(model: ContactModel, radius: f64, data: &FitData) -> Result<EngineFit
             }
             v
         }
+        ContactModel::MaugisDugdale => {
+            // From the JKR fit, with the range Z₀ that gives Maugis parameters λ = 0.3 to 10
+            // (λ = (9/2)^(1/3) χ ℓ^(−1/3), χ = w/(ℰZ₀), ℓ = πw/(ℰR)).
+            let j = fit(ContactModel::Jkr, radius, data)?;
+            let (w, e) = (j.work_of_adhesion, j.modulus);
+            let ell = std::f64::consts::PI * w / (e * radius);
+            [0.3, 1.0, 3.0, 10.0]
+                .iter()
+                .map(|lambda| {
+                    let chi = lambda * ell.cbrt() / 4.5f64.cbrt();
+                    let z0 = w / (e * chi);
+                    vec![
+                        w.ln(),
+                        e.ln(),
+                        j.contact_point / s.length,
+                        j.baseline / s.force,
+                        z0.ln(),
+                    ]
+                })
+                .collect()
+        }
     };
     // The Jacobian is asked for at the point whose residuals were just computed (an accepted
     // step): the rows' derivatives of that evaluation are kept for it.
@@ -640,6 +777,9 @@ pub fn fit(model: ContactModel, radius: f64, data: &FitData) -> Result<EngineFit
         r
     };
     let jac = |x: &[f64]| {
+        if model == ContactModel::MaugisDugdale {
+            return fd_jacobian(&|x: &[f64]| residuals(model, radius, data, s, x), x);
+        }
         let kept = last.borrow();
         if kept.0 == x {
             jacobian(model, &kept.1, s)
@@ -659,11 +799,18 @@ pub fn fit(model: ContactModel, radius: f64, data: &FitData) -> Result<EngineFit
         .filter(|(c, _)| c.is_finite())
         .collect();
     ranked.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // Maugis-Dugdale's cost has local minima in Z₀ (a JKR-like small range against the true
+    // one): every start is run to its end and the lowest kept.
+    let every_start = model == ContactModel::MaugisDugdale;
     let mut best: Option<LmSolution> = None;
     for (_, x0) in ranked {
-        if let Ok(sol) = levenberg_marquardt(&res, Some(&jac), x0, opts) {
+        if let Ok(sol) = levenberg_marquardt(&res, Some(&jac), x0, opts)
+            && best.as_ref().is_none_or(|b| sol.residual_norm < b.residual_norm)
+        {
             best = Some(sol);
-            break;
+            if !every_start {
+                break;
+            }
         }
     }
     let Some(sol) = best else {
@@ -675,6 +822,7 @@ pub fn fit(model: ContactModel, radius: f64, data: &FitData) -> Result<EngineFit
     // Standard errors in SI: ln-parameters scale by the value, the others by their scale.
     let si_scale: Vec<f64> = match model {
         ContactModel::Hertz => vec![p.e, s.length, s.force],
+        ContactModel::MaugisDugdale => vec![p.w, p.e, s.length, s.force, p.z0],
         _ => vec![p.w, p.e, s.length, s.force],
     };
     let std_errors: Vec<f64> = sol.std_errors.iter().zip(&si_scale).map(|(e, k)| e * k).collect();
@@ -712,6 +860,8 @@ pub fn fit(model: ContactModel, radius: f64, data: &FitData) -> Result<EngineFit
         modulus: p.e,
         contact_point: p.dc,
         baseline: f0,
+        interaction_range: (model == ContactModel::MaugisDugdale).then_some(p.z0),
+        deepest: d_hi,
         std_errors,
         correlation,
         rms_residual: rms,
@@ -746,6 +896,15 @@ pub fn warnings(fit: &EngineFit, data: &FitData) -> Vec<String> {
     }
     let values: Vec<(&str, f64, f64)> = match fit.model {
         ContactModel::Hertz => vec![("modulus", fit.modulus, fit.std_errors[0])],
+        ContactModel::MaugisDugdale => vec![
+            ("work of adhesion", fit.work_of_adhesion, fit.std_errors[0]),
+            ("modulus", fit.modulus, fit.std_errors[1]),
+            (
+                "interaction range",
+                fit.interaction_range.unwrap_or(0.0),
+                fit.std_errors[4],
+            ),
+        ],
         _ => vec![
             ("work of adhesion", fit.work_of_adhesion, fit.std_errors[0]),
             ("modulus", fit.modulus, fit.std_errors[1]),
@@ -756,6 +915,22 @@ pub fn warnings(fit: &EngineFit, data: &FitData) -> Vec<String> {
             out.push(format!(
                 "the {name} is not determined by these data: its standard error is {} % of its value",
                 crate::params::fmt_sig((100.0 * e / v).round())
+            ));
+        }
+    }
+    if fit.model == ContactModel::MaugisDugdale {
+        // Z₀ is the last parameter; its valley in the cost is long and curved where it is
+        // strongly correlated with another, and the linearised error then understates it.
+        let k = np - 1;
+        if let Some((j, r)) = (0..k)
+            .map(|j| (j, fit.correlation[k * np + j]))
+            .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+            && r.abs() > 0.9
+        {
+            out.push(format!(
+                "the interaction range is weakly determined (correlation {} with the {}): its standard error, from the linearised fit, understates its uncertainty",
+                crate::params::fmt_sig((r * 1000.0).round() / 1000.0),
+                names[j].replace('_', " ")
             ));
         }
     }
