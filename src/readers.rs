@@ -236,7 +236,9 @@ pub fn parse_force_bytes(bytes: &[u8], path: &Path, opts: &ReadOptions) -> crate
         return Err(err(format!("not a zip archive, as a .{ext} file is")));
     }
     if ext == "ibw" {
-        return Err(err("not an Igor binary wave (no version 1, 2, 3 or 5 header)".into()));
+        return Err(err(
+            "not an Igor binary wave (no version 1, 2, 3 or 5 header)".into()
+        ));
     }
     if ext == "h5" || ext == "hdf5" {
         return Err(err("not an HDF5 file (no HDF5 signature)".into()));
@@ -248,7 +250,9 @@ pub fn parse_force_bytes(bytes: &[u8], path: &Path, opts: &ReadOptions) -> crate
     if text::contains(bytes, b"Device:\tChiaro") {
         return chiaro::read_txt(bytes, path, opts);
     }
-    if head.starts_with(b"#") && (text::contains(head, b"# afmformats") || text::contains(bytes, b"# BEGIN METADATA")) {
+    if head.starts_with(b"#")
+        && (text::contains(head, b"# afmformats") || text::contains(bytes, b"# BEGIN METADATA"))
+    {
         return tab::read(bytes, path, opts);
     }
     if ntmdt::looks_like(head) {
@@ -316,7 +320,10 @@ fn rescale_stored_force(
     opts: &ReadOptions,
 ) -> (Option<f64>, Option<f64>) {
     let mut factor = 1.0;
-    if let (Some(new), Some(old)) = (opts.spring_constant, k_file.filter(|v| *v != 0.0 && v.is_finite())) {
+    if let (Some(new), Some(old)) = (
+        opts.spring_constant,
+        k_file.filter(|v| *v != 0.0 && v.is_finite()),
+    ) {
         factor *= new / old;
     }
     if let (Some(new), Some(old)) = (opts.sensitivity, s_file.filter(|v| *v != 0.0 && v.is_finite())) {

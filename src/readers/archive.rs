@@ -11,18 +11,29 @@ pub(crate) fn read_bounded(path: &Path) -> Result<Vec<u8>> {
     // Checked before opening: opening a FIFO for reading would wait for a writer.
     let meta = std::fs::metadata(path).map_err(|e| err(format!("cannot read: {e}")))?;
     if !meta.is_file() {
-        let what = if meta.is_dir() { "a folder" } else { "not a regular file (a FIFO, socket or device)" };
+        let what = if meta.is_dir() {
+            "a folder"
+        } else {
+            "not a regular file (a FIFO, socket or device)"
+        };
         return Err(err(format!("{what}: force-distance files are regular files")));
     }
     let limit = super::MAX_FILE_BYTES;
     if meta.len() > limit {
-        return Err(err(format!("{} bytes, more than the {limit} bytes that are read", meta.len())));
+        return Err(err(format!(
+            "{} bytes, more than the {limit} bytes that are read",
+            meta.len()
+        )));
     }
     let file = std::fs::File::open(path).map_err(|e| err(format!("cannot open: {e}")))?;
     let mut bytes = Vec::with_capacity(meta.len() as usize);
-    file.take(limit + 1).read_to_end(&mut bytes).map_err(|e| err(format!("cannot read: {e}")))?;
+    file.take(limit + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| err(format!("cannot read: {e}")))?;
     if bytes.len() as u64 > limit {
-        return Err(err(format!("grew past the {limit} bytes that are read while being read")));
+        return Err(err(format!(
+            "grew past the {limit} bytes that are read while being read"
+        )));
     }
     Ok(bytes)
 }
@@ -47,16 +58,26 @@ pub(crate) struct Zip<'a> {
 impl<'a> Zip<'a> {
     /// Open an archive held in `bytes`.
     pub(crate) fn open(bytes: &'a [u8], path: &'a Path) -> Result<Self> {
-        let zip = zip::ZipArchive::new(std::io::Cursor::new(bytes))
-            .map_err(|e| Error::data_file(path, 0, format!("not a readable zip archive: {}", one_line(&e))))?;
+        let zip = zip::ZipArchive::new(std::io::Cursor::new(bytes)).map_err(|e| {
+            Error::data_file(path, 0, format!("not a readable zip archive: {}", one_line(&e)))
+        })?;
         let mut names = Vec::with_capacity(zip.len());
         for n in zip.file_names() {
-            let n = n.map_err(|e| Error::data_file(path, 0, format!("unreadable zip entry name: {}", one_line(&e))))?;
+            let n = n.map_err(|e| {
+                Error::data_file(path, 0, format!("unreadable zip entry name: {}", one_line(&e)))
+            })?;
             names.push(n.into_owned());
         }
         names.sort_by(|a, b| path_order(a, b));
-        let budget = (bytes.len() as u64).saturating_mul(64).clamp(MIN_BUDGET, MAX_DECOMPRESSED);
-        Ok(Zip { zip, names, budget, path })
+        let budget = (bytes.len() as u64)
+            .saturating_mul(64)
+            .clamp(MIN_BUDGET, MAX_DECOMPRESSED);
+        Ok(Zip {
+            zip,
+            names,
+            budget,
+            path,
+        })
     }
 
     /// Entry names, sorted.
@@ -125,5 +146,7 @@ fn numeric(s: &str) -> Option<u128> {
     if s.is_empty() || !s.bytes().all(|c| c.is_ascii_digit()) {
         return None;
     }
-    Some(s.bytes().fold(0u128, |n, c| n.saturating_mul(10).saturating_add(u128::from(c - b'0'))))
+    Some(s.bytes().fold(0u128, |n, c| {
+        n.saturating_mul(10).saturating_add(u128::from(c - b'0'))
+    }))
 }

@@ -15,12 +15,20 @@ use std::path::Path;
 /// Read one Chiaro text export.
 pub(crate) fn read_txt(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<ForceFile> {
     let curve = parse(bytes, path, "", opts)?;
-    Ok(ForceFile { format: "Optics11 Chiaro text export (.txt)".into(), curves: vec![curve] })
+    Ok(ForceFile {
+        format: "Optics11 Chiaro text export (.txt)".into(),
+        curves: vec![curve],
+    })
 }
 
 /// Read a zip of Chiaro text exports, one curve per entry in name order.
 pub(crate) fn read_zip(zip: &mut Zip, path: &Path, opts: &ReadOptions) -> Result<ForceFile> {
-    let names: Vec<String> = zip.names().iter().filter(|n| !n.ends_with('/')).cloned().collect();
+    let names: Vec<String> = zip
+        .names()
+        .iter()
+        .filter(|n| !n.ends_with('/'))
+        .cloned()
+        .collect();
     let mut curves = Vec::with_capacity(names.len());
     for (i, name) in names.iter().enumerate() {
         let bytes = zip.read(name)?;
@@ -28,7 +36,10 @@ pub(crate) fn read_zip(zip: &mut Zip, path: &Path, opts: &ReadOptions) -> Result
         c.index = i;
         curves.push(c);
     }
-    Ok(ForceFile { format: "Optics11 Chiaro text exports (.zip of .txt)".into(), curves })
+    Ok(ForceFile {
+        format: "Optics11 Chiaro text exports (.zip of .txt)".into(),
+        curves,
+    })
 }
 
 fn parse(bytes: &[u8], path: &Path, entry: &str, opts: &ReadOptions) -> Result<ForceCurve> {
@@ -36,7 +47,10 @@ fn parse(bytes: &[u8], path: &Path, entry: &str, opts: &ReadOptions) -> Result<F
     let text = super::text::latin1(bytes);
     let lines = super::text::lines(&text);
     if !lines.iter().any(|l| l.contains("Device:\tChiaro")) {
-        return Err(err(0, "no \"Device:<tab>Chiaro\" line: not a Chiaro export".into()));
+        return Err(err(
+            0,
+            "no \"Device:<tab>Chiaro\" line: not a Chiaro export".into(),
+        ));
     }
     let h = lines
         .iter()
@@ -44,7 +58,10 @@ fn parse(bytes: &[u8], path: &Path, entry: &str, opts: &ReadOptions) -> Result<F
         .ok_or_else(|| err(0, "no column header line (Time (s)<tab>Load (uN)...)".into()))?;
     let ncol = lines[h].split('\t').count();
     if ncol < 5 {
-        return Err(err(h + 1, format!("{ncol} columns, Chiaro exports have at least 5")));
+        return Err(err(
+            h + 1,
+            format!("{ncol} columns, Chiaro exports have at least 5"),
+        ));
     }
     let mut data: Vec<Vec<f64>> = Vec::new();
     for (i, l) in lines.iter().enumerate().skip(h + 1) {
@@ -97,7 +114,10 @@ fn parse(bytes: &[u8], path: &Path, entry: &str, opts: &ReadOptions) -> Result<F
         tip_position: Some(tip[a..b].to_vec()),
     };
     let n = force.len();
-    let mut segments = vec![seg(SegmentKind::Approach, 0, cut), seg(SegmentKind::Retract, cut, n)];
+    let mut segments = vec![
+        seg(SegmentKind::Approach, 0, cut),
+        seg(SegmentKind::Retract, cut, n),
+    ];
     let (k, s) = super::rescale_stored_force(&mut segments, note("k (N/m)"), None, opts);
     let meta = CurveMeta {
         spring_constant: k,
@@ -110,5 +130,9 @@ fn parse(bytes: &[u8], path: &Path, entry: &str, opts: &ReadOptions) -> Result<F
         instrument: notes.get("Device:").cloned(),
         ..CurveMeta::default()
     };
-    Ok(ForceCurve { index: 0, segments, meta })
+    Ok(ForceCurve {
+        index: 0,
+        segments,
+        meta,
+    })
 }

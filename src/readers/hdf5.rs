@@ -7,5 +7,9 @@ use std::path::Path;
 
 /// Refuse an HDF5 file with the way around.
 pub(crate) fn read(_bytes: &[u8], path: &Path, _opts: &ReadOptions) -> Result<ForceFile> {
-    Err(Error::data_file(path, 0, "HDF5 export (.h5) is not read: export the file from afmformats as .tab"))
+    Err(Error::data_file(
+        path,
+        0,
+        "HDF5 export (.h5) is not read: export the file from afmformats as .tab",
+    ))
 }

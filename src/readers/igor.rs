@@ -27,7 +27,9 @@ pub(crate) fn version(bytes: &[u8]) -> Option<(i16, bool)> {
     let b = bytes.get(..2)?;
     let le = i16::from_le_bytes([b[0], b[1]]);
     let be = i16::from_be_bytes([b[0], b[1]]);
-    [(le, true), (be, false)].into_iter().find(|(v, _)| matches!(v, 1 | 2 | 3 | 5))
+    [(le, true), (be, false)]
+        .into_iter()
+        .find(|(v, _)| matches!(v, 1 | 2 | 3 | 5))
 }
 
 struct Reader<'a> {
@@ -38,16 +40,28 @@ struct Reader<'a> {
 impl Reader<'_> {
     fn i16(&self, at: usize) -> i16 {
         let x = [self.b[at], self.b[at + 1]];
-        if self.le { i16::from_le_bytes(x) } else { i16::from_be_bytes(x) }
+        if self.le {
+            i16::from_le_bytes(x)
+        } else {
+            i16::from_be_bytes(x)
+        }
     }
     fn i32(&self, at: usize) -> i32 {
         let x = [self.b[at], self.b[at + 1], self.b[at + 2], self.b[at + 3]];
-        if self.le { i32::from_le_bytes(x) } else { i32::from_be_bytes(x) }
+        if self.le {
+            i32::from_le_bytes(x)
+        } else {
+            i32::from_be_bytes(x)
+        }
     }
     fn f64(&self, at: usize) -> f64 {
         let mut x = [0u8; 8];
         x.copy_from_slice(&self.b[at..at + 8]);
-        if self.le { f64::from_le_bytes(x) } else { f64::from_be_bytes(x) }
+        if self.le {
+            f64::from_le_bytes(x)
+        } else {
+            f64::from_be_bytes(x)
+        }
     }
 }
 
@@ -58,7 +72,12 @@ fn cstr(b: &[u8]) -> String {
 }
 
 /// Read an Igor binary wave of `version` (only 5 is read).
-pub(crate) fn read(bytes: &[u8], (version, le): (i16, bool), path: &Path, opts: &ReadOptions) -> Result<ForceFile> {
+pub(crate) fn read(
+    bytes: &[u8],
+    (version, le): (i16, bool),
+    path: &Path,
+    opts: &ReadOptions,
+) -> Result<ForceFile> {
     let err = |msg: String| Error::data_file(path, 0, msg);
     if version != 5 {
         return Err(err(format!(
@@ -88,11 +107,13 @@ pub(crate) fn read(bytes: &[u8], (version, le): (i16, bool), path: &Path, opts: 
         dim_labels[d] = size(36 + 4 * d, "dimension labels")?;
     }
     let w = BIN_HEADER;
-    let npnts = u64::try_from(r.i32(w + 12)).map_err(|_| err("negative point count in the Igor header".into()))?;
+    let npnts =
+        u64::try_from(r.i32(w + 12)).map_err(|_| err("negative point count in the Igor header".into()))?;
     let ty = r.i16(w + 16);
     let mut dims = [0u64; 4];
     for (d, dim) in dims.iter_mut().enumerate() {
-        *dim = u64::try_from(r.i32(w + 68 + 4 * d)).map_err(|_| err("negative dimension in the Igor header".into()))?;
+        *dim = u64::try_from(r.i32(w + 68 + 4 * d))
+            .map_err(|_| err("negative dimension in the Igor header".into()))?;
     }
     let sfa0 = r.f64(w + 84);
     let sfb0 = r.f64(w + 116);
@@ -100,36 +121,74 @@ pub(crate) fn read(bytes: &[u8], (version, le): (i16, bool), path: &Path, opts: 
     let (elsize, conv): (u64, fn(&[u8], bool) -> f64) = match ty {
         2 => (4, |b, le| {
             let x = [b[0], b[1], b[2], b[3]];
-            f64::from(if le { f32::from_le_bytes(x) } else { f32::from_be_bytes(x) })
+            f64::from(if le {
+                f32::from_le_bytes(x)
+            } else {
+                f32::from_be_bytes(x)
+            })
         }),
         4 => (8, |b, le| {
             let mut x = [0u8; 8];
             x.copy_from_slice(b);
-            if le { f64::from_le_bytes(x) } else { f64::from_be_bytes(x) }
+            if le {
+                f64::from_le_bytes(x)
+            } else {
+                f64::from_be_bytes(x)
+            }
         }),
         0x08 => (1, |b, _| f64::from(b[0] as i8)),
         0x48 => (1, |b, _| f64::from(b[0])),
-        0x10 => (2, |b, le| f64::from(if le { i16::from_le_bytes([b[0], b[1]]) } else { i16::from_be_bytes([b[0], b[1]]) })),
-        0x50 => (2, |b, le| f64::from(if le { u16::from_le_bytes([b[0], b[1]]) } else { u16::from_be_bytes([b[0], b[1]]) })),
+        0x10 => (2, |b, le| {
+            f64::from(if le {
+                i16::from_le_bytes([b[0], b[1]])
+            } else {
+                i16::from_be_bytes([b[0], b[1]])
+            })
+        }),
+        0x50 => (2, |b, le| {
+            f64::from(if le {
+                u16::from_le_bytes([b[0], b[1]])
+            } else {
+                u16::from_be_bytes([b[0], b[1]])
+            })
+        }),
         0x20 => (4, |b, le| {
             let x = [b[0], b[1], b[2], b[3]];
-            f64::from(if le { i32::from_le_bytes(x) } else { i32::from_be_bytes(x) })
+            f64::from(if le {
+                i32::from_le_bytes(x)
+            } else {
+                i32::from_be_bytes(x)
+            })
         }),
         0x60 => (4, |b, le| {
             let x = [b[0], b[1], b[2], b[3]];
-            f64::from(if le { u32::from_le_bytes(x) } else { u32::from_be_bytes(x) })
+            f64::from(if le {
+                u32::from_le_bytes(x)
+            } else {
+                u32::from_be_bytes(x)
+            })
         }),
-        other => return Err(err(format!("Igor number type {other:#x} is not read (complex or text wave?)"))),
+        other => {
+            return Err(err(format!(
+                "Igor number type {other:#x} is not read (complex or text wave?)"
+            )));
+        }
     };
     let rows = dims[0];
     let cols = dims[1].max(1);
     if dims[2] > 1 || dims[3] > 1 {
-        return Err(err("Igor wave with more than two dimensions: not a force curve".into()));
+        return Err(err(
+            "Igor wave with more than two dimensions: not a force curve".into()
+        ));
     }
     // Sizes checked against the file before anything is allocated from them.
-    let data_bytes = npnts.checked_mul(elsize).ok_or_else(|| err("Igor point count overflows".into()))?;
+    let data_bytes = npnts
+        .checked_mul(elsize)
+        .ok_or_else(|| err("Igor point count overflows".into()))?;
     if rows.checked_mul(cols) != Some(npnts) {
-        return Err(err(format!("Igor header: {npnts} points but dimensions {rows} × {cols}")));
+        return Err(err(format!(
+            "Igor header: {npnts} points but dimensions {rows} × {cols}"
+        )));
     }
     if wfm_size != WAVE_HEADER as u64 + data_bytes {
         return Err(err(format!(
@@ -139,9 +198,15 @@ pub(crate) fn read(bytes: &[u8], (version, le): (i16, bool), path: &Path, opts: 
     }
     let mut at = (BIN_HEADER + WAVE_HEADER) as u64;
     let mut take = |n: u64, what: &str| -> Result<&[u8]> {
-        let end = at.checked_add(n).filter(|&e| e <= bytes.len() as u64).ok_or_else(|| {
-            err(format!("truncated Igor binary wave: the {what} ends past the file's {} bytes", bytes.len()))
-        })?;
+        let end = at
+            .checked_add(n)
+            .filter(|&e| e <= bytes.len() as u64)
+            .ok_or_else(|| {
+                err(format!(
+                    "truncated Igor binary wave: the {what} ends past the file's {} bytes",
+                    bytes.len()
+                ))
+            })?;
         let s = &bytes[at as usize..end as usize];
         at = end;
         Ok(s)
@@ -165,23 +230,38 @@ pub(crate) fn read(bytes: &[u8], (version, le): (i16, bool), path: &Path, opts: 
         .filter_map(|line| line.split_once(':'))
         .map(|(k, v)| (k, v.trim()))
         .collect();
-    let note_num = |k: &str| notes.get(k).and_then(|v| super::text::float(v)).filter(|v| v.is_finite());
+    let note_num = |k: &str| {
+        notes
+            .get(k)
+            .and_then(|v| super::text::float(v))
+            .filter(|v| v.is_finite())
+    };
     let k_file = note_num("SpringConstant")
         .ok_or_else(|| err("the note has no SpringConstant (needed for the force)".into()))?;
     let s_file = note_num("InvOLS");
     let column = |j: usize| -> Vec<f64> {
         let e = elsize as usize;
         let n = rows as usize;
-        data[j * n * e..(j + 1) * n * e].chunks_exact(e).map(|b| conv(b, le)).collect()
+        data[j * n * e..(j + 1) * n * e]
+            .chunks_exact(e)
+            .map(|b| conv(b, le))
+            .collect()
     };
     if labels.len() < cols as usize {
         labels.resize(cols as usize, String::new());
     }
-    let find = |names: &[&str]| names.iter().find_map(|n| labels.iter().take(cols as usize).position(|l| l == n));
+    let find = |names: &[&str]| {
+        names
+            .iter()
+            .find_map(|n| labels.iter().take(cols as usize).position(|l| l == n))
+    };
     let piezo = find(&["Raw", "Height"]).map(|j| column(j).into_iter().map(|v| -v).collect::<Vec<_>>());
     let measured = find(&["ZSnsr", "ZSensor"]).map(|j| column(j).into_iter().map(|v| -v).collect::<Vec<_>>());
-    let defl_col = find(&["Defl", "Deflection"])
-        .ok_or_else(|| err(format!("no Defl or Deflection column among the labels {labels:?}")))?;
+    let defl_col = find(&["Defl", "Deflection"]).ok_or_else(|| {
+        err(format!(
+            "no Defl or Deflection column among the labels {labels:?}"
+        ))
+    })?;
     let k = opts.spring_constant.unwrap_or(k_file);
     let defl_scale = match (opts.sensitivity, s_file) {
         (Some(s), Some(sf)) if sf != 0.0 => s / sf,
@@ -191,8 +271,20 @@ pub(crate) fn read(bytes: &[u8], (version, le): (i16, bool), path: &Path, opts: 
     let time = (dim0_unit == "s" && sfa0.is_finite() && sfb0.is_finite())
         .then(|| (0..rows).map(|i| sfb0 + i as f64 * sfa0).collect::<Vec<_>>());
     let n = force.len();
-    let whole = Segment { kind: None, force, height_measured: measured, height_piezo: piezo, time, tip_position: None };
-    let segments = split(whole, notes.get("Indexes").copied(), notes.get("Direction").copied(), n);
+    let whole = Segment {
+        kind: None,
+        force,
+        height_measured: measured,
+        height_piezo: piezo,
+        time,
+        tip_position: None,
+    };
+    let segments = split(
+        whole,
+        notes.get("Indexes").copied(),
+        notes.get("Direction").copied(),
+        n,
+    );
     let setpoint = (notes.get("TriggerChannel").copied() == Some("Force"))
         .then(|| note_num("TriggerPoint"))
         .flatten();
@@ -210,7 +302,11 @@ pub(crate) fn read(bytes: &[u8], (version, le): (i16, bool), path: &Path, opts: 
     };
     let file = ForceFile {
         format: "Asylum Research Igor binary wave (.ibw)".into(),
-        curves: vec![ForceCurve { index: 0, segments, meta }],
+        curves: vec![ForceCurve {
+            index: 0,
+            segments,
+            meta,
+        }],
     };
     super::check_lengths(&file, path)?;
     Ok(file)
@@ -221,9 +317,14 @@ pub(crate) fn read(bytes: &[u8], (version, le): (i16, bool), path: &Path, opts: 
 /// the curve.
 fn split(whole: Segment, indexes: Option<&str>, direction: Option<&str>, n: usize) -> Vec<Segment> {
     let parse = |s: Option<&str>| -> Option<Vec<f64>> {
-        s?.split(',').filter(|t| !t.trim().is_empty()).map(|t| super::text::float(t)).collect()
+        s?.split(',')
+            .filter(|t| !t.trim().is_empty())
+            .map(|t| super::text::float(t))
+            .collect()
     };
-    let (Some(idx), Some(dir)) = (parse(indexes), parse(direction)) else { return vec![whole] };
+    let (Some(idx), Some(dir)) = (parse(indexes), parse(direction)) else {
+        return vec![whole];
+    };
     let valid = idx.len() >= 2
         && idx.len() == dir.len()
         && idx[0] == 0.0

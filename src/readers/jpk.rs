@@ -23,22 +23,34 @@ type Props = HashMap<String, String>;
 
 /// Channels read per column: candidate channel names, calibration slot, unit.
 const FORCE: (&[&str], &str, &str) = (&["vDeflection"], "force", "N");
-const MEASURED: (&[&str], &str, &str) =
-    (&["strainGaugeHeight", "capacitiveSensorHeight", "measuredHeight"], "nominal", "m");
+const MEASURED: (&[&str], &str, &str) = (
+    &["strainGaugeHeight", "capacitiveSensorHeight", "measuredHeight"],
+    "nominal",
+    "m",
+);
 const PIEZO: (&[&str], &str, &str) = (&["height", "head-height"], "calibrated", "m");
 
 const SENSITIVITY_KEY: &str = "channel.vDeflection.conversion-set.conversion.distance.scaling.multiplier";
 const SPRING_KEY: &str = "channel.vDeflection.conversion-set.conversion.force.scaling.multiplier";
-const HEADS: [&str; 4] = ["force-scan-map", "force-scan-series", "quantitative-imaging-map", "quantitative-imaging-series"];
+const HEADS: [&str; 4] = [
+    "force-scan-map",
+    "force-scan-series",
+    "quantitative-imaging-map",
+    "quantitative-imaging-series",
+];
 
 /// A property as a number, as afmformats reads it (NaN counts as absent).
 fn num(p: &Props, key: &str) -> Option<f64> {
-    p.get(key).and_then(|v| super::text::float(v)).filter(|v| !v.is_nan())
+    p.get(key)
+        .and_then(|v| super::text::float(v))
+        .filter(|v| !v.is_nan())
 }
 
 /// A property as text (a NaN-valued one counts as absent).
 fn text<'a>(p: &'a Props, key: &str) -> Option<&'a str> {
-    p.get(key).map(String::as_str).filter(|v| !super::text::float(v).is_some_and(f64::is_nan))
+    p.get(key)
+        .map(String::as_str)
+        .filter(|v| !super::text::float(v).is_some_and(f64::is_nan))
 }
 
 /// The first of the map/series/QI variants of `<head>.<rest>` that is a number.
@@ -63,20 +75,28 @@ fn layout(names: &[String]) -> Layout {
                 None => continue,
             }
         } else {
-            let Some(after) = n.strip_prefix("index/") else { continue };
-            let Some((num, rest)) = after.split_once('/') else { continue };
+            let Some(after) = n.strip_prefix("index/") else {
+                continue;
+            };
+            let Some((num, rest)) = after.split_once('/') else {
+                continue;
+            };
             let Ok(index) = num.parse::<u64>() else { continue };
             if !num.bytes().all(|b| b.is_ascii_digit()) {
                 continue;
             }
             let prefix = format!("index/{num}/");
-            found.entry(index).or_insert_with(|| (prefix.clone(), BTreeMap::new()));
+            found
+                .entry(index)
+                .or_insert_with(|| (prefix.clone(), BTreeMap::new()));
             match rest.strip_prefix("segments/") {
                 Some(rest) => (index, prefix, rest),
                 None => continue,
             }
         };
-        let Some((seg, _)) = rest.split_once('/') else { continue };
+        let Some((seg, _)) = rest.split_once('/') else {
+            continue;
+        };
         if seg.is_empty() || !seg.bytes().all(|b| b.is_ascii_digit()) {
             continue;
         }
@@ -110,7 +130,9 @@ fn group_shared(shared: Props) -> Shared {
     for (k, v) in shared {
         let mut it = k.splitn(3, '.');
         if let (Some(a), Some(b), Some(rest)) = (it.next(), it.next(), it.next()) {
-            out.entry((a.to_owned(), b.to_owned())).or_default().push((rest.to_owned(), v));
+            out.entry((a.to_owned(), b.to_owned()))
+                .or_default()
+                .push((rest.to_owned(), v));
         }
     }
     out
@@ -120,16 +142,32 @@ fn group_shared(shared: Props) -> Shared {
 /// shared header's entries, the file header on top, and the user's spring constant and
 /// sensitivity written into the deflection's conversions (afmformats'
 /// `_get_index_segment_properties`).
-fn segment_props(curve: &Props, segment: Props, shared: &Shared, general: &Props, opts: &ReadOptions) -> Props {
+fn segment_props(
+    curve: &Props,
+    segment: Props,
+    shared: &Shared,
+    general: &Props,
+    opts: &ReadOptions,
+) -> Props {
     let mut p = curve.clone();
     p.extend(segment);
     let mut refs: Vec<String> = p.keys().filter(|k| k.contains(".*")).cloned().collect();
     refs.sort();
     for key in refs {
-        let Some(pindex) = p.get(&key).cloned() else { continue };
+        let Some(pindex) = p.get(&key).cloned() else {
+            continue;
+        };
         let parts: Vec<&str> = key.split('.').collect();
-        let mediator = if parts.len() >= 2 { parts[parts.len() - 2] } else { "" };
-        let head = if parts.len() >= 3 { parts[..parts.len() - 2].join(".") } else { parts[0].to_owned() };
+        let mediator = if parts.len() >= 2 {
+            parts[parts.len() - 2]
+        } else {
+            ""
+        };
+        let head = if parts.len() >= 3 {
+            parts[..parts.len() - 2].join(".")
+        } else {
+            parts[0].to_owned()
+        };
         if let Some(list) = shared.get(&(mediator.to_owned(), pindex)) {
             for (var, val) in list {
                 p.insert(format!("{head}.{var}"), val.clone());
@@ -182,7 +220,9 @@ pub(crate) fn read(zip: &mut Zip, path: &Path, opts: &ReadOptions) -> Result<For
         },
     };
     if layout.curves.is_empty() {
-        return Err(err("JPK archive without segments/ or index/N/segments/ entries".into()));
+        return Err(err(
+            "JPK archive without segments/ or index/N/segments/ entries".into()
+        ));
     }
     let mut curves = Vec::with_capacity(layout.curves.len());
     for (&index, (prefix, segments)) in &layout.curves {
@@ -219,12 +259,21 @@ pub(crate) fn read(zip: &mut Zip, path: &Path, opts: &ReadOptions) -> Result<For
                 ));
             }
             (None, _) => {
-                return Err(err("the file states no spring constant: give --spring-constant N/m".into()));
+                return Err(err(
+                    "the file states no spring constant: give --spring-constant N/m".into(),
+                ));
             }
-            (_, None) => return Err(err("the file states no sensitivity: give --sensitivity m/V".into())),
+            (_, None) => {
+                return Err(err(
+                    "the file states no sensitivity: give --sensitivity m/V".into()
+                ));
+            }
             _ => {}
         }
-        let durations: Vec<Option<f64>> = props.iter().map(|p| num(p, "force-segment-header.duration")).collect();
+        let durations: Vec<Option<f64>> = props
+            .iter()
+            .map(|p| num(p, "force-segment-header.duration"))
+            .collect();
         let mut out_segments = Vec::with_capacity(segments.len());
         let mut start = 0.0;
         for (s, (files, p)) in segments.iter().zip(&props).enumerate() {
@@ -259,12 +308,26 @@ pub(crate) fn read(zip: &mut Zip, path: &Path, opts: &ReadOptions) -> Result<For
                 Some("pause") => Some(SegmentKind::Pause),
                 _ => None,
             };
-            out_segments.push(Segment { kind, force, height_measured, height_piezo, time, tip_position: None });
+            out_segments.push(Segment {
+                kind,
+                force,
+                height_measured,
+                height_piezo,
+                time,
+                tip_position: None,
+            });
         }
         let meta = metadata(&props, &out_segments);
-        curves.push(ForceCurve { index: index as usize, segments: out_segments, meta });
+        curves.push(ForceCurve {
+            index: index as usize,
+            segments: out_segments,
+            meta,
+        });
     }
-    let file = ForceFile { format: format.into(), curves };
+    let file = ForceFile {
+        format: format.into(),
+        curves,
+    };
     super::check_lengths(&file, path)?;
     Ok(file)
 }
@@ -291,10 +354,15 @@ fn metadata(props: &[Props], segments: &[Segment]) -> CurveMeta {
         .iter()
         .find_map(|p| num(p, "force-segment-header.settings.segment-settings.setpoint"))
         .and_then(|v| Some(v * k? * sens?));
-    let approach = segments.iter().position(|s| s.kind == Some(SegmentKind::Approach)).unwrap_or(0);
+    let approach = segments
+        .iter()
+        .position(|s| s.kind == Some(SegmentKind::Approach))
+        .unwrap_or(0);
     let time_of_day = text(&props[approach], "force-segment-header.time-stamp").map(str::to_owned);
-    let instrument =
-        HEADS.iter().find_map(|h| text(first, &format!("{h}.description.instrument"))).map(str::to_owned);
+    let instrument = HEADS
+        .iter()
+        .find_map(|h| text(first, &format!("{h}.description.instrument")))
+        .map(str::to_owned);
     CurveMeta {
         spring_constant: k,
         sensitivity: sens,
@@ -346,7 +414,9 @@ fn channel(
         let stem = base.split('.').next().unwrap_or("");
         candidates.iter().find(|c| **c == stem).map(|c| (*c, f.clone()))
     });
-    let Some((name, file)) = found else { return Ok(None) };
+    let Some((name, file)) = found else {
+        return Ok(None);
+    };
     let err = |msg: String| Error::data_file(path, 0, format!("{what}: channel {name}: {msg}"));
     let bytes = zip.read(&file)?;
     let mut data = decode(&bytes, name, p).map_err(err)?;
@@ -368,7 +438,8 @@ fn channel(
         }
         let m = num(p, &format!("{key}.scaling.multiplier"))
             .ok_or_else(|| err(format!("no multiplier of conversion {cur}")))?;
-        let o = num(p, &format!("{key}.scaling.offset")).ok_or_else(|| err(format!("no offset of conversion {cur}")))?;
+        let o = num(p, &format!("{key}.scaling.offset"))
+            .ok_or_else(|| err(format!("no offset of conversion {cur}")))?;
         chain.push((m, o));
         cur = text(p, &format!("{key}.base-calibration-slot"))
             .ok_or_else(|| err(format!("no base-calibration-slot of conversion {cur}")))?
@@ -396,7 +467,10 @@ fn channel(
 /// Decode a channel's big-endian samples and apply its encoder scaling.
 fn decode(bytes: &[u8], name: &str, p: &Props) -> std::result::Result<Vec<f64>, String> {
     let first = |keys: [String; 2]| keys.iter().find_map(|k| text(p, k).map(str::to_owned));
-    let enc = first([format!("channel.{name}.data.encoder.type"), format!("channel.{name}.encoder.type")]);
+    let enc = first([
+        format!("channel.{name}.data.encoder.type"),
+        format!("channel.{name}.encoder.type"),
+    ]);
     let scaling = |what: &str| {
         [
             format!("channel.{name}.data.encoder.scaling.{what}"),
@@ -410,17 +484,24 @@ fn decode(bytes: &[u8], name: &str, p: &Props) -> std::result::Result<Vec<f64>, 
         Some("unsignedshort") => (2, |b| u16::from_be_bytes([b[0], b[1]]) as f64),
         Some("signedinteger") => (4, |b| i32::from_be_bytes([b[0], b[1], b[2], b[3]]) as f64),
         Some("unsignedinteger") => (4, |b| u32::from_be_bytes([b[0], b[1], b[2], b[3]]) as f64),
-        Some("signedlong") => (8, |b| i64::from_be_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]]) as f64),
+        Some("signedlong") => (8, |b| {
+            i64::from_be_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]]) as f64
+        }),
         Some(other) => return Err(format!("encoder type {other} is not read")),
         None => {
-            let ty = first([format!("channel.{name}.data.type"), format!("channel.{name}.type")]);
+            let ty = first([
+                format!("channel.{name}.data.type"),
+                format!("channel.{name}.type"),
+            ]);
             match ty.as_deref() {
                 Some("float" | "float-data") => (4, |b| f32::from_be_bytes([b[0], b[1], b[2], b[3]]) as f64),
-                Some("double" | "double-data") => {
-                    (8, |b| f64::from_be_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]]))
-                }
+                Some("double" | "double-data") => (8, |b| {
+                    f64::from_be_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]])
+                }),
                 Some("short" | "short-data") => (2, |b| i16::from_be_bytes([b[0], b[1]]) as f64),
-                Some("integer" | "integer-data") => (4, |b| i32::from_be_bytes([b[0], b[1], b[2], b[3]]) as f64),
+                Some("integer" | "integer-data") => {
+                    (4, |b| i32::from_be_bytes([b[0], b[1], b[2], b[3]]) as f64)
+                }
                 Some(other) => return Err(format!("data type {other} without encoder is not read")),
                 None => return Err("no encoder or data type in the header".into()),
             }
@@ -432,7 +513,10 @@ fn decode(bytes: &[u8], name: &str, p: &Props) -> std::result::Result<Vec<f64>, 
         _ => return Err("no encoder multiplier and offset in the header".into()),
     };
     if !bytes.len().is_multiple_of(size) {
-        return Err(format!("{} bytes, not a whole number of {size}-byte samples (truncated?)", bytes.len()));
+        return Err(format!(
+            "{} bytes, not a whole number of {size}-byte samples (truncated?)",
+            bytes.len()
+        ));
     }
     Ok(bytes.chunks_exact(size).map(|b| read(b) * mult + off).collect())
 }

@@ -11,7 +11,9 @@ use std::path::Path;
 
 /// One row of numbers with decimal commas, if `line` is one.
 fn row(line: &str) -> Option<Vec<f64>> {
-    line.split_whitespace().map(|t| super::text::float(&t.replace(',', "."))).collect()
+    line.split_whitespace()
+        .map(|t| super::text::float(&t.replace(',', ".")))
+        .collect()
 }
 
 /// True when the first non-empty line is three numbers (decimal commas allowed).
@@ -43,7 +45,11 @@ pub(crate) fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Forc
         match row(l) {
             Some(r) if r.len() == 3 => data.push([r[0], r[1], r[2]]),
             Some(r) => {
-                return Err(Error::data_file(path, i + 1, format!("{} columns, NT-MDT exports have 3", r.len())));
+                return Err(Error::data_file(
+                    path,
+                    i + 1,
+                    format!("{} columns, NT-MDT exports have 3", r.len()),
+                ));
             }
             None => return Err(Error::data_file(path, i + 1, "not a row of three numbers")),
         }
@@ -94,9 +100,17 @@ pub(crate) fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Forc
         appr[a0..].iter().rev().copied().collect(),
     );
     let retract = seg(SegmentKind::Retract, height[r0..].to_vec(), retr[r0..].to_vec());
-    let meta = CurveMeta { spring_constant: Some(k), sensitivity: Some(s), ..CurveMeta::default() };
+    let meta = CurveMeta {
+        spring_constant: Some(k),
+        sensitivity: Some(s),
+        ..CurveMeta::default()
+    };
     Ok(ForceFile {
         format: "NT-MDT Nova text export (.txt)".into(),
-        curves: vec![ForceCurve { index: 0, segments: vec![approach, retract], meta }],
+        curves: vec![ForceCurve {
+            index: 0,
+            segments: vec![approach, retract],
+            meta,
+        }],
     })
 }

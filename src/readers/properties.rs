@@ -61,7 +61,10 @@ fn split(line: &str) -> (String, String) {
             v += 1;
         }
     }
-    (unescape(&chars[..key_end]), unescape(&chars[v.min(chars.len())..]))
+    (
+        unescape(&chars[..key_end]),
+        unescape(&chars[v.min(chars.len())..]),
+    )
 }
 
 fn unescape(chars: &[char]) -> String {
@@ -83,7 +86,11 @@ fn unescape(chars: &[char]) -> String {
             'f' => out.push('\x0c'),
             'u' => {
                 let hex: String = chars[i..chars.len().min(i + 4)].iter().collect();
-                match u32::from_str_radix(&hex, 16).ok().filter(|_| hex.len() == 4).and_then(char::from_u32) {
+                match u32::from_str_radix(&hex, 16)
+                    .ok()
+                    .filter(|_| hex.len() == 4)
+                    .and_then(char::from_u32)
+                {
                     Some(u) => {
                         out.push(u);
                         i += 4;

@@ -31,7 +31,13 @@ pub(crate) fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Forc
         serde_json::Map::new()
     } else {
         serde_json::from_str(&dump.join("\n")).map_err(|e| {
-            err(end.unwrap_or(0), format!("metadata block is not a JSON object: {}", super::archive::one_line(&e)))
+            err(
+                end.unwrap_or(0),
+                format!(
+                    "metadata block is not a JSON object: {}",
+                    super::archive::one_line(&e)
+                ),
+            )
         })?
     };
     let mut header = None;
@@ -87,7 +93,10 @@ pub(crate) fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Forc
         let mut seg = 0u8;
         for (j, item) in t.split('\t').enumerate() {
             let Some(&kind) = kinds.get(j) else {
-                return Err(err(i + 1, format!("more values than the {} columns", columns.len())));
+                return Err(err(
+                    i + 1,
+                    format!("more values than the {} columns", columns.len()),
+                ));
             };
             let item = item.trim();
             let slot = match kind {
@@ -101,7 +110,9 @@ pub(crate) fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Forc
                     seg = match item {
                         "False" => 0,
                         "True" => 1,
-                        s => s.parse().map_err(|_| err(i + 1, format!("segment `{s}` is not 0..255")))?,
+                        s => s
+                            .parse()
+                            .map_err(|_| err(i + 1, format!("segment `{s}` is not 0..255")))?,
                     };
                     continue;
                 }
@@ -169,6 +180,10 @@ pub(crate) fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Forc
     };
     Ok(ForceFile {
         format: "afmformats tab-separated export (.tab)".into(),
-        curves: vec![ForceCurve { index: 0, segments, meta }],
+        curves: vec![ForceCurve {
+            index: 0,
+            segments,
+            meta,
+        }],
     })
 }

@@ -14,12 +14,20 @@ use std::path::Path;
 /// Read a single AFM Workshop CSV.
 pub(crate) fn read_csv(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<ForceFile> {
     let curve = parse(bytes, path, "", opts)?;
-    Ok(ForceFile { format: "AFM Workshop force curve (.csv)".into(), curves: vec![curve] })
+    Ok(ForceFile {
+        format: "AFM Workshop force curve (.csv)".into(),
+        curves: vec![curve],
+    })
 }
 
 /// Read a zip of AFM Workshop CSVs (a force map), one curve per entry in name order.
 pub(crate) fn read_zip(zip: &mut Zip, path: &Path, opts: &ReadOptions) -> Result<ForceFile> {
-    let names: Vec<String> = zip.names().iter().filter(|n| !n.ends_with('/')).cloned().collect();
+    let names: Vec<String> = zip
+        .names()
+        .iter()
+        .filter(|n| !n.ends_with('/'))
+        .cloned()
+        .collect();
     let mut curves = Vec::with_capacity(names.len());
     for (i, name) in names.iter().enumerate() {
         let bytes = zip.read(name)?;
@@ -31,7 +39,10 @@ pub(crate) fn read_zip(zip: &mut Zip, path: &Path, opts: &ReadOptions) -> Result
     // values, centre = their mean, size = their range × (1 + 1/(n − 1)) (pixel borders included).
     let mut axes = Vec::new();
     for axis in 0..2 {
-        let mut vals: Vec<f64> = curves.iter().filter_map(|c| c.meta.position.map(|p| p[axis])).collect();
+        let mut vals: Vec<f64> = curves
+            .iter()
+            .filter_map(|c| c.meta.position.map(|p| p[axis]))
+            .collect();
         if vals.is_empty() || vals.len() != curves.len() {
             break;
         }
@@ -53,7 +64,10 @@ pub(crate) fn read_zip(zip: &mut Zip, path: &Path, opts: &ReadOptions) -> Result
             }
         }
     }
-    Ok(ForceFile { format: "AFM Workshop force map (.zip of .csv)".into(), curves })
+    Ok(ForceFile {
+        format: "AFM Workshop force map (.zip of .csv)".into(),
+        curves,
+    })
 }
 
 fn parse(bytes: &[u8], path: &Path, entry: &str, opts: &ReadOptions) -> Result<ForceCurve> {
@@ -61,13 +75,20 @@ fn parse(bytes: &[u8], path: &Path, entry: &str, opts: &ReadOptions) -> Result<F
     let lines = super::text::lines(&text);
     let err = |line: usize, msg: String| Error::data_file(path, line, format!("{entry}{msg}"));
     let mut fd = false;
-    let mut meta = CurveMeta { instrument: Some("AFM Workshop".into()), ..CurveMeta::default() };
+    let mut meta = CurveMeta {
+        instrument: Some("AFM Workshop".into()),
+        ..CurveMeta::default()
+    };
     let (mut x, mut y) = (None, None);
     let (mut date, mut time) = (None, None);
     let mut k_file = None;
     let mut s_file = None;
     let mut header = None;
-    let value = |l: &str| l.split_once(':').map(|(_, v)| v.trim().to_owned()).unwrap_or_default();
+    let value = |l: &str| {
+        l.split_once(':')
+            .map(|(_, v)| v.trim().to_owned())
+            .unwrap_or_default()
+    };
     for (i, l) in lines.iter().enumerate() {
         if l.contains("Force-Distance Curve") {
             fd = true;
@@ -80,12 +101,14 @@ fn parse(bytes: &[u8], path: &Path, entry: &str, opts: &ReadOptions) -> Result<F
         } else if l.starts_with("Y, um:") {
             y = super::text::float(&value(l)).map(|v| v * 1e-6);
         } else if l.starts_with("Light Lever Gain, mV/nm:") {
-            let v = super::text::float(&value(l)).ok_or_else(|| err(i + 1, "light lever gain is not a number".into()))?;
+            let v = super::text::float(&value(l))
+                .ok_or_else(|| err(i + 1, "light lever gain is not a number".into()))?;
             if v != 1.0 {
                 s_file = Some(1.0 / (v * 1e-3 / 1e-9));
             }
         } else if l.starts_with("Force Constant, nN/nm:") {
-            let v = super::text::float(&value(l)).ok_or_else(|| err(i + 1, "force constant is not a number".into()))?;
+            let v = super::text::float(&value(l))
+                .ok_or_else(|| err(i + 1, "force constant is not a number".into()))?;
             if v != 1.0 {
                 k_file = Some(v);
             }
@@ -98,7 +121,10 @@ fn parse(bytes: &[u8], path: &Path, entry: &str, opts: &ReadOptions) -> Result<F
         return Err(err(0, "no column header line (Extend Z-Sense(nm),...)".into()));
     };
     if !fd {
-        return Err(err(1, "no \"Force-Distance Curve\" line: not an AFM Workshop force curve".into()));
+        return Err(err(
+            1,
+            "no \"Force-Distance Curve\" line: not an AFM Workshop force curve".into(),
+        ));
     }
     let columns: Vec<&str> = lines[h].trim().split(',').collect();
     let mut rows: Vec<Vec<f64>> = Vec::new();
@@ -110,7 +136,10 @@ fn parse(bytes: &[u8], path: &Path, entry: &str, opts: &ReadOptions) -> Result<F
         match row {
             Some(r) if r.len() == columns.len() => rows.push(r),
             Some(r) => {
-                return Err(err(i + 1, format!("{} values, the header has {} columns", r.len(), columns.len())));
+                return Err(err(
+                    i + 1,
+                    format!("{} values, the header has {} columns", r.len(), columns.len()),
+                ));
             }
             None => return Err(err(i + 1, "not a row of comma-separated numbers".into())),
         }
@@ -123,7 +152,9 @@ fn parse(bytes: &[u8], path: &Path, entry: &str, opts: &ReadOptions) -> Result<F
         let col = || rows.iter().map(|r| r[j]);
         let seg = if c.starts_with("Extend") { 0 } else { 1 };
         match *c {
-            "Extend Z-Sense(nm)" | "Retract Z-Sense(nm)" => height[seg] = Some(col().map(|v| -v * 1e-9).collect()),
+            "Extend Z-Sense(nm)" | "Retract Z-Sense(nm)" => {
+                height[seg] = Some(col().map(|v| -v * 1e-9).collect())
+            }
             "Extend Force(nN)" | "Retract Force(nN)" => force[seg] = Some(col().map(|v| v * 1e-9).collect()),
             "Extend T-B(V)" | "Retract T-B(V)" => {
                 let (k, s) = match (k, s) {
@@ -159,7 +190,10 @@ fn parse(bytes: &[u8], path: &Path, entry: &str, opts: &ReadOptions) -> Result<F
         }
     }
     let [Some(f0), Some(f1)] = force else {
-        return Err(err(h + 1, "no Extend and Retract force columns (T-B(V) or Force(nN))".into()));
+        return Err(err(
+            h + 1,
+            "no Extend and Retract force columns (T-B(V) or Force(nN))".into(),
+        ));
     };
     let [h0, h1] = height;
     let (h0, h1) = match (h0, h1) {
@@ -183,7 +217,10 @@ fn parse(bytes: &[u8], path: &Path, entry: &str, opts: &ReadOptions) -> Result<F
     };
     Ok(ForceCurve {
         index: 0,
-        segments: vec![seg(SegmentKind::Approach, f0, h0), seg(SegmentKind::Retract, f1, h1)],
+        segments: vec![
+            seg(SegmentKind::Approach, f0, h0),
+            seg(SegmentKind::Retract, f1, h1),
+        ],
         meta,
     })
 }

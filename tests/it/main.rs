@@ -16,6 +16,7 @@ mod figures;
 mod fuzz;
 mod hardening;
 mod layering;
+mod readers;
 mod reference_ch1;
 mod registry;
 mod reproduction;
