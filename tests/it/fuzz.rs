@@ -178,10 +178,8 @@ fn afm_seeds() -> Vec<(&'static str, Vec<u8>)> {
         ),
         (
             "afm NT-MDT .txt",
-            head(
-                read("fmt-ntmdt-txt-fd_2015_01_17_gel4-0,1_mQ_adh_6B_Curve_DFL_Height_51.txt"),
-                80,
-            ),
+            // Whole: the constant padding that the reader crops spans its first 180 rows.
+            read("fmt-ntmdt-txt-fd_2015_01_17_gel4-0,1_mQ_adh_6B_Curve_DFL_Height_51.txt"),
         ),
         ("afm Chiaro .txt", head(chiaro, 90)),
         ("afm .tab", head(read("fmt-tab-fd_version_0.13.3.tab"), 60)),
@@ -319,10 +317,17 @@ fn parsers_survive_a_million_mutated_inputs() {
 
 #[test]
 fn force_distance_seeds_read_unmutated() {
-    let opts = adhesion::readers::ReadOptions { spring_constant: Some(0.1), sensitivity: Some(5e-8) };
+    let opts = adhesion::readers::ReadOptions {
+        spring_constant: Some(0.1),
+        sensitivity: Some(5e-8),
+    };
     for (kind, seed) in afm_seeds() {
         let format = kind.trim_start_matches("afm ");
-        let bytes = if format.ends_with(" entries") { rezip(&seed) } else { seed };
+        let bytes = if format.ends_with(" entries") {
+            rezip(&seed)
+        } else {
+            seed
+        };
         let name = match format.split(' ').next().unwrap() {
             "Workshop" | "NT-MDT" | "Chiaro" => format!("input{}", &format[format.rfind('.').unwrap()..]),
             ext => format!("input{ext}"),
