@@ -77,7 +77,7 @@ fn parse(bytes: &[u8], path: &Path, entry: &str, opts: &ReadOptions) -> Result<F
     let mut notes: HashMap<String, String> = HashMap::new();
     for l in &lines[..h] {
         let parts: Vec<&str> = l.split('\t').collect();
-        if parts.len() % 2 == 0 {
+        if parts.len().is_multiple_of(2) {
             for p in parts.chunks(2) {
                 notes.insert(p[0].to_owned(), p[1].trim().to_owned());
             }

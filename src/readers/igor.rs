@@ -22,6 +22,9 @@ use std::path::Path;
 const BIN_HEADER: usize = 64;
 const WAVE_HEADER: usize = 320;
 
+/// Decoder of one sample from its bytes and byte order (true: little-endian).
+type Decode = fn(&[u8], bool) -> f64;
+
 /// The version of an Igor binary wave and whether it is little-endian, if `bytes` starts like one.
 pub(crate) fn version(bytes: &[u8]) -> Option<(i16, bool)> {
     let b = bytes.get(..2)?;
@@ -118,7 +121,7 @@ pub(crate) fn read(
     let sfa0 = r.f64(w + 84);
     let sfb0 = r.f64(w + 116);
     let dim0_unit = cstr(&bytes[w + 152..w + 156]);
-    let (elsize, conv): (u64, fn(&[u8], bool) -> f64) = match ty {
+    let (elsize, conv): (u64, Decode) = match ty {
         2 => (4, |b, le| {
             let x = [b[0], b[1], b[2], b[3]];
             f64::from(if le {
@@ -319,7 +322,7 @@ fn split(whole: Segment, indexes: Option<&str>, direction: Option<&str>, n: usiz
     let parse = |s: Option<&str>| -> Option<Vec<f64>> {
         s?.split(',')
             .filter(|t| !t.trim().is_empty())
-            .map(|t| super::text::float(t))
+            .map(super::text::float)
             .collect()
     };
     let (Some(idx), Some(dir)) = (parse(indexes), parse(direction)) else {
