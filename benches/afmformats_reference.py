@@ -40,6 +40,7 @@ CASES = [
     ("fmt-afm-workshop-fd_single_2021-01-15.csv", {"spring constant": 20, "sensitivity": 0.01e-6}),
     ("fmt-afm-workshop-fd_single_2021-10-22_14.16.csv", {}),
     ("fmt-chiaro-txt_AEBP1_Indentation_002.zip", {}),
+    ("fmt-hdf5-fd_version_0.13.3.h5", {}),
     ("fmt-igor-fd_SiN_FD_plot.ibw", {}),
     ("fmt-igor-fd_U3_3_p10004.ibw", {}),
     ("fmt-jpk-cc_pr14-brain-2021.06.30.jpk-force", {}),

@@ -25,7 +25,7 @@
 //! | AFM Workshop `.csv`, and a `.zip` of them (a map) | `workshop` | one per CSV |
 //! | afmformats tab-separated export `.tab` | `tab` | one |
 //! | Optics11 Chiaro text export `.txt`, and a `.zip` of them | `chiaro` | one per text file |
-//! | afmformats HDF5 export `.h5` | `hdf5` | refused, with a hint |
+//! | afmformats HDF5 export `.h5` | `hdf5` | one per group |
 //!
 //! Values the file lacks or that the user overrides come from [`ReadOptions`]: how each format
 //! uses them is in [`ReadOptions`]' documentation.
@@ -163,7 +163,7 @@ pub struct ForceFile {
 ///   the values.
 /// - NT-MDT: the file has no metadata, both options are required (the sensitivity in [m/A], as
 ///   the deflection is exported in nA).
-/// - afmformats `.tab`, Chiaro: the force is stored in N; an override rescales it by
+/// - afmformats `.tab` and `.h5`, Chiaro: the force is stored in N; an override rescales it by
 ///   k_new/k_file (resp. s_new/s_file) where the file states k (resp. s), otherwise only the
 ///   metadata take the value.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -337,4 +337,48 @@ fn rescale_stored_force(
         }
     }
     (opts.spring_constant.or(k_file), opts.sensitivity.or(s_file))
+}
+
+/// Segments of a curve whose samples carry afmformats' segment numbers (0 approach, 1 retract,
+/// ...): the samples of each number in order, the numbers in increasing order. `None` when a
+/// channel's length differs from the force's.
+fn split_by_segment(seg: &[u8], force: &[f64], channels: [&Option<Vec<f64>>; 4]) -> Option<Vec<Segment>> {
+    if seg.len() != force.len()
+        || channels
+            .iter()
+            .any(|c| c.as_ref().is_some_and(|c| c.len() != force.len()))
+    {
+        return None;
+    }
+    let mut ids: Vec<u8> = seg.to_vec();
+    ids.sort_unstable();
+    ids.dedup();
+    let pick = |c: &Option<Vec<f64>>, id: u8| {
+        c.as_ref().map(|c| {
+            c.iter()
+                .zip(seg)
+                .filter(|(_, s)| **s == id)
+                .map(|(v, _)| *v)
+                .collect()
+        })
+    };
+    let [measured, piezo, time, tip] = channels;
+    Some(
+        ids.iter()
+            .enumerate()
+            .map(|(i, &id)| Segment {
+                kind: kind_by_position(i, ids.len()),
+                force: force
+                    .iter()
+                    .zip(seg)
+                    .filter(|(_, s)| **s == id)
+                    .map(|(v, _)| *v)
+                    .collect(),
+                height_measured: pick(measured, id),
+                height_piezo: pick(piezo, id),
+                time: pick(time, id),
+                tip_position: pick(tip, id),
+            })
+            .collect(),
+    )
 }

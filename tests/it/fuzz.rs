@@ -1,7 +1,7 @@
 //! Seeded mutation fuzzing of the input parsers: force-curve CSV, height-map CSV, .gsf,
 //! peeling-profile CSV, presets, and the instrument force-distance readers (JPK archives, also
 //! re-zipped from mutated entries so that mutations reach the headers and channels past the zip's
-//! checksums; Asylum .ibw; AFM Workshop CSV and zip; NT-MDT, Chiaro, afmformats .tab text).
+//! checksums; Asylum .ibw; afmformats .h5; AFM Workshop CSV and zip; NT-MDT, Chiaro, afmformats .tab text).
 //! Each parser gets valid seeds mutated (bytes flipped,
 //! inserted, deleted, duplicated; numbers such as 1e308, -0, nan spliced in) and must return
 //! `Ok` or `Err`, never panic. A short run is in CI; `ADHESION_FUZZ_ITERATIONS` sets the count
@@ -183,6 +183,7 @@ fn afm_seeds() -> Vec<(&'static str, Vec<u8>)> {
         ),
         ("afm Chiaro .txt", head(chiaro, 90)),
         ("afm .tab", head(read("fmt-tab-fd_version_0.13.3.tab"), 60)),
+        ("afm .h5", read("fmt-hdf5-fd_version_0.13.3.h5")),
     ]
 }
 

@@ -411,19 +411,6 @@ fn missing_calibration_values_name_the_option() {
 }
 
 #[test]
-fn hdf5_exports_are_refused_with_the_way_around() {
-    let path = dir().join("fmt-hdf5-fd_version_0.13.3.h5");
-    let msg = one_line_naming(
-        &read_force_file(&path, &ReadOptions::default()).unwrap_err(),
-        &path,
-    );
-    assert!(
-        msg.ends_with("HDF5 export (.h5) is not read: export the file from afmformats as .tab"),
-        "{msg}"
-    );
-}
-
-#[test]
 fn segments_have_kinds_and_maps_their_grid() {
     let read = |f: &str| read_force_file(&dir().join(f), &ReadOptions::default()).unwrap();
     use adhesion::readers::SegmentKind::{Approach, Pause, Retract};
