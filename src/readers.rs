@@ -243,15 +243,17 @@ pub fn parse_force_bytes(bytes: &[u8], path: &Path, opts: &ReadOptions) -> crate
     if ext == "h5" || ext == "hdf5" {
         return Err(err("not an HDF5 file (no HDF5 signature)".into()));
     }
+    // Text headers are searched for in the first bytes only (headers are short).
     let head = &bytes[..bytes.len().min(4096)];
+    let long_head = &bytes[..bytes.len().min(1 << 16)];
     if text::contains(head, b"Force-Distance Curve") {
         return workshop::read_csv(bytes, path, opts);
     }
-    if text::contains(bytes, b"Device:\tChiaro") {
+    if text::contains(long_head, b"Device:\tChiaro") {
         return chiaro::read_txt(bytes, path, opts);
     }
     if head.starts_with(b"#")
-        && (text::contains(head, b"# afmformats") || text::contains(bytes, b"# BEGIN METADATA"))
+        && (text::contains(head, b"# afmformats") || text::contains(long_head, b"# BEGIN METADATA"))
     {
         return tab::read(bytes, path, opts);
     }

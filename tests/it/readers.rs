@@ -442,3 +442,26 @@ fn segments_have_kinds_and_maps_their_grid() {
     let h = s.height().unwrap();
     assert!(h[h.len() - 1] < h[0]);
 }
+
+#[test]
+fn zip_bombs_are_refused() {
+    // 40 MiB of zeros deflate to about 40 kB: past the budget of max(64 × size, 16 MiB).
+    let mut out = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    let deflated =
+        zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
+    out.start_file("header.properties", deflated).unwrap();
+    let zeros = vec![b'0'; 1 << 20];
+    for _ in 0..40 {
+        std::io::Write::write_all(&mut out, &zeros).unwrap();
+    }
+    let bytes = out.finish().unwrap().into_inner();
+    assert!(bytes.len() < 1 << 20, "{}", bytes.len());
+    let tmp = tempfile::tempdir().unwrap();
+    let path = tmp.path().join("bomb.jpk-force");
+    std::fs::write(&path, bytes).unwrap();
+    let msg = one_line_naming(
+        &read_force_file(&path, &ReadOptions::default()).unwrap_err(),
+        &path,
+    );
+    assert!(msg.contains("budget"), "{msg}");
+}
