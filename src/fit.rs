@@ -28,38 +28,102 @@ use serde::Serialize;
 
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Figure, Series, Style};
-use crate::models::machine_stiffness::{Experiment, Instability, TipGeometry, sphere_radius_at_depth};
-use crate::numerics::least_squares::{LmOptions, levenberg_marquardt};
+use crate::models::machine_stiffness::{Experiment, Instability, TipGeometry};
+pub mod engine;
+pub mod instrument;
+pub mod map;
 pub mod predictions;
+
+pub use engine::ContactModel;
 
 pub use predictions::{Predictions, ph_panel, predictions};
 
 /// Options of the `--fit` command (flattened into [`crate::cli::Cli`]).
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct FitArgs {
-    /// Fit a measured force-indentation cycle (CSV) with --headless.
-    #[arg(long, value_name = "FILE.csv")]
+    /// Fit a measured force curve with --headless: a depth/force CSV, or an instrument file
+    /// (JPK .jpk-force, .jpk-force-map, .jpk-qi-data/-series, Asylum .ibw, NT-MDT text, AFM
+    /// Workshop CSV, afmformats .tab), the format read from the content. A file of many curves
+    /// (a force map) is fitted curve by curve into maps.
+    #[arg(long, value_name = "FILE")]
     pub fit: Option<PathBuf>,
     /// Tip radius R in metres (for --fit).
     #[arg(long, value_name = "METRES", requires = "fit")]
     pub tip_radius: Option<f64>,
-    /// Cantilever (machine) stiffness k_s in N/m (for --fit): predicts the pull-in and pull-off.
+    /// Cantilever (machine) stiffness k_s in N/m (for --fit): predicts the pull-in and pull-off;
+    /// for an instrument file it overrides the file's value (and the run says so).
     #[arg(long, value_name = "N_PER_M", requires = "fit")]
     pub spring_constant: Option<f64>,
-    /// Model drawn and reported first (for --fit): jkr, or machine-stiffness (needs
-    /// --spring-constant). Default: machine-stiffness with a spring constant, else jkr.
+    /// Deflection sensitivity (InvOLS) in m/V, for instrument files that lack it (for --fit).
+    #[arg(long, value_name = "M_PER_V", requires = "fit")]
+    pub sensitivity: Option<f64>,
+    /// Model (for --fit): hertz, dmt, jkr, or machine-stiffness (needs a spring constant: the
+    /// file's or --spring-constant). Default: machine-stiffness with a spring constant, else jkr.
     #[arg(long, value_enum, requires = "fit")]
     pub model: Option<FitModel>,
+    /// Segment fitted (for --fit): approach, retract or both. Default: approach for hertz, retract
+    /// for the adhesive models.
+    #[arg(long, value_enum, requires = "fit")]
+    pub segment: Option<SegmentChoice>,
+    /// Poisson's ratio of the sample, to report Young's modulus E = E*(1 - nu^2) (for --fit).
+    #[arg(long, value_name = "NU", requires = "fit")]
+    pub poisson: Option<f64>,
+    /// Fit only this curve of a multi-curve file (0-based index; for --fit).
+    #[arg(long, value_name = "INDEX", requires = "fit")]
+    pub curve: Option<usize>,
+    /// Remove the baseline's slope as well as its offset in preprocessing (for --fit with an
+    /// instrument file).
+    #[arg(long, requires = "fit")]
+    pub baseline_tilt: bool,
 }
 
 /// The model of a fit.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum FitModel {
+    /// Hertz (1.1): no adhesion (for comparison with Hertz-type AFM software).
+    Hertz,
+    /// DMT (1.3): Hertz shifted by the pull-off force −2πwR.
+    Dmt,
     /// JKR (1.2): no machine stiffness.
     Jkr,
-    /// The machine-stiffness model of chapter 2, (2.31)-(2.32).
+    /// The machine-stiffness model of chapter 2, (2.31)-(2.32): the JKR contact relation with
+    /// the jumps of a cantilever of stiffness k_s.
     MachineStiffness,
+}
+
+impl FitModel {
+    /// The contact relation fitted.
+    pub fn contact_model(self) -> ContactModel {
+        match self {
+            FitModel::Hertz => ContactModel::Hertz,
+            FitModel::Dmt => ContactModel::Dmt,
+            FitModel::Jkr | FitModel::MachineStiffness => ContactModel::Jkr,
+        }
+    }
+
+    /// The segment fitted when the user does not choose one: the approach for Hertz (the
+    /// elastic loading, as Hertz-type AFM analysis takes it), the retract for the adhesive
+    /// models (where the pull-off is).
+    pub fn default_segment(self) -> SegmentChoice {
+        match self {
+            FitModel::Hertz => SegmentChoice::Approach,
+            _ => SegmentChoice::Retract,
+        }
+    }
+}
+
+/// The part of a cycle that is fitted.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SegmentChoice {
+    /// The approach (loading) rows, up to the deepest row.
+    Approach,
+    /// The retract (unloading) rows after the deepest row, with the approach's out-of-contact
+    /// rows for the baseline.
+    Retract,
+    /// Every row.
+    Both,
 }
 
 /// A measured curve in SI units, in acquisition order.
@@ -305,8 +369,8 @@ pub fn detect_contact(
     let f = &curve.force;
     let n = f.len();
     let p_max = f.iter().fold(0.0f64, |m, p| m.max(p.abs()));
-    let start = baseline(|k| f[k], n, p_max);
-    let end = baseline(|k| f[n - 1 - k], n, p_max);
+    let start = baseline(|k| f[k], n, p_max, true);
+    let end = baseline(|k| f[n - 1 - k], n, p_max, true);
     // Baselines shorter than the minimum are not trusted (their σ would be noise itself).
     let start = start.filter(|b| b.0 >= MIN_BASELINE_ROWS);
     let end = end.filter(|b| b.0 >= MIN_BASELINE_ROWS);
@@ -353,8 +417,14 @@ pub fn detect_contact(
 
 /// The zero-force baseline at one end of a curve: `f(k)` is the k-th force from that end
 /// inwards, `n` the rows. Returns its length and noise level, or `None` if the end is in
-/// contact (see [`detect_contact`]).
-fn baseline(f: impl Fn(usize) -> f64, n: usize, p_max: f64) -> Option<(usize, f64)> {
+/// contact (see [`detect_contact`]). With `zero_level` false the baseline may lie at any force
+/// (an instrument's offset); `p_max` is then the force range.
+pub(crate) fn baseline(
+    f: impl Fn(usize) -> f64,
+    n: usize,
+    p_max: f64,
+    zero_level: bool,
+) -> Option<(usize, f64)> {
     if n < 2 * MIN_BASELINE_ROWS {
         return None;
     }
@@ -368,7 +438,7 @@ fn baseline(f: impl Fn(usize) -> f64, n: usize, p_max: f64) -> Option<(usize, f6
     let mut deviations: Vec<f64> = head.iter().map(|x| (x - level).abs()).collect();
     deviations.sort_by(f64::total_cmp);
     let sigma = noise_level(&head).max(1.4826 * deviations[deviations.len() / 2]);
-    if level.abs() > (5.0 * sigma).max(0.02 * p_max) {
+    if zero_level && level.abs() > (5.0 * sigma).max(0.02 * p_max) {
         return None;
     }
     let tol = (6.0 * sigma).max(0.005 * p_max);
@@ -452,6 +522,15 @@ pub struct InstabilityReport {
     pub pull_off_depth_m: f64,
 }
 
+/// The correlation matrix of the fitted parameters.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Correlation {
+    /// Parameter names, in the order of the rows and columns.
+    pub parameters: Vec<String>,
+    /// Rows of the matrix.
+    pub matrix: Vec<Vec<f64>>,
+}
+
 /// The result of a fit.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FitReport {
@@ -461,17 +540,33 @@ pub struct FitReport {
     pub tip_radius_m: f64,
     /// Model drawn and reported first.
     pub model: FitModel,
-    /// Work of adhesion w [J/m²].
-    pub work_of_adhesion_j_per_m2: Estimate,
+    /// The part of the cycle fitted.
+    pub segment: SegmentChoice,
+    /// Work of adhesion w [J/m²] (none for Hertz).
+    pub work_of_adhesion_j_per_m2: Option<Estimate>,
     /// Plane-strain modulus ℰ = E/(1-ν²) [Pa].
     pub plane_strain_modulus_pa: Estimate,
+    /// Young's modulus E = ℰ(1 − ν²) [Pa], when Poisson's ratio ν is given.
+    pub youngs_modulus_pa: Option<Estimate>,
+    /// Poisson's ratio ν used for [`Self::youngs_modulus_pa`].
+    pub poisson_ratio: Option<f64>,
+    /// Contact point d_c [m], in the depth origin of the data: the fitted indentation is
+    /// δ = d − d_c.
+    pub contact_point_m: Estimate,
+    /// Force baseline F₀ [N] fitted with the model (after any offset removed in
+    /// preprocessing): the model force is P(δ) + F₀.
+    pub baseline_n: Estimate,
+    /// Correlations of the fitted parameters.
+    pub correlation: Correlation,
     /// Root-mean-square force residual [N].
     pub rms_residual_n: f64,
     /// Rows in the file.
     pub points_total: usize,
-    /// In-contact rows used in the fit.
+    /// Rows fitted (in and out of contact).
     pub points_used: usize,
-    /// First and last file line used.
+    /// In-contact rows among them.
+    pub points_in_contact: usize,
+    /// First and last file line of the in-contact rows fitted.
     pub lines_used: (usize, usize),
     /// How the in-contact rows were found.
     pub contact_detection: ContactDetection,
@@ -484,14 +579,27 @@ pub struct FitReport {
     pub spring_constant_n_per_m: Option<f64>,
     /// α = k_s/k̂ at the fitted parameters, if k_s is given.
     pub alpha: Option<f64>,
-    /// Machine-stiffness predictions (with k_s).
+    /// Machine-stiffness predictions (with k_s and an adhesive model).
     pub machine_stiffness: Option<InstabilityReport>,
-    /// JKR predictions (pull-in at h = 0, pull-off −5πwR/6, no depth change).
-    pub jkr: InstabilityReport,
-    /// Measured force at the last in-contact row (the pull-off) [N].
+    /// JKR predictions (pull-in at h = 0, pull-off −5πwR/6, no depth change), for the
+    /// adhesive models.
+    pub jkr: Option<InstabilityReport>,
+    /// Measured pull-off force: the minimum force of the retract rows, relative to the fitted
+    /// baseline [N].
     pub measured_pull_off_force_n: f64,
-    /// Measured most negative force [N].
+    /// Measured most negative force of the whole cycle, relative to the fitted baseline [N].
     pub measured_min_force_n: f64,
+}
+
+impl FitReport {
+    /// The work of adhesion, or an error for a model without one.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for Hertz.
+    pub fn work_of_adhesion(&self) -> Result<Estimate> {
+        self.work_of_adhesion_j_per_m2
+            .ok_or_else(|| Error::invalid("model", "hertz", "has no work of adhesion"))
+    }
 }
 
 /// The in-contact rows must be able to determine w and ℰ: the depth and the force vary, and
@@ -520,16 +628,20 @@ fn check_meaningful_data(h: &[f64], p: &[f64], path: &Path, lines: (usize, usize
     if span(p) <= 0.0 {
         return Err(at("the force does not vary, so nothing can be fitted".into()));
     }
-    // At the deepest tenth of the indentation every model is in compression.
-    let h_max = h.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    // At the deepest tenth of the indentation span every model is in compression.
+    let (h_lo, h_max) = h.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+        (a.min(*x), b.max(*x))
+    });
     let mut deep: Vec<f64> = h
         .iter()
         .zip(p)
-        .filter(|(hh, _)| **hh >= 0.9 * h_max)
+        .filter(|(hh, _)| **hh >= h_max - 0.1 * (h_max - h_lo))
         .map(|(_, pp)| *pp)
         .collect();
     deep.sort_by(f64::total_cmp);
-    if h_max <= 0.0 || deep[deep.len() / 2] <= 0.0 {
+    let mut all = p.to_vec();
+    all.sort_by(f64::total_cmp);
+    if deep[deep.len() / 2] <= all[all.len() / 2] {
         return Err(at(
             "the deepest rows are not in compression (positive depth is indentation, positive force compression): is the sign of one column flipped?"
                 .into(),
@@ -538,11 +650,39 @@ fn check_meaningful_data(h: &[f64], p: &[f64], path: &Path, lines: (usize, usize
     Ok(())
 }
 
-/// Fit w and ℰ to the in-contact rows of a curve (appendix A.4).
+/// Options of a fit beside the data.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FitSettings {
+    /// Tip radius R [m].
+    pub radius: f64,
+    /// Cantilever stiffness k_s [N/m], for the machine-stiffness predictions.
+    pub spring_constant: Option<f64>,
+    /// The model; `None`: machine-stiffness with a spring constant, else JKR.
+    pub model: Option<FitModel>,
+    /// The part of the cycle; `None`: the model's [`FitModel::default_segment`].
+    pub segment: Option<SegmentChoice>,
+    /// Poisson's ratio ν, to report Young's modulus E = ℰ(1 − ν²).
+    pub poisson: Option<f64>,
+}
+
+/// The row where the approach turns into the retract: the deepest row (the first of equals).
+pub fn turning_row(curve: &Curve) -> usize {
+    curve
+        .depth
+        .iter()
+        .enumerate()
+        .fold(
+            (0, f64::NEG_INFINITY),
+            |(k, m), (i, d)| if *d > m { (i, *d) } else { (k, m) },
+        )
+        .0
+}
+
+/// Fit w and ℰ to the in-contact rows of a curve (appendix A.4), with the contact point and
+/// the baseline free; see [`fit_with`].
 ///
 /// # Errors
-/// [`Error::DataFile`] for too few in-contact points; [`Error::InvalidParameter`] for a bad
-/// radius, spring constant or model choice; [`Error::NoConvergence`] if the fit fails.
+/// As [`fit_with`].
 pub fn fit_curve(
     curve: &Curve,
     path: &Path,
@@ -550,15 +690,45 @@ pub fn fit_curve(
     spring_constant: Option<f64>,
     model: Option<FitModel>,
 ) -> Result<FitReport> {
+    fit_with(
+        curve,
+        path,
+        &FitSettings {
+            radius,
+            spring_constant,
+            model,
+            segment: None,
+            poisson: None,
+        },
+    )
+}
+
+/// Fit a contact model to a measured cycle with the contact point and the force baseline free
+/// ([`engine::fit`]): the in-contact rows are found from the deviation from the baseline
+/// ([`detect_contact`]), the chosen segment's rows are fitted (the retract with the approach's
+/// out-of-contact rows, the approach, or both), and the instabilities of JKR and of the
+/// machine-stiffness model are predicted at the fitted values (Sec. 2.4).
+///
+/// # Errors
+/// [`Error::DataFile`] for too few in-contact points or data that cannot be fitted (naming the
+/// file); [`Error::InvalidParameter`] for a bad radius, spring constant, Poisson's ratio or
+/// model choice.
+pub fn fit_with(curve: &Curve, path: &Path, settings: &FitSettings) -> Result<FitReport> {
+    let radius = settings.radius;
     if !(radius.is_finite() && radius > 0.0) {
         return Err(Error::invalid("tip-radius", radius, "must be positive (metres)"));
     }
-    if let Some(k) = spring_constant
+    if let Some(k) = settings.spring_constant
         && !(k.is_finite() && k > 0.0)
     {
         return Err(Error::invalid("spring-constant", k, "must be positive (N/m)"));
     }
-    let model = match (model, spring_constant) {
+    if let Some(nu) = settings.poisson
+        && !(nu.is_finite() && (-1.0..0.5 + 1e-12).contains(&nu))
+    {
+        return Err(Error::invalid("poisson", nu, "must lie in [-1, 0.5]"));
+    }
+    let model = match (settings.model, settings.spring_constant) {
         (Some(FitModel::MachineStiffness), None) => {
             return Err(Error::invalid(
                 "model",
@@ -570,189 +740,233 @@ pub fn fit_curve(
         (None, Some(_)) => FitModel::MachineStiffness,
         (None, None) => FitModel::Jkr,
     };
+    let segment = settings.segment.unwrap_or(model.default_segment());
     let (range, contact_detection) = detect_contact(curve, path, 10)?;
-    let h = &curve.depth[range.clone()];
-    let p = &curve.force[range.clone()];
-    check_meaningful_data(h, p, path, (curve.lines[range.start], curve.lines[range.end - 1]))?;
-    let pi = std::f64::consts::PI;
-    // Start: the force minimum is between −(5/9)P̂ and −P̂; the deepest point is nearly Hertzian.
-    let p_min = p.iter().copied().fold(f64::INFINITY, f64::min);
-    let p_scale = p.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let w0 = if p_min < 0.0 {
-        -p_min / 0.8 / (1.5 * pi * radius)
-    } else {
-        p_scale / (1.5 * pi * radius) * 0.1
+    let lines_of = |r: &std::ops::Range<usize>| (curve.lines[r.start], curve.lines[r.end - 1]);
+    check_meaningful_data(
+        &curve.depth[range.clone()],
+        &curve.force[range.clone()],
+        path,
+        lines_of(&range),
+    )?;
+    let turn = turning_row(curve);
+    // Rows fitted: (row, in contact).
+    let rows: Vec<usize> = match segment {
+        SegmentChoice::Both => (0..curve.depth.len()).collect(),
+        SegmentChoice::Approach => (0..=turn).collect(),
+        SegmentChoice::Retract => (0..range.start.min(turn))
+            .chain(turn..curve.depth.len())
+            .collect(),
     };
-    // Residuals (model − measured force)/max|P| and their analytic Jacobian in (ln w, ln ℰ):
-    // P = P̂ P̄(h̄), h̄ = h/ĥ with P̂ ∝ w and ĥ ∝ (w/ℰ)^(2/3), so ∂h̄/∂ln w = −(2/3)h̄ = −∂h̄/∂ln ℰ.
-    let eval = |x: &[f64], hs: &[f64], ps: &[f64], with_jac: bool| -> (Vec<f64>, Vec<[f64; 2]>) {
-        let Ok(ex) = Experiment::new(TipGeometry::Sphere { radius }, x[1].exp(), x[0].exp(), 1.0) else {
-            return (vec![f64::NAN; hs.len()], Vec::new());
-        };
-        let sc = ex.scales();
-        let mut r = Vec::with_capacity(hs.len());
-        let mut j = Vec::with_capacity(if with_jac { hs.len() } else { 0 });
-        for (&hh, &pp) in hs.iter().zip(ps) {
-            let hb = hh / sc.h;
-            let a = sphere_radius_at_depth(hb);
-            let pb = a.powi(3) - 2.0 * a.powf(1.5);
-            r.push((sc.force * pb - pp) / p_scale);
-            if with_jac {
-                // dP̄/dh̄ along the branch; zero where the depth is below the branch (clamped).
-                let dh = 2.0 * a - 2.0 / (3.0 * a.sqrt());
-                let slope = if dh > 1e-12 {
-                    (3.0 * a * a - 3.0 * a.sqrt()) / dh
-                } else {
-                    0.0
-                };
-                let d_e = sc.force * slope * (2.0 / 3.0) * hb / p_scale;
-                j.push([sc.force * pb / p_scale - d_e, d_e]);
-            }
-        }
-        (r, j)
-    };
-    let residuals = |x: &[f64]| eval(x, h, p, false).0;
-    let jacobian = |x: &[f64]| {
-        let j = eval(x, h, p, true).1;
-        nalgebra::DMatrix::from_fn(j.len(), 2, |i, k| j[i][k])
-    };
-    // Coarse scan of the modulus on a subsample (the cost is flat far from the answer).
-    let stride = (h.len() / 200).max(1);
-    let (hs, ps): (Vec<f64>, Vec<f64>) = h.iter().zip(p).step_by(stride).map(|(a, b)| (*a, *b)).unzip();
-    let cost = |x: &[f64]| eval(x, &hs, &ps, false).0.iter().map(|r| r * r).sum::<f64>();
-    let (k_max, h_max) = h.iter().zip(p).fold(
-        (0.0f64, 0.0f64),
-        |acc, (&hh, &pp)| if hh > acc.1 { (pp, hh) } else { acc },
-    );
-    let e_guess = if h_max > 0.0 && k_max > 0.0 {
-        0.75 * k_max / (radius.sqrt() * h_max.powf(1.5))
-    } else {
-        1e6
-    };
-    let mut x0 = [w0.ln(), e_guess.ln()];
-    let mut best = cost(&x0);
-    for f in (-20..=20).map(|k| 10f64.powf(k as f64 / 10.0)) {
-        for g in [0.5, 1.0, 2.0] {
-            let x = [(w0 * g).ln(), (e_guess * f).ln()];
-            let c = cost(&x);
-            if c < best {
-                best = c;
-                x0 = x;
-            }
-        }
-    }
-    let sol = levenberg_marquardt(&residuals, Some(&jacobian), &x0, LmOptions::default())?;
-    let (w, e) = (sol.x[0].exp(), sol.x[1].exp());
-    let rms = sol.residual_norm * p_scale / (h.len() as f64).sqrt();
-    let (w_err, e_err) = (w * sol.std_errors[0], e * sol.std_errors[1]);
-    if ![w, e, w_err, e_err, rms].iter().all(|v| v.is_finite()) {
+    let depth: Vec<f64> = rows.iter().map(|&k| curve.depth[k]).collect();
+    let force: Vec<f64> = rows.iter().map(|&k| curve.force[k]).collect();
+    let in_contact: Vec<bool> = rows.iter().map(|k| range.contains(k)).collect();
+    let used_contact: Vec<usize> = rows.iter().copied().filter(|k| range.contains(k)).collect();
+    if used_contact.len() < 5 {
         return Err(Error::data_file(
             path,
-            0,
+            curve.lines[range.start],
             format!(
-                "the fit has no finite answer (w = {}, E = {}, standard errors {}, {}): the data do not determine w and E",
-                crate::params::fmt_sig(w),
-                crate::params::fmt_sig(e),
-                crate::params::fmt_sig(w_err),
-                crate::params::fmt_sig(e_err)
+                "only {} in-contact row(s) in the {} segment: choose another with --segment",
+                used_contact.len(),
+                serde_json::to_value(segment)
+                    .ok()
+                    .and_then(|v| v.as_str().map(String::from))
+                    .unwrap_or_default()
             ),
         ));
     }
-    let mut warnings = Vec::new();
-    for (name, v, err) in [("work of adhesion", w, w_err), ("modulus", e, e_err)] {
-        if err > 0.5 * v {
-            warnings.push(format!(
-                "the {name} is not determined by these data: its standard error is {} % of its value",
-                crate::params::fmt_sig((100.0 * err / v).round())
-            ));
-        }
-    }
-    if rms > 0.2 * p_scale {
-        warnings.push(format!(
-            "the model does not describe these data: the rms force residual is {:.0} % of the largest |P|",
-            100.0 * rms / p_scale
-        ));
-    }
-    let x_for = |k: f64| Experiment::new(TipGeometry::Sphere { radius }, e, w, k);
-    let jkr_pred = predictions(&x_for(1.0)?)?;
-    let jkr = InstabilityReport {
-        pull_in_force_n: jkr_pred.jkr_pull_in_force,
-        pull_in_depth_jump_m: 0.0,
-        pull_off_force_n: jkr_pred.jkr_pull_off_force,
-        pull_off_depth_jump_m: 0.0,
-        pull_off_depth_m: jkr_pred.jkr_pull_off_depth,
+    let lines_used = (
+        curve.lines[used_contact[0]],
+        curve.lines[*used_contact.last().expect("five rows")],
+    );
+    let data = engine::FitData {
+        depth: &depth,
+        force: &force,
+        in_contact: &in_contact,
+        noise: contact_detection.noise_n,
     };
-    let (alpha, machine) = match spring_constant {
-        Some(k) => {
-            let x = x_for(k)?;
-            let pr: Predictions = predictions(&x)?;
-            let rep = |i: &Instability, o: &Instability| InstabilityReport {
-                pull_in_force_n: i.after.force,
-                pull_in_depth_jump_m: i.depth_jump(),
-                pull_off_force_n: o.before.force,
-                pull_off_depth_jump_m: o.depth_jump(),
-                pull_off_depth_m: o.before.h,
-            };
-            (Some(x.alpha()), Some(rep(&pr.pull_in, &pr.pull_off)))
-        }
-        None => (None, None),
+    let fit = engine::fit(model.contact_model(), radius, &data).map_err(|e| match e {
+        Error::Unresolvable { reason, .. } => Error::data_file(path, lines_used.0, reason),
+        other => other,
+    })?;
+    let warnings = engine::warnings(&fit, &data);
+    let adhesive = model.contact_model().adhesive();
+    let (w, e) = (fit.work_of_adhesion, fit.modulus);
+    let se = &fit.std_errors;
+    let (w_est, e_est, dc_est, f0_est) = if adhesive {
+        (
+            Some(Estimate {
+                value: w,
+                std_error: se[0],
+            }),
+            Estimate {
+                value: e,
+                std_error: se[1],
+            },
+            Estimate {
+                value: fit.contact_point,
+                std_error: se[2],
+            },
+            Estimate {
+                value: fit.baseline,
+                std_error: se[3],
+            },
+        )
+    } else {
+        (
+            None,
+            Estimate {
+                value: e,
+                std_error: se[0],
+            },
+            Estimate {
+                value: fit.contact_point,
+                std_error: se[1],
+            },
+            Estimate {
+                value: fit.baseline,
+                std_error: se[2],
+            },
+        )
     };
+    let names = model.contact_model().parameter_names();
+    let np = names.len();
+    let correlation = Correlation {
+        parameters: names.iter().map(|s| s.to_string()).collect(),
+        matrix: (0..np)
+            .map(|i| fit.correlation[i * np..(i + 1) * np].to_vec())
+            .collect(),
+    };
+    let (jkr, alpha, machine) = if adhesive {
+        let x_for = |k: f64| Experiment::new(TipGeometry::Sphere { radius }, e, w, k);
+        let jkr_pred = predictions(&x_for(1.0)?)?;
+        let jkr = InstabilityReport {
+            pull_in_force_n: jkr_pred.jkr_pull_in_force,
+            pull_in_depth_jump_m: 0.0,
+            pull_off_force_n: jkr_pred.jkr_pull_off_force,
+            pull_off_depth_jump_m: 0.0,
+            pull_off_depth_m: jkr_pred.jkr_pull_off_depth,
+        };
+        let (alpha, machine) = match settings.spring_constant {
+            Some(k) if model != FitModel::Dmt => {
+                let x = x_for(k)?;
+                let pr: Predictions = predictions(&x)?;
+                let rep = |i: &Instability, o: &Instability| InstabilityReport {
+                    pull_in_force_n: i.after.force,
+                    pull_in_depth_jump_m: i.depth_jump(),
+                    pull_off_force_n: o.before.force,
+                    pull_off_depth_jump_m: o.depth_jump(),
+                    pull_off_depth_m: o.before.h,
+                };
+                (Some(x.alpha()), Some(rep(&pr.pull_in, &pr.pull_off)))
+            }
+            _ => (None, None),
+        };
+        (Some(jkr), alpha, machine)
+    } else {
+        (None, None, None)
+    };
+    let min_of = |it: &mut dyn Iterator<Item = &f64>| it.copied().fold(f64::INFINITY, f64::min);
+    let measured_pull_off = min_of(&mut curve.force[turn..].iter()) - fit.baseline;
+    let measured_min = min_of(&mut curve.force.iter()) - fit.baseline;
+    let young = settings.poisson.map(|nu| Estimate {
+        value: e * (1.0 - nu * nu),
+        std_error: e_est.std_error * (1.0 - nu * nu),
+    });
     Ok(FitReport {
         file: path.display().to_string(),
         tip_radius_m: radius,
         model,
-        work_of_adhesion_j_per_m2: Estimate {
-            value: w,
-            std_error: w_err,
-        },
-        plane_strain_modulus_pa: Estimate {
-            value: e,
-            std_error: e_err,
-        },
-        rms_residual_n: rms,
+        segment,
+        work_of_adhesion_j_per_m2: w_est,
+        plane_strain_modulus_pa: e_est,
+        youngs_modulus_pa: young,
+        poisson_ratio: settings.poisson,
+        contact_point_m: dc_est,
+        baseline_n: f0_est,
+        correlation,
+        rms_residual_n: fit.rms_residual,
         points_total: curve.depth.len(),
-        points_used: range.len(),
-        lines_used: (curve.lines[range.start], curve.lines[range.end - 1]),
+        points_used: rows.len(),
+        points_in_contact: used_contact.len(),
+        lines_used,
         contact_detection,
         warnings,
-        iterations: sol.iterations,
-        spring_constant_n_per_m: spring_constant,
+        iterations: fit.iterations,
+        spring_constant_n_per_m: settings.spring_constant,
         alpha,
         machine_stiffness: machine,
         jkr,
-        measured_pull_off_force_n: p[p.len() - 1],
-        measured_min_force_n: p_min,
+        measured_pull_off_force_n: measured_pull_off,
+        measured_min_force_n: measured_min,
     })
 }
 
-/// The figure of a fit: the measured points (in contact highlighted) over both models' P-h
-/// curves at the fitted parameters, in nm and nN.
+/// The figure of a fit: (a) the measured points (the fitted in-contact rows highlighted) in the
+/// fitted frame (indentation δ = d − d_c, force P − F₀) over the model's P-δ curve at the fitted
+/// parameters (for the adhesive models, JKR and, with k_s, the machine-stiffness model with their
+/// jumps); (b) the force residuals of the fitted rows, in nm and nN.
 ///
 /// # Errors
 /// Model errors.
 pub fn fit_figure(curve: &Curve, report: &FitReport) -> Result<Figure> {
-    let k = report.spring_constant_n_per_m.unwrap_or(1.0);
-    let x = Experiment::new(
-        TipGeometry::Sphere {
-            radius: report.tip_radius_m,
-        },
-        report.plane_strain_modulus_pa.value,
-        report.work_of_adhesion_j_per_m2.value,
-        k,
-    )?;
-    let h_max = curve.depth.iter().copied().fold(0.0f64, f64::max);
-    let depth_norm = (h_max / x.scales().h).max(1.0) * 1.05;
-    let mut panel = ph_panel(&x, "", "fit of the measured curve", depth_norm, 300)?;
-    if report.spring_constant_n_per_m.is_none() {
-        // Without k_s the machine-stiffness jumps are not known: keep JKR only.
-        panel.series.retain(|s| s.name.starts_with("JKR"));
-        panel.markers.retain(|m| m.name.contains("JKR"));
-    }
+    let radius = report.tip_radius_m;
+    let e = report.plane_strain_modulus_pa.value;
+    let dc = report.contact_point_m.value;
+    let f0 = report.baseline_n.value;
+    let h_max = curve.depth.iter().copied().fold(f64::NEG_INFINITY, f64::max) - dc;
+    let mut panel = match report.work_of_adhesion_j_per_m2 {
+        Some(w) if report.model != FitModel::Dmt => {
+            let k = report.spring_constant_n_per_m.unwrap_or(1.0);
+            let x = Experiment::new(TipGeometry::Sphere { radius }, e, w.value, k)?;
+            let depth_norm = (h_max / x.scales().h).max(1.0) * 1.05;
+            let mut panel = ph_panel(&x, "(a)", "fit of the measured curve", depth_norm, 300)?;
+            if report.spring_constant_n_per_m.is_none() {
+                // Without k_s the machine-stiffness jumps are not known: keep JKR only.
+                panel.series.retain(|s| s.name.starts_with("JKR"));
+                panel.markers.retain(|m| m.name.contains("JKR"));
+            }
+            panel
+        }
+        w => {
+            let fit = engine::EngineFit {
+                model: report.model.contact_model(),
+                work_of_adhesion: w.map_or(0.0, |w| w.value),
+                modulus: e,
+                contact_point: 0.0,
+                baseline: 0.0,
+                std_errors: Vec::new(),
+                correlation: Vec::new(),
+                rms_residual: 0.0,
+                iterations: 0,
+            };
+            let n = 300;
+            let pts = (0..=n)
+                .map(|i| {
+                    let d = h_max.max(0.0) * 1.05 * i as f64 / n as f64;
+                    (d * 1e9, fit.force_at(radius, d, true) * 1e9)
+                })
+                .collect();
+            let name = if report.model == FitModel::Hertz {
+                "Hertz"
+            } else {
+                "DMT"
+            };
+            let mut panel = crate::figure::Panel::new(
+                Axis::linear("Indentation depth h", "nm"),
+                Axis::linear("Force P", "nN"),
+            )
+            .titled("(a)", "fit of the measured curve");
+            panel.add(Series::new(name, Style::Stable, pts));
+            panel
+        }
+    };
     let pts: Vec<(f64, f64)> = curve
         .depth
         .iter()
         .zip(&curve.force)
-        .map(|(h, p)| (h * 1e9, p * 1e9))
+        .map(|(h, p)| ((h - dc) * 1e9, (p - f0) * 1e9))
         .collect();
     let used = report.lines_used;
     let in_contact: Vec<(f64, f64)> = curve
@@ -767,28 +981,38 @@ pub fn fit_figure(curve: &Curve, report: &FitReport) -> Result<Figure> {
         .insert(0, Series::new("measured", Style::Scatter, pts).with_color(7));
     panel.series.insert(
         1,
-        Series::new("measured, fitted", Style::Scatter, in_contact).with_color(2),
+        Series::new("measured, fitted in contact", Style::Scatter, in_contact).with_color(2),
     );
-    panel.x = Axis::linear("Indentation depth h", "nm");
+    panel.x = Axis::linear("Indentation depth h = d − d_c", "nm");
+    panel.y = Axis::linear("Force P − F_0", "nN");
     // Both models share the P-h relation in contact: the JKR curve lies on the model's.
     panel.mark_coinciding(crate::figure::COINCIDENCE_TOL);
-    let mut fig = Figure::new("fit", "Fit of a measured force-indentation curve").with_panel(panel);
-    fig.result(
-        "work_of_adhesion_J_per_m2",
-        report.work_of_adhesion_j_per_m2.value,
-    );
-    fig.result("plane_strain_modulus_Pa", report.plane_strain_modulus_pa.value);
-    fig.result("rms_residual_N", report.rms_residual_n);
-    fig.result("points_used_count", report.points_used as f64);
-    fig.note(format!(
-        "w = {:.4e} ± {:.2e} J/m^2, plane-strain modulus = {:.4e} ± {:.2e} Pa, {} of {} points in contact",
-        report.work_of_adhesion_j_per_m2.value,
-        report.work_of_adhesion_j_per_m2.std_error,
-        report.plane_strain_modulus_pa.value,
-        report.plane_strain_modulus_pa.std_error,
-        report.points_used,
-        report.points_total
-    ));
+    let residual_panel = residual_panel(curve, report)?;
+    let mut fig = Figure::new("fit", "Fit of a measured force-indentation curve")
+        .with_panel(panel)
+        .with_panel(residual_panel);
+    record_results(&mut fig, report);
+    fig.note(match report.work_of_adhesion_j_per_m2 {
+        Some(w) => format!(
+            "w = {:.4e} ± {:.2e} J/m^2, plane-strain modulus = {:.4e} ± {:.2e} Pa, contact point {:.2} ± {:.2} nm, {} rows fitted, {} in contact",
+            w.value,
+            w.std_error,
+            e,
+            report.plane_strain_modulus_pa.std_error,
+            dc * 1e9,
+            report.contact_point_m.std_error * 1e9,
+            report.points_used,
+            report.points_in_contact
+        ),
+        None => format!(
+            "plane-strain modulus = {:.4e} ± {:.2e} Pa, contact point {:.2} ± {:.2} nm, {} rows fitted",
+            e,
+            report.plane_strain_modulus_pa.std_error,
+            dc * 1e9,
+            report.contact_point_m.std_error * 1e9,
+            report.points_used
+        ),
+    });
     fig.note(format!(
         "in-contact rows found by {}",
         report.contact_detection.method
@@ -797,6 +1021,66 @@ pub fn fit_figure(curve: &Curve, report: &FitReport) -> Result<Figure> {
         fig.note(format!("warning: {w}"));
     }
     Ok(fig)
+}
+
+/// The named results of a fit recorded on its figure (SI, names ending in their unit).
+fn record_results(fig: &mut Figure, report: &FitReport) {
+    if let Some(w) = report.work_of_adhesion_j_per_m2 {
+        fig.result("work_of_adhesion_J_per_m2", w.value);
+        fig.result("work_of_adhesion_std_error_J_per_m2", w.std_error);
+    }
+    fig.result("plane_strain_modulus_Pa", report.plane_strain_modulus_pa.value);
+    fig.result(
+        "plane_strain_modulus_std_error_Pa",
+        report.plane_strain_modulus_pa.std_error,
+    );
+    fig.result("contact_point_m", report.contact_point_m.value);
+    fig.result("contact_point_std_error_m", report.contact_point_m.std_error);
+    fig.result("baseline_N", report.baseline_n.value);
+    fig.result("rms_residual_N", report.rms_residual_n);
+    fig.result("measured_pull_off_force_N", report.measured_pull_off_force_n);
+    fig.result("points_used_count", report.points_used as f64);
+}
+
+/// Panel (b) of [`fit_figure`]: the force residual (model − measured) of every fitted row
+/// against its indentation.
+fn residual_panel(curve: &Curve, report: &FitReport) -> Result<crate::figure::Panel> {
+    let fit = engine::EngineFit {
+        model: report.model.contact_model(),
+        work_of_adhesion: report.work_of_adhesion_j_per_m2.map_or(0.0, |w| w.value),
+        modulus: report.plane_strain_modulus_pa.value,
+        contact_point: report.contact_point_m.value,
+        baseline: report.baseline_n.value,
+        std_errors: Vec::new(),
+        correlation: Vec::new(),
+        rms_residual: 0.0,
+        iterations: 0,
+    };
+    let used = report.lines_used;
+    let turn = turning_row(curve);
+    let rows: Vec<usize> = (0..curve.depth.len())
+        .filter(|&k| match report.segment {
+            SegmentChoice::Both => true,
+            SegmentChoice::Approach => k <= turn,
+            SegmentChoice::Retract => k >= turn,
+        })
+        .collect();
+    let pts: Vec<(f64, f64)> = rows
+        .iter()
+        .map(|&k| {
+            let contact = curve.lines[k] >= used.0 && curve.lines[k] <= used.1;
+            let d = curve.depth[k];
+            let r = fit.force_at(report.tip_radius_m, d, contact) - curve.force[k];
+            ((d - fit.contact_point) * 1e9, r * 1e9)
+        })
+        .collect();
+    let mut panel = crate::figure::Panel::new(
+        Axis::linear("Indentation depth h = d − d_c", "nm"),
+        Axis::linear("Residual, model − measured", "nN"),
+    )
+    .titled("(b)", "residuals of the fitted rows");
+    panel.add(Series::new("residual", Style::Scatter, pts).with_color(2));
+    Ok(panel)
 }
 
 /// A noise-free cycle in displacement control as an experiment records it (approach, contact,
@@ -820,36 +1104,221 @@ pub fn simulate_cycle(x: &Experiment, delta_min: f64, delta_max: f64, samples: u
     Ok(curve)
 }
 
-/// The `--fit` command: read, fit, and write `DIR/fit.json`, `fit.png`, `fit.svg`, `fit.csv`.
-/// Everything is computed and rendered before the first file is written.
+/// Whether a file's bytes are a depth/force CSV of [`parse_curve`]'s format: UTF-8 text whose
+/// first line that is neither empty nor a comment names a depth and a force column.
+pub fn looks_like_curve_csv(bytes: &[u8]) -> bool {
+    let head = &bytes[..bytes.len().min(1 << 16)];
+    let text = match std::str::from_utf8(head) {
+        Ok(t) => t,
+        Err(e) if e.error_len().is_none() => std::str::from_utf8(&head[..e.valid_up_to()]).unwrap_or(""),
+        Err(_) => return false,
+    };
+    let text = crate::params::normalise_line_ends(text);
+    let Some(header) = text
+        .lines()
+        .map(|l| l.trim_start_matches('\u{feff}').trim())
+        .find(|l| !l.is_empty() && !l.starts_with('#'))
+    else {
+        return false;
+    };
+    let names: Vec<String> = split_row(header).iter().map(|c| name_and_unit(c).0).collect();
+    names.iter().any(|n| DEPTH_NAMES.contains(&n.as_str()))
+        && names.iter().any(|n| FORCE_NAMES.contains(&n.as_str()))
+}
+
+/// The JSON of the fit of one curve of an instrument file: the fit's report with the file's
+/// format, the curve's place and the preprocessing.
+#[derive(Debug, Serialize)]
+struct InstrumentFitJson<'a> {
+    format: &'a str,
+    #[serde(flatten)]
+    curve: &'a instrument::CurveFit,
+}
+
+/// The JSON of a force map's fits.
+#[derive(Debug, Serialize)]
+struct MapJson<'a> {
+    file: String,
+    format: &'a str,
+    model: FitModel,
+    tip_radius_m: f64,
+    curves: usize,
+    fitted: usize,
+    failed: Vec<map::Failure>,
+    layout: map::Layout,
+    fits: Vec<&'a instrument::CurveFit>,
+}
+
+/// The `--fit` command: read, fit, and write `DIR/fit.json`, `fit.png`, `fit.svg`, `fit.csv`
+/// (one curve), or `DIR/fit-map.json`, `.png`, `.svg`, `.csv` (a file of many curves: the maps,
+/// and one CSV row per curve). Everything is computed and rendered before the first file is
+/// written.
 ///
 /// # Errors
-/// Bad input (one line naming the file and line), fit failures, I/O.
+/// Bad input (one line naming the file and line or curve), fit failures (of a single curve),
+/// I/O.
 pub fn command(args: &FitArgs, out: &Path) -> Result<Vec<PathBuf>> {
     let path = args
         .fit
         .as_deref()
-        .ok_or_else(|| Error::invalid("fit", "", "give the CSV file of a measured curve"))?;
+        .ok_or_else(|| Error::invalid("fit", "", "give the file of a measured curve"))?;
     let radius = args
         .tip_radius
         .ok_or_else(|| Error::invalid("tip-radius", "", "--fit needs --tip-radius (metres)"))?;
-    let curve = read_curve(path)?;
-    let report = fit_curve(&curve, path, radius, args.spring_constant, args.model)?;
-    for w in &report.warnings {
-        eprintln!("warning: {}: {w}", path.display());
+    if !(radius.is_finite() && radius > 0.0) {
+        return Err(Error::invalid("tip-radius", radius, "must be positive (metres)"));
     }
-    let fig = fit_figure(&curve, &report)?;
-    let json = serde_json::to_string_pretty(&report).expect("the report has finite numbers and string keys");
-    let files = [
-        (out.join("fit.png"), crate::render::plot::png_bytes(&fig)?),
-        (
-            out.join("fit.svg"),
-            crate::render::plot::svg_string(&fig)?.into_bytes(),
-        ),
-        (out.join("fit.csv"), crate::render::data::csv(&fig).into_bytes()),
-        (out.join("fit.json"), json.into_bytes()),
-    ];
+    let settings = FitSettings {
+        radius,
+        spring_constant: args.spring_constant,
+        model: args.model,
+        segment: args.segment,
+        poisson: args.poisson,
+    };
+    let bytes = std::fs::read(path).map_err(|e| Error::data_file(path, 0, format!("cannot read: {e}")))?;
+    let files: Vec<(PathBuf, Vec<u8>)> = if looks_like_curve_csv(&bytes) {
+        if args.curve.is_some() || args.baseline_tilt || args.sensitivity.is_some() {
+            return Err(Error::Usage(
+                "--curve, --baseline-tilt and --sensitivity apply to instrument files, not to a depth/force CSV".into(),
+            ));
+        }
+        let text = String::from_utf8(bytes).map_err(|_| Error::data_file(path, 0, "not UTF-8 text"))?;
+        let curve = parse_curve(&text, path)?;
+        let report = fit_with(&curve, path, &settings)?;
+        for w in &report.warnings {
+            eprintln!("warning: {}: {w}", path.display());
+        }
+        let fig = fit_figure(&curve, &report)?;
+        let json =
+            serde_json::to_string_pretty(&report).expect("the report has finite numbers and string keys");
+        fit_files(out, "fit", &fig, json)?
+    } else {
+        let file = crate::readers::read_force_file(
+            path,
+            &crate::readers::ReadOptions {
+                spring_constant: args.spring_constant,
+                sensitivity: args.sensitivity,
+            },
+        )?;
+        if let Some(k) = args.spring_constant {
+            eprintln!(
+                "note: {}: spring constant {} N/m from --spring-constant, not the file's",
+                path.display(),
+                crate::params::fmt_sig(k)
+            );
+        }
+        let opts = instrument::PrepareOptions {
+            spring_constant: None,
+            baseline_tilt: args.baseline_tilt,
+        };
+        let curves: Vec<crate::readers::ForceCurve> = match args.curve {
+            Some(i) => match file.curves.get(i) {
+                Some(c) => vec![c.clone()],
+                None => {
+                    return Err(Error::invalid(
+                        "curve",
+                        i,
+                        format!("the file holds {} curve(s), indexed from 0", file.curves.len()),
+                    ));
+                }
+            },
+            None => file.curves.clone(),
+        };
+        if curves.is_empty() {
+            return Err(Error::data_file(path, 0, "the file holds no curve"));
+        }
+        if curves.len() == 1 {
+            let (curve, fit) = instrument::fit_curve(&curves[0], path, &opts, &settings)?;
+            for w in &fit.fit.warnings {
+                eprintln!("warning: {} (curve {}): {w}", path.display(), fit.curve);
+            }
+            let mut fig = fit_figure(&curve, &fit.fit)?;
+            fig.note(format!("{}, curve {}", file.format, fit.curve));
+            let json = serde_json::to_string_pretty(&InstrumentFitJson {
+                format: &file.format,
+                curve: &fit,
+            })
+            .expect("the report has finite numbers and string keys");
+            fit_files(out, "fit", &fig, json)?
+        } else {
+            let fits = instrument::fit_all(&curves, path, &opts, &settings);
+            let mut failed = Vec::new();
+            for (c, f) in curves.iter().zip(&fits) {
+                match f {
+                    Err(e) => {
+                        eprintln!("error: {}: curve {} not fitted: {e}", path.display(), c.index);
+                        failed.push(map::Failure {
+                            curve: c.index,
+                            grid_index: c.meta.grid_index,
+                            reason: e.to_string(),
+                        });
+                    }
+                    Ok(f) if !f.fit.warnings.is_empty() => {
+                        eprintln!(
+                            "warning: {} (curve {}): {}",
+                            path.display(),
+                            c.index,
+                            f.fit.warnings.join("; ")
+                        );
+                    }
+                    Ok(_) => {}
+                }
+            }
+            let title = format!("Fits of a force map ({}, {} curves)", file.format, curves.len());
+            let fig = map::map_figure(&curves, &fits, &title)?;
+            let ok: Vec<&instrument::CurveFit> = fits.iter().filter_map(|f| f.as_ref().ok()).collect();
+            let model = ok
+                .first()
+                .map_or(settings.model.unwrap_or(FitModel::MachineStiffness), |f| {
+                    f.fit.model
+                });
+            let json = serde_json::to_string_pretty(&MapJson {
+                file: path.display().to_string(),
+                format: &file.format,
+                model,
+                tip_radius_m: radius,
+                curves: curves.len(),
+                fitted: ok.len(),
+                failed,
+                layout: map::layout(&curves),
+                fits: ok,
+            })
+            .expect("the report has finite numbers and string keys");
+            let mut files = vec![
+                (out.join("fit-map.png"), crate::render::plot::png_bytes(&fig)?),
+                (
+                    out.join("fit-map.svg"),
+                    crate::render::plot::svg_string(&fig)?.into_bytes(),
+                ),
+                (
+                    out.join("fit-map.csv"),
+                    map::table_csv(&curves, &fits).into_bytes(),
+                ),
+            ];
+            files.push((out.join("fit-map.json"), json.into_bytes()));
+            files
+        }
+    };
     std::fs::create_dir_all(out).map_err(Error::file("creating the folder", out))?;
     crate::render::write_set(&files)?;
     Ok(files.into_iter().map(|(p, _)| p).collect())
+}
+
+/// The rendered files of one fit's figure: `<stem>.png`, `.svg`, `.csv` and `.json`.
+fn fit_files(out: &Path, stem: &str, fig: &Figure, json: String) -> Result<Vec<(PathBuf, Vec<u8>)>> {
+    Ok(vec![
+        (
+            out.join(format!("{stem}.png")),
+            crate::render::plot::png_bytes(fig)?,
+        ),
+        (
+            out.join(format!("{stem}.svg")),
+            crate::render::plot::svg_string(fig)?.into_bytes(),
+        ),
+        (
+            out.join(format!("{stem}.csv")),
+            crate::render::data::csv(fig).into_bytes(),
+        ),
+        (out.join(format!("{stem}.json")), json.into_bytes()),
+    ])
 }

@@ -338,20 +338,80 @@ mod fit {
         let curve = parse_curve(&text, Path::new("synthetic.csv")).unwrap();
         let r = fit_curve(&curve, Path::new("synthetic.csv"), 1e-6, Some(0.5), None).unwrap();
         assert_eq!(r.model, FitModel::MachineStiffness);
-        let (w, e) = (r.work_of_adhesion_j_per_m2, r.plane_strain_modulus_pa);
+        let (w, e) = (r.work_of_adhesion().unwrap(), r.plane_strain_modulus_pa);
         assert!((w.value - x.work_of_adhesion).abs() < 3.0 * w.std_error, "{r:#?}");
         assert!((e.value - x.modulus).abs() < 3.0 * e.std_error, "{r:#?}");
         assert!(w.std_error < 0.02 * w.value && e.std_error < 0.02 * e.value);
-        // Every in-contact sample is used, none of the zero-force ones.
+        // The retract is fitted (the adhesive models' default) with the approach's baseline.
+        assert_eq!(r.segment, adhesion::fit::SegmentChoice::Retract);
+        // With both segments every in-contact sample is in contact, none of the zero-force ones.
+        let settings = adhesion::fit::FitSettings {
+            radius: 1e-6,
+            spring_constant: Some(0.5),
+            model: None,
+            segment: Some(adhesion::fit::SegmentChoice::Both),
+            poisson: None,
+        };
+        let both = adhesion::fit::fit_with(&curve, Path::new("synthetic.csv"), &settings).unwrap();
         assert!(
-            r.points_used <= in_contact + 2 && r.points_used + 2 >= in_contact,
+            both.points_in_contact <= in_contact + 2 && both.points_in_contact + 2 >= in_contact,
             "{} vs {in_contact}",
-            r.points_used
+            both.points_in_contact
         );
+        assert_eq!(both.points_used, curve.depth.len());
+        assert!(rel(both.work_of_adhesion().unwrap().value, w.value) < 0.01);
         // The predicted pull-off is the one the data were made with.
         let ms = r.machine_stiffness.unwrap();
         assert!(rel(ms.pull_off_force_n, x.pull_off().unwrap().before.force) < 0.03);
-        assert!(ms.pull_off_force_n < r.jkr.pull_off_force_n);
+        assert!(ms.pull_off_force_n < r.jkr.unwrap().pull_off_force_n);
+    }
+
+    /// The depth origin of a measured curve is never the contact point: the fixture with every
+    /// depth shifted by +150 nm and by −80 nm is fitted to within 1 % of the unshifted fit's w
+    /// and ℰ (the fit is translation-invariant: the same numbers to round-off), and the fitted
+    /// contact point moves with the shift to within 1 nm. The unshifted contact point is the
+    /// true origin within 1 nm; the measured pull-off is the retract's force minimum.
+    #[test]
+    fn shifted_depth_origin_is_fitted_as_a_contact_point() {
+        let path = crate::common::root().join("tests/fixtures/curves/synthetic_cycle.csv");
+        let curve = adhesion::fit::read_curve(&path).unwrap();
+        let base = fit_curve(&curve, &path, 1e-6, Some(0.5), None).unwrap();
+        assert!(
+            base.contact_point_m.value.abs() < 1e-9,
+            "{:?}",
+            base.contact_point_m
+        );
+        assert!(
+            rel(base.work_of_adhesion().unwrap().value, 0.04) < 0.01,
+            "{base:#?}"
+        );
+        assert!(rel(base.plane_strain_modulus_pa.value, 2.0e6) < 0.01, "{base:#?}");
+        let turn = adhesion::fit::turning_row(&curve);
+        let retract_min = curve.force[turn..].iter().copied().fold(f64::INFINITY, f64::min);
+        assert!((base.measured_pull_off_force_n - (retract_min - base.baseline_n.value)).abs() < 1e-15);
+        for shift in [150e-9, -80e-9] {
+            let mut c = curve.clone();
+            c.depth.iter_mut().for_each(|d| *d += shift);
+            let r = fit_curve(&c, &path, 1e-6, Some(0.5), None).unwrap();
+            let (w0, w1) = (
+                base.work_of_adhesion().unwrap().value,
+                r.work_of_adhesion().unwrap().value,
+            );
+            assert!(rel(w1, w0) < 0.01, "shift {shift:e}: w {w1} vs {w0}");
+            assert!(
+                rel(
+                    r.plane_strain_modulus_pa.value,
+                    base.plane_strain_modulus_pa.value
+                ) < 0.01,
+                "shift {shift:e}"
+            );
+            let moved = r.contact_point_m.value - base.contact_point_m.value;
+            assert!(
+                (moved - shift).abs() < 1e-9,
+                "shift {shift:e}: contact point moved {moved:e}"
+            );
+            assert!(r.warnings.is_empty(), "{:?}", r.warnings);
+        }
     }
 
     /// Noise-free data are fitted exactly.
@@ -368,7 +428,7 @@ mod fit {
             Some(FitModel::Jkr),
         )
         .unwrap();
-        assert!(rel(r.work_of_adhesion_j_per_m2.value, 63.2e-3) < 1e-7, "{r:#?}");
+        assert!(rel(r.work_of_adhesion().unwrap().value, 63.2e-3) < 1e-7, "{r:#?}");
         assert!(rel(r.plane_strain_modulus_pa.value, 6.39e6) < 1e-7, "{r:#?}");
     }
 
@@ -573,7 +633,7 @@ mod fit {
             );
             assert_eq!(how.baseline_rows_end > 0, after > 0, "{before}/{after}: {how:?}");
             let r = fit_curve(&curve, path, 1e-6, Some(0.5), None).unwrap();
-            let (w, e) = (r.work_of_adhesion_j_per_m2, r.plane_strain_modulus_pa);
+            let (w, e) = (r.work_of_adhesion().unwrap(), r.plane_strain_modulus_pa);
             assert!(
                 (w.value - 0.04).abs() < 3.0 * w.std_error,
                 "{before}/{after}: {r:#?}"
@@ -597,7 +657,8 @@ mod fit {
         let curve = adhesion::fit::read_curve(&path).unwrap();
         let r = fit_curve(&curve, &path, 1e-6, Some(0.5), None).unwrap();
         assert!(
-            rel(r.work_of_adhesion_j_per_m2.value, 0.04) < 3.0 * r.work_of_adhesion_j_per_m2.std_error / 0.04
+            rel(r.work_of_adhesion().unwrap().value, 0.04)
+                < 3.0 * r.work_of_adhesion().unwrap().std_error / 0.04
         );
         assert!(r.contact_detection.baseline_rows_start >= 38 && r.contact_detection.baseline_rows_end >= 38);
         let json = serde_json::to_value(&r).unwrap();
@@ -717,7 +778,7 @@ fn accuracy_scene_shows_convergence() {
 /// A file with only the in-contact part (no zero-force segments) is fitted with all its points.
 #[test]
 fn contact_only_file() {
-    use adhesion::fit::{fit_curve, simulate_cycle};
+    use adhesion::fit::simulate_cycle;
     let x = Experiment::new(TipGeometry::Sphere { radius: 1e-6 }, 2.0e6, 0.04, 0.5).unwrap();
     let d_o = x.pull_off().unwrap().before.delta;
     let mut c = simulate_cycle(&x, 1.5 * d_o, 3.0 * x.scales().h, 300).unwrap();
@@ -725,14 +786,21 @@ fn contact_only_file() {
     c.depth = keep.iter().map(|&k| c.depth[k]).collect();
     c.force = keep.iter().map(|&k| c.force[k]).collect();
     c.lines = (2..keep.len() + 2).collect();
-    let r = fit_curve(&c, std::path::Path::new("contact.csv"), 1e-6, None, None).unwrap();
+    let settings = adhesion::fit::FitSettings {
+        radius: 1e-6,
+        spring_constant: None,
+        model: None,
+        segment: Some(adhesion::fit::SegmentChoice::Both),
+        poisson: None,
+    };
+    let r = adhesion::fit::fit_with(&c, std::path::Path::new("contact.csv"), &settings).unwrap();
     assert!(
-        r.points_used + 3 >= keep.len(),
+        r.points_in_contact + 3 >= keep.len(),
         "{} of {}",
         r.points_used,
         keep.len()
     );
-    assert!(rel(r.work_of_adhesion_j_per_m2.value, 0.04) < 1e-7);
+    assert!(rel(r.work_of_adhesion().unwrap().value, 0.04) < 1e-7);
 }
 
 /// The fig2.8-fit demonstration (defaults: ℰ = 2 MPa, w = 0.04 J/m², 1 % noise) fits back its

@@ -13,6 +13,7 @@ mod cli;
 mod common;
 mod edges;
 mod figures;
+mod force_curves;
 mod fuzz;
 mod hardening;
 mod layering;

@@ -414,15 +414,9 @@ impl Scene for Fig2_8Fit {
         let mut fig = crate::fit::fit_figure(&curve, &report)?;
         fig.id = Self::ID.into();
         fig.title = Self::TITLE.into();
-        fig.result(
-            "work_of_adhesion_std_error_J_per_m2",
-            report.work_of_adhesion_j_per_m2.std_error,
-        );
-        fig.result(
-            "plane_strain_modulus_std_error_Pa",
-            report.plane_strain_modulus_pa.std_error,
-        );
-        fig.result("jkr_pull_off_force_N", report.jkr.pull_off_force_n);
+        if let Some(jkr) = report.jkr {
+            fig.result("jkr_pull_off_force_N", jkr.pull_off_force_n);
+        }
         if let Some(ms) = report.machine_stiffness {
             fig.result("pull_in_force_N", ms.pull_in_force_n);
             fig.result("pull_in_depth_jump_m", ms.pull_in_depth_jump_m);
@@ -450,11 +444,13 @@ fn label_synthetic(fig: &mut Figure, p: &Fig2_8FitParams, report: &crate::fit::F
     for s in &mut panel.series {
         s.name = match s.name.as_str() {
             "measured" => "synthetic data".into(),
-            "measured, fitted" => "synthetic data, rows fitted".into(),
+            "measured, fitted in contact" => "synthetic data, in-contact rows fitted".into(),
             _ => continue,
         };
     }
-    let (w, e) = (&report.work_of_adhesion_j_per_m2, &report.plane_strain_modulus_pa);
+    let (Some(w), e) = (&report.work_of_adhesion_j_per_m2, &report.plane_strain_modulus_pa) else {
+        return;
+    };
     panel.annotate(format!(
         "synthetic: w = {} mJ/m², ℰ = {} MPa, noise {} % of max |P|",
         number(p.demo_work_of_adhesion * 1e3, 3),
