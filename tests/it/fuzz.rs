@@ -1,8 +1,12 @@
 //! Seeded mutation fuzzing of the input parsers: force-curve CSV, height-map CSV, .gsf,
-//! peeling-profile CSV and presets. Each parser gets valid seeds mutated (bytes flipped,
+//! peeling-profile CSV, presets, and the instrument force-distance readers (JPK archives, also
+//! re-zipped from mutated entries so that mutations reach the headers and channels past the zip's
+//! checksums; Asylum .ibw; afmformats .h5; AFM Workshop CSV and zip; NT-MDT, Chiaro, afmformats .tab text).
+//! Each parser gets valid seeds mutated (bytes flipped,
 //! inserted, deleted, duplicated; numbers such as 1e308, -0, nan spliced in) and must return
 //! `Ok` or `Err`, never panic. A short run is in CI; `ADHESION_FUZZ_ITERATIONS` sets the count
-//! of the `#[ignore]`d long run (default one million per parser).
+//! of the `#[ignore]`d long run (default one million per parser), `ADHESION_FUZZ_ONLY` a part of
+//! the names of the parsers it runs (e.g. `afm` for the force-distance readers).
 
 use std::path::Path;
 
@@ -102,18 +106,137 @@ fn seeds() -> Vec<(&'static str, Vec<u8>)> {
     }
     let profile = b"# x, y\n0,0\n0.1,0.01\n0.2,0.04\n0.3,0.09\n".to_vec();
     let preset = adhesion::headless::preset_text(adhesion::scenes::find("fig1.1").unwrap()).into_bytes();
-    vec![
+    let mut out = vec![
         ("force-curve CSV", curve),
         ("height-map CSV", map),
         (".gsf", gsf),
         ("profile CSV", profile),
         ("preset", preset),
+    ];
+    out.extend(afm_seeds());
+    out
+}
+
+/// Marker between the entries of a JPK archive unpacked into one seed.
+const ENTRY: &[u8] = b"\n@@entry@@ ";
+
+/// The force-distance readers' seeds: small fixtures (text ones cut to their first lines).
+fn afm_seeds() -> Vec<(&'static str, Vec<u8>)> {
+    let dir = crate::common::root().join("tests/fixtures/afm");
+    let read = |f: &str| std::fs::read(dir.join(f)).unwrap();
+    let head = |b: Vec<u8>, lines: usize| -> Vec<u8> {
+        let mut n = 0;
+        let end = b.iter().position(|&c| {
+            n += usize::from(c == b'\n');
+            n == lines
+        });
+        b[..end.map_or(b.len(), |e| e + 1)].to_vec()
+    };
+    let unzip = |b: Vec<u8>| -> Vec<(String, Vec<u8>)> {
+        let mut z = zip::ZipArchive::new(std::io::Cursor::new(b)).unwrap();
+        (0..z.len())
+            .map(|i| {
+                let mut f = z.by_index(i).unwrap();
+                let name = f.name().unwrap().into_owned();
+                let mut data = Vec::new();
+                std::io::Read::read_to_end(&mut f, &mut data).unwrap();
+                (name, data)
+            })
+            .collect()
+    };
+    let unpacked = |b: Vec<u8>| -> Vec<u8> {
+        let mut out = Vec::new();
+        for (name, data) in unzip(b) {
+            out.extend_from_slice(ENTRY);
+            out.extend_from_slice(name.as_bytes());
+            out.push(b'\n');
+            out.extend(data);
+        }
+        out
+    };
+    let chiaro = unzip(read("fmt-chiaro-txt_AEBP1_Indentation_002.zip"))
+        .remove(0)
+        .1;
+    vec![
+        ("afm .jpk-force", read("fmt-jpk-fd_spot3-0192.jpk-force")),
+        (
+            "afm .jpk-force entries",
+            unpacked(read("fmt-jpk-fd_spot3-0192.jpk-force")),
+        ),
+        (
+            "afm .jpk-qi-data entries",
+            unpacked(read("fmt-jpk-fd_2020.02.07-16.29.05.036.jpk-qi-data")),
+        ),
+        ("afm .ibw", read("fmt-igor-fd_SiN_FD_plot.ibw")),
+        (
+            "afm Workshop .csv",
+            head(read("fmt-afm-workshop-fd_single_2021-01-15.csv"), 60),
+        ),
+        (
+            "afm Workshop .zip",
+            read("fmt-afm-workshop-fd_mapping_16_2018-08-01_13.07.zip"),
+        ),
+        (
+            "afm NT-MDT .txt",
+            // Whole: the constant padding that the reader crops spans its first 180 rows.
+            read("fmt-ntmdt-txt-fd_2015_01_17_gel4-0,1_mQ_adh_6B_Curve_DFL_Height_51.txt"),
+        ),
+        ("afm Chiaro .txt", head(chiaro, 90)),
+        ("afm .tab", head(read("fmt-tab-fd_version_0.13.3.tab"), 60)),
+        ("afm .h5", read("fmt-hdf5-fd_version_0.13.3.h5")),
     ]
+}
+
+/// A stored (uncompressed) zip of the entries of an unpacked seed.
+fn rezip(bytes: &[u8]) -> Vec<u8> {
+    let mut out = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    let stored = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Stored);
+    let mut rest = bytes;
+    let mut seen = std::collections::HashSet::new();
+    while let Some(at) = rest.windows(ENTRY.len()).position(|w| w == ENTRY) {
+        rest = &rest[at + ENTRY.len()..];
+        let nl = rest.iter().position(|&c| c == b'\n').unwrap_or(rest.len());
+        let name = String::from_utf8_lossy(&rest[..nl]).into_owned();
+        rest = &rest[(nl + 1).min(rest.len())..];
+        let end = rest
+            .windows(ENTRY.len())
+            .position(|w| w == ENTRY)
+            .unwrap_or(rest.len());
+        if !seen.insert(name.clone()) {
+            continue;
+        }
+        if name.ends_with('/') {
+            let _ = out.add_directory(name, stored);
+        } else if out.start_file(name, stored).is_ok() {
+            let _ = std::io::Write::write_all(&mut out, &rest[..end]);
+        }
+    }
+    out.finish().map(|c| c.into_inner()).unwrap_or_default()
 }
 
 /// Run one parser on `bytes`; true when it panicked.
 fn panics(kind: &str, bytes: &[u8], dir: &Path) -> bool {
     let path = dir.join("input");
+    if let Some(format) = kind.strip_prefix("afm ") {
+        // Zips are built before the parser runs: a panic of the zip writer is not the reader's.
+        let bytes = if format.ends_with(" entries") {
+            rezip(bytes)
+        } else {
+            bytes.to_vec()
+        };
+        let name = match format.split(' ').next().unwrap_or("") {
+            "Workshop" | "NT-MDT" | "Chiaro" => format!("input{}", &format[format.rfind('.').unwrap_or(0)..]),
+            ext => format!("input{ext}"),
+        };
+        let opts = adhesion::readers::ReadOptions {
+            spring_constant: Some(0.1),
+            sensitivity: Some(5e-8),
+        };
+        return std::panic::catch_unwind(|| {
+            let _ = adhesion::readers::parse_force_bytes(&bytes, Path::new(&name), &opts);
+        })
+        .is_err();
+    }
     std::panic::catch_unwind(|| match kind {
         "force-curve CSV" => {
             let _ = adhesion::fit::parse_curve(&String::from_utf8_lossy(bytes), Path::new("c.csv"));
@@ -147,7 +270,11 @@ fn panics(kind: &str, bytes: &[u8], dir: &Path) -> bool {
 fn fuzz(iterations: usize) -> Vec<(&'static str, usize, usize)> {
     let dir = tempfile::tempdir().unwrap();
     let mut out = Vec::new();
+    let only = std::env::var("ADHESION_FUZZ_ONLY").unwrap_or_default();
     for (k, (kind, seed)) in seeds().into_iter().enumerate() {
+        if !kind.contains(only.as_str()) {
+            continue;
+        }
         let mut rng = Rng(SEED + k as u64);
         let mut corpus = vec![seed];
         let mut crashes = 0;
@@ -187,4 +314,27 @@ fn parsers_survive_a_million_mutated_inputs() {
         println!("{kind}: {n} executions, {crashes} panics");
     }
     assert!(results.iter().all(|r| r.2 == 0));
+}
+
+#[test]
+fn force_distance_seeds_read_unmutated() {
+    let opts = adhesion::readers::ReadOptions {
+        spring_constant: Some(0.1),
+        sensitivity: Some(5e-8),
+    };
+    for (kind, seed) in afm_seeds() {
+        let format = kind.trim_start_matches("afm ");
+        let bytes = if format.ends_with(" entries") {
+            rezip(&seed)
+        } else {
+            seed
+        };
+        let name = match format.split(' ').next().unwrap() {
+            "Workshop" | "NT-MDT" | "Chiaro" => format!("input{}", &format[format.rfind('.').unwrap()..]),
+            ext => format!("input{ext}"),
+        };
+        let file = adhesion::readers::parse_force_bytes(&bytes, Path::new(&name), &opts)
+            .unwrap_or_else(|e| panic!("{kind}: {e}"));
+        assert!(!file.curves.is_empty(), "{kind}");
+    }
 }
