@@ -9,9 +9,16 @@ fn main() -> ExitCode {
         match adhesion::cli::Cli::try_parse_from(adhesion::cli::join_negative_values(std::env::args_os())) {
             Ok(cli) => cli,
             Err(e) if !e.use_stderr() => {
-                // --help, --version.
-                let _ = e.print();
-                return ExitCode::SUCCESS;
+                // --help, --version: a failed write to stdout is an error, as for every output.
+                use std::io::Write;
+                let printed = e.print().and_then(|()| std::io::stdout().flush());
+                return match printed {
+                    Ok(()) => ExitCode::SUCCESS,
+                    Err(cause) => {
+                        eprintln!("error: writing to standard output: {cause}");
+                        ExitCode::FAILURE
+                    }
+                };
             }
             Err(e) => {
                 eprintln!("{}", adhesion::cli::one_line(&e));
