@@ -1015,6 +1015,10 @@ impl Scene for Fig3_8 {
 impl Sweep for Fig3_8 {
     type Context = (Moments, f64);
 
+    fn point_len(p: &Self::Params, _id: usize) -> usize {
+        p.grid_points
+    }
+
     fn context(p: &Self::Params, _job: &Job) -> Result<Self::Context> {
         p.base_moments()
     }
