@@ -573,7 +573,10 @@ impl ParamValues {
             path: path.to_path_buf(),
             message,
         };
-        let text = std::fs::read_to_string(path).map_err(|e| preset_err(e.to_string()))?;
+        let text = crate::input::read_text(path).map_err(|e| match e {
+            Error::DataFile { message, .. } => preset_err(message),
+            other => preset_err(other.to_string()),
+        })?;
         // As the data files: a UTF-8 byte-order mark is skipped, CRLF and CR alone end lines.
         let text = normalise_line_ends(&text);
         let table: toml::Table = toml::from_str(&text).map_err(|e| preset_err(toml_error_at(&text, &e)))?;

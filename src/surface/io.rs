@@ -376,7 +376,7 @@ pub fn parse_gsf(bytes: &[u8], path: &Path) -> Result<HeightMap> {
 /// # Errors
 /// [`Error::DataFile`] as [`parse_csv`] and [`parse_gsf`], or when the file cannot be read.
 pub fn read_height_map(path: &Path, pixel_size: Option<f64>) -> Result<HeightMap> {
-    let bytes = std::fs::read(path).map_err(|e| Error::data_file(path, 0, format!("cannot read: {e}")))?;
+    let bytes = crate::input::read_input(path, crate::input::limit())?;
     match MapFormat::of(path) {
         MapFormat::Gsf => parse_gsf(&bytes, path),
         MapFormat::Csv => {
