@@ -20,6 +20,7 @@ mod reference_ch1;
 mod registry;
 mod reproduction;
 mod shards;
+mod silent;
 mod snapshots;
 mod surface;
 mod tui;

@@ -1,0 +1,253 @@
+//! No silent wrong result (issue 33): every case below once ended with exit status 0 and a
+//! wrong or unsupported number, a panic, a hang, unbounded memory, a stray file or a message
+//! naming the wrong thing. One test per case, named after the issue's item.
+
+use std::path::Path;
+use std::process::{Command, Output, Stdio};
+
+fn adhesion(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_adhesion"))
+        .args(args)
+        .output()
+        .expect("binary runs")
+}
+
+/// One line on stderr, containing every needle; non-zero exit.
+#[track_caller]
+fn assert_one_line_error(o: &Output, needles: &[&str]) {
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "succeeded; stderr: {stderr}");
+    assert_eq!(o.status.code(), Some(1), "exit status; stderr: {stderr}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "not one line:\n{stderr}");
+    for n in needles {
+        assert!(stderr.contains(n), "`{n}` not in: {stderr}");
+    }
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().expect("UTF-8 path")
+}
+
+// Item 9: a full stdout is an error (exit 1, one line naming standard output), never a panic
+// (exit 101), for every command that prints, --help included.
+#[test]
+fn item09_a_full_stdout_is_a_one_line_error() {
+    let full = || {
+        std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .expect("/dev/full")
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let map = dir.path().join("m.csv");
+    let heights: Vec<String> = (0..16)
+        .map(|i| {
+            (0..16)
+                .map(|j| format!("{:e}", 1e-9 * ((i * 7 + j * 13) % 11) as f64))
+                .collect::<Vec<_>>()
+                .join(",")
+        })
+        .collect();
+    std::fs::write(&map, heights.join("\n")).unwrap();
+    let out = dir.path().join("o");
+    let cases: Vec<Vec<&str>> = vec![
+        vec!["--list"],
+        vec!["--describe", "fig1.1"],
+        vec!["--print-preset", "fig1.1"],
+        vec!["--help"],
+        vec!["--headless", "--analyze-surface", s(&map), "--pixel-size", "1e-8"],
+        vec![
+            "--headless",
+            "--figure",
+            "fig1.1",
+            "--format",
+            "csv",
+            "--out",
+            s(&out),
+        ],
+    ];
+    for args in cases {
+        let o = Command::new(env!("CARGO_BIN_EXE_adhesion"))
+            .args(&args)
+            .stdout(Stdio::from(full()))
+            .stderr(Stdio::piped())
+            .output()
+            .expect("binary runs");
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {stderr}");
+        assert_eq!(stderr.trim_end().lines().count(), 1, "{args:?}: {stderr}");
+        assert!(stderr.contains("standard output"), "{args:?}: {stderr}");
+    }
+}
+
+/// fig3.8 in quick form, sharded in one shard into `out` with `sets`; the sweep's folder.
+fn fig3_8_shard(out: &Path, sets: &[&str]) -> std::path::PathBuf {
+    let mut args = vec![
+        "--headless",
+        "--figure",
+        "fig3.8",
+        "--quick",
+        "--shard",
+        "0/1",
+        "--out",
+        s(out),
+    ];
+    for a in sets {
+        args.extend(["--set", a]);
+    }
+    let o = adhesion(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let sets: Vec<String> = sets.iter().map(|a| (*a).to_string()).collect();
+    let scene = adhesion::scenes::find("fig3.8").unwrap();
+    let values = adhesion::headless::resolve_values(scene, None, &sets, true).unwrap();
+    adhesion::headless::shard::folder(out, "fig3.8", &values)
+}
+
+fn fig3_8_merge(out: &Path) -> Output {
+    adhesion(&[
+        "--headless",
+        "--figure",
+        "fig3.8",
+        "--quick",
+        "--merge",
+        "--format",
+        "json",
+        "--out",
+        s(out),
+    ])
+}
+
+// Item 1: a point file copied from the folder of another parameter set is refused by the merge
+// (point files carry the hash of their parameter set), naming the file.
+#[test]
+fn item01_a_point_of_another_parameter_set_is_refused_by_the_merge() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o");
+    let default = fig3_8_shard(&out, &[]);
+    let other = fig3_8_shard(&out, &["modulus=2e6"]);
+    assert_ne!(default, other);
+    std::fs::copy(other.join("point-000003.json"), default.join("point-000003.json")).unwrap();
+    let o = fig3_8_merge(&out);
+    assert_one_line_error(&o, &["point-000003.json", "another parameter set"]);
+    assert!(!out.join("fig3.8.json").exists());
+    // Rerunning the shard replaces the foreign point; the merge then succeeds.
+    fig3_8_shard(&out, &[]);
+    let o = fig3_8_merge(&out);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// Replace `from` by `to` in a point file's text (once).
+fn edit_point(path: &Path, from: &str, to: &str) {
+    let text = std::fs::read_to_string(path).unwrap();
+    assert!(text.contains(from), "{from} not in {text}");
+    std::fs::write(path, text.replacen(from, to, 1)).unwrap();
+}
+
+// Item 2: NaN or absurd numbers in a point file (values, seconds) are refused by the merge,
+// edited by hand (the checksum) or with a forged checksum (the checks of every number).
+#[test]
+fn item02_non_finite_or_absurd_numbers_in_point_files_are_refused() {
+    use adhesion::headless::shard::{Expected, parse_point, reseal};
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o");
+    let f = fig3_8_shard(&out, &[]);
+    let p = f.join("point-000002.json");
+    let good = std::fs::read_to_string(&p).unwrap();
+    let value: serde_json::Value = serde_json::from_str(&good).unwrap();
+    let first = value["values"][0].as_str().unwrap().to_string();
+    let seconds = value["seconds"].to_string();
+    edit_point(&p, &format!("\"{first}\""), "\"NaN\"");
+    assert_one_line_error(&fig3_8_merge(&out), &["point-000002.json", "checksum"]);
+    std::fs::write(&p, &good).unwrap();
+    edit_point(&p, &format!("\"seconds\":{seconds}"), "\"seconds\":-1e300");
+    assert_one_line_error(&fig3_8_merge(&out), &["point-000002.json", "checksum"]);
+    assert!(!out.join("fig3.8.json").exists());
+    // Forged checksums: every number is checked itself.
+    let hash = value["params"].as_str().unwrap();
+    let n = value["values"].as_array().unwrap().len();
+    let expected = Expected {
+        scene: "fig3.8",
+        point: 2,
+        params_hash: hash,
+        len: n,
+        nan_allowed: false,
+    };
+    assert!(parse_point(&good, &expected).is_ok());
+    let forged = |from: &str, to: &str| reseal(&good.replacen(from, to, 1)).unwrap();
+    for (text, needle) in [
+        (forged(&format!("\"{first}\""), "\"NaN\""), "not a finite number"),
+        (forged(&format!("\"{first}\""), "\"inf\""), "not a finite number"),
+        (forged(&format!("\"{first}\""), "\"x\""), "not a number"),
+        (
+            forged(&format!("\"seconds\":{seconds}"), "\"seconds\":-1e300"),
+            "computing time",
+        ),
+        (
+            forged(&format!("\"seconds\":{seconds}"), "\"seconds\":1e300"),
+            "computing time",
+        ),
+    ] {
+        let e = parse_point(&text, &expected).unwrap_err();
+        assert!(e.contains(needle), "{needle} not in {e}");
+    }
+    std::fs::write(&p, &good).unwrap();
+    let o = fig3_8_merge(&out);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json = std::fs::read_to_string(out.join("fig3.8.json")).unwrap();
+    assert!(!json.contains("null"), "a null in the merged figure");
+}
+
+// Item 8: a point file with a wrong number of values is a one-line error naming the file, not
+// a panic in the assembly (exit 101).
+#[test]
+fn item08_a_wrong_count_of_values_is_an_error_naming_the_file() {
+    use adhesion::headless::shard::reseal;
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o");
+    let f = fig3_8_shard(&out, &[]);
+    let p = f.join("point-000004.json");
+    let good = std::fs::read_to_string(&p).unwrap();
+    // One value dropped, the checksum forged to match.
+    let mut v: serde_json::Value = serde_json::from_str(&good).unwrap();
+    v["values"].as_array_mut().unwrap().pop();
+    std::fs::write(&p, reseal(&v.to_string()).unwrap()).unwrap();
+    let o = fig3_8_merge(&out);
+    assert_ne!(o.status.code(), Some(101), "panicked");
+    assert_one_line_error(&o, &["point-000004.json", "values, the point has"]);
+    // In the library too: the assembly refuses points of the wrong length.
+    let scene = adhesion::scenes::find("fig3.8").unwrap();
+    let values = scene.quick(&scene.defaults()).unwrap();
+    let sweep = scene.sweep().unwrap();
+    let n = sweep.points(&values).unwrap().len();
+    let points = vec![vec![0.1; 3]; n];
+    let e = sweep
+        .assemble(&values, &points, &adhesion::job::Job::quiet())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("values"), "{e}");
+}
+
+// Item 12: a shard that cannot write its params.toml (a full disk) removes the folder it
+// created. The full disk is a small tmpfs mounted in a private mount namespace.
+#[test]
+fn item12_a_shard_failing_on_a_full_disk_leaves_no_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let mnt = dir.path().join("full");
+    std::fs::create_dir(&mnt).unwrap();
+    let script = format!(
+        "mount -t tmpfs -o size=16k tmpfs {m} && (dd if=/dev/zero of={m}/filler bs=4k count=64 2>/dev/null; true) && \
+         {bin} --headless --figure fig3.8 --quick --shard 0/1 --out {m}/o; echo \"status $?\"; ls -A {m}/o",
+        m = s(&mnt),
+        bin = env!("CARGO_BIN_EXE_adhesion"),
+    );
+    let o = Command::new("unshare")
+        .args(["-rm", "sh", "-c", &script])
+        .output()
+        .expect("unshare runs");
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(stdout.contains("status 1"), "{stdout}{stderr}");
+    assert!(stderr.contains("params.toml"), "{stderr}");
+    // The folder `o` was created by the shard: it is gone with its sweep folder.
+    assert!(stderr.contains("No such file"), "left behind: {stdout}{stderr}");
+}
