@@ -251,3 +251,84 @@ fn item12_a_shard_failing_on_a_full_disk_leaves_no_folder() {
     // The folder `o` was created by the shard: it is gone with its sweep folder.
     assert!(stderr.contains("No such file"), "left behind: {stdout}{stderr}");
 }
+
+/// Run with a deadline: the output, or a panic naming the command if it runs past `seconds`.
+fn adhesion_within(args: &[&str], env: &[(&str, &str)], seconds: u64) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_adhesion"))
+        .args(args)
+        .envs(env.iter().copied())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("binary runs");
+    let start = std::time::Instant::now();
+    while child.try_wait().expect("waits").is_none() {
+        if start.elapsed().as_secs() >= seconds {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("{args:?} still running after {seconds} s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    child.wait_with_output().expect("output")
+}
+
+// Item 7: input is bounded: a device or a FIFO is refused at once (no hang, no runaway
+// memory), a file above the limit (ADHESION_INPUT_LIMIT) is refused naming the file and the
+// limit, for height maps, presets and profiles.
+#[test]
+fn item07_input_is_read_from_regular_files_within_a_size_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("pipe.csv");
+    let made = Command::new("mkfifo").arg(&fifo).status().expect("mkfifo runs");
+    assert!(made.success());
+    let out = dir.path().join("o");
+    for input in ["/dev/zero", s(&fifo)] {
+        for args in [
+            vec!["--headless", "--analyze-surface", input, "--pixel-size", "1e-8"],
+            vec!["--headless", "--figure", "fig1.1", "--preset", input, "--out", s(&out)],
+            vec!["--headless", "--figure", "fig6.2", "--set", &format!("profile_file={input}"), "--out", s(&out)],
+        ] {
+            let o = adhesion_within(&args, &[], 20);
+            assert_one_line_error(&o, &[input, "not a regular file"]);
+        }
+    }
+    let map = dir.path().join("m.csv");
+    let row: Vec<String> = (0..32).map(|j| format!("{:e}", 1e-9 * (j % 5) as f64)).collect();
+    let rows: Vec<String> = (0..32).map(|_| row.join(",")).collect();
+    std::fs::write(&map, rows.join("\n")).unwrap();
+    let args = ["--headless", "--analyze-surface", s(&map), "--pixel-size", "1e-8"];
+    let o = adhesion_within(&args, &[("ADHESION_INPUT_LIMIT", "1k")], 20);
+    assert_one_line_error(&o, &["m.csv", "input limit of 1000 bytes", "ADHESION_INPUT_LIMIT"]);
+    assert!(!out.exists());
+}
+
+// Item 11: the temporaries of a killed run (its process gone) are removed by the next write
+// into the folder; those of a live process or of another host are left alone.
+#[test]
+fn item11_temporaries_of_a_killed_run_are_removed_by_the_next_write() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o");
+    std::fs::create_dir(&out).unwrap();
+    let mut gone = Command::new("true").spawn().expect("true runs");
+    let dead = gone.id();
+    gone.wait().unwrap();
+    let host = adhesion::render::host_tag();
+    let stale = out.join(format!(".fig1.1.svg.{dead}@{host}-0123456789abcdef.tmp"));
+    let stale_backup = out.join(format!(".fig1.1.csv.{dead}@{host}-fedcba9876543210.bak"));
+    let live = out.join(format!(".fig1.1.svg.{}@{host}-0123456789abcdef.tmp", std::process::id()));
+    let elsewhere = out.join(format!(".fig1.1.svg.{dead}@{host}x-0123456789abcdef.tmp"));
+    let other = out.join(".notes.tmp");
+    for p in [&stale, &stale_backup, &live, &elsewhere, &other] {
+        std::fs::write(p, b"partial").unwrap();
+    }
+    assert_eq!(
+        adhesion::render::temporary_owner(&stale.file_name().unwrap().to_string_lossy()),
+        Some((dead, host.clone()))
+    );
+    let o = adhesion(&["--headless", "--figure", "fig1.1", "--format", "csv", "--out", s(&out)]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(!stale.exists() && !stale_backup.exists(), "stale temporaries left");
+    assert!(live.exists() && elsewhere.exists() && other.exists());
+    assert!(out.join("fig1.1.csv").exists());
+}
