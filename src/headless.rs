@@ -26,6 +26,7 @@ pub mod shard;
 /// # Errors
 /// Any problem, as one line of context and cause.
 pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
+    crate::cli::check_options(cli)?;
     if cli.list {
         emit(&list())?;
         return Ok(ExitCode::SUCCESS);
@@ -38,7 +39,6 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
         emit(&preset_text(scenes::find(id)?))?;
         return Ok(ExitCode::SUCCESS);
     }
-    crate::cli::check_options(cli)?;
     let formats = parse_formats(&cli.format)?;
     if cli.reproduce {
         return reproduce_command(&cli.out);
@@ -335,7 +335,8 @@ pub fn preset_header(scene: &dyn SceneDyn) -> String {
     )
 }
 
-/// Defaults, then the preset, then the `--set` assignments; validated.
+/// Defaults, then the preset, then the `--set` assignments; validated. In quick form the
+/// scene's quick values, then the `--set` assignments again: a value the user set is kept.
 ///
 /// # Errors
 /// Preset problems, unknown names, bad values, failed cross-field checks.
@@ -355,6 +356,11 @@ pub fn resolve_values(
     scene.validate(&values)?;
     if quick {
         values = scene.quick(&values)?;
+        // A value the user set wins over the quick form's (which lowers resolutions).
+        for s in sets {
+            values.set_assignment(s)?;
+        }
+        scene.validate(&values)?;
     }
     Ok(values)
 }
