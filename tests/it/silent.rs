@@ -286,8 +286,24 @@ fn item07_input_is_read_from_regular_files_within_a_size_limit() {
     for input in ["/dev/zero", s(&fifo)] {
         for args in [
             vec!["--headless", "--analyze-surface", input, "--pixel-size", "1e-8"],
-            vec!["--headless", "--figure", "fig1.1", "--preset", input, "--out", s(&out)],
-            vec!["--headless", "--figure", "fig6.2", "--set", &format!("profile_file={input}"), "--out", s(&out)],
+            vec![
+                "--headless",
+                "--figure",
+                "fig1.1",
+                "--preset",
+                input,
+                "--out",
+                s(&out),
+            ],
+            vec![
+                "--headless",
+                "--figure",
+                "fig6.2",
+                "--set",
+                &format!("profile_file={input}"),
+                "--out",
+                s(&out),
+            ],
         ] {
             let o = adhesion_within(&args, &[], 20);
             assert_one_line_error(&o, &[input, "not a regular file"]);
@@ -299,7 +315,10 @@ fn item07_input_is_read_from_regular_files_within_a_size_limit() {
     std::fs::write(&map, rows.join("\n")).unwrap();
     let args = ["--headless", "--analyze-surface", s(&map), "--pixel-size", "1e-8"];
     let o = adhesion_within(&args, &[("ADHESION_INPUT_LIMIT", "1k")], 20);
-    assert_one_line_error(&o, &["m.csv", "input limit of 1000 bytes", "ADHESION_INPUT_LIMIT"]);
+    assert_one_line_error(
+        &o,
+        &["m.csv", "input limit of 1000 bytes", "ADHESION_INPUT_LIMIT"],
+    );
     assert!(!out.exists());
 }
 
@@ -316,7 +335,10 @@ fn item11_temporaries_of_a_killed_run_are_removed_by_the_next_write() {
     let host = adhesion::render::host_tag();
     let stale = out.join(format!(".fig1.1.svg.{dead}@{host}-0123456789abcdef.tmp"));
     let stale_backup = out.join(format!(".fig1.1.csv.{dead}@{host}-fedcba9876543210.bak"));
-    let live = out.join(format!(".fig1.1.svg.{}@{host}-0123456789abcdef.tmp", std::process::id()));
+    let live = out.join(format!(
+        ".fig1.1.svg.{}@{host}-0123456789abcdef.tmp",
+        std::process::id()
+    ));
     let elsewhere = out.join(format!(".fig1.1.svg.{dead}@{host}x-0123456789abcdef.tmp"));
     let other = out.join(".notes.tmp");
     for p in [&stale, &stale_backup, &live, &elsewhere, &other] {
@@ -326,9 +348,212 @@ fn item11_temporaries_of_a_killed_run_are_removed_by_the_next_write() {
         adhesion::render::temporary_owner(&stale.file_name().unwrap().to_string_lossy()),
         Some((dead, host.clone()))
     );
-    let o = adhesion(&["--headless", "--figure", "fig1.1", "--format", "csv", "--out", s(&out)]);
+    let o = adhesion(&[
+        "--headless",
+        "--figure",
+        "fig1.1",
+        "--format",
+        "csv",
+        "--out",
+        s(&out),
+    ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert!(!stale.exists() && !stale_backup.exists(), "stale temporaries left");
+    assert!(
+        !stale.exists() && !stale_backup.exists(),
+        "stale temporaries left"
+    );
     assert!(live.exists() && elsewhere.exists() && other.exists());
     assert!(out.join("fig1.1.csv").exists());
+}
+
+// Item 6: --quick keeps a value given with --set that its quick form would lower.
+#[test]
+fn item06_quick_keeps_the_values_the_user_set() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o");
+    let o = adhesion(&[
+        "--headless",
+        "--figure",
+        "fig6.3",
+        "--quick",
+        "--set",
+        "aspect_ratio_points=50",
+        "--format",
+        "json",
+        "--out",
+        s(&out),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("fig6.3.json")).unwrap()).unwrap();
+    let text = json.to_string();
+    assert!(text.contains("aspect_ratio_points"), "{text}");
+    let recorded = json["parameters"]
+        .as_array()
+        .and_then(|ps| ps.iter().find(|p| p["name"] == "aspect_ratio_points"))
+        .map(|p| p["value"].clone())
+        .or_else(|| {
+            json["parameters"]
+                .get("aspect_ratio_points")
+                .map(|p| p["value"].clone())
+        })
+        .expect("aspect_ratio_points recorded");
+    assert_eq!(recorded.as_f64(), Some(50.0), "{recorded}");
+    // The quick form still lowers what was not set.
+    let scene = adhesion::scenes::find("fig6.3").unwrap();
+    let sets = ["aspect_ratio_points=50".to_string()];
+    let v = adhesion::headless::resolve_values(scene, None, &sets, true).unwrap();
+    let quick = scene.quick(&scene.defaults()).unwrap();
+    assert_eq!(v.get("angle_points"), quick.get("angle_points"));
+    assert_eq!(
+        v.get("aspect_ratio_points").and_then(|x| x.as_integer()),
+        Some(50)
+    );
+}
+
+// Item 14: an option that needs another command is a one-line error naming it (it was "the
+// following required arguments were not provided:" with nothing listed).
+#[test]
+fn item14_an_option_of_another_command_is_named() {
+    let o = adhesion(&["--headless", "--fit", "c.csv", "--set", "radius=1"]);
+    assert_one_line_error(&o, &["--set", "--figure"]);
+    let o = adhesion(&["--headless", "--figure", "fig1.1", "--tip-radius", "1e-6"]);
+    assert_one_line_error(&o, &["--tip-radius", "--fit"]);
+    let o = adhesion(&["--headless", "--preset", "p.toml"]);
+    assert_one_line_error(&o, &["--preset", "--figure"]);
+    for args in [
+        &["--headless", "--figure", "fig1.1", "--tip-radius", "1e-6"][..],
+        &["--headless", "--shard", "0/2"],
+    ] {
+        let stderr = String::from_utf8_lossy(&adhesion(args).stderr).into_owned();
+        assert!(!stderr.trim_end().ends_with("provided: (see --help)"), "{stderr}");
+    }
+}
+
+// Item 15: a whole-number parameter takes the notation --describe prints its range in (1e6).
+#[test]
+fn item15_whole_numbers_in_exponent_notation_are_accepted() {
+    let scene = adhesion::scenes::find("fig1.1").unwrap();
+    let mut v = scene.defaults();
+    v.set_assignment("points=1e3").unwrap();
+    assert_eq!(v.get("points").and_then(|x| x.as_integer()), Some(1000));
+    v.set_assignment("points=2.0e2").unwrap();
+    assert_eq!(v.get("points").and_then(|x| x.as_integer()), Some(200));
+    let e = v.set_assignment("points=1.55e1").unwrap_err().to_string();
+    assert!(e.contains("whole number"), "{e}");
+    let e = v.set_assignment("points=1e300").unwrap_err().to_string();
+    assert!(e.contains("points"), "{e}");
+    let dir = tempfile::tempdir().unwrap();
+    let o = adhesion(&[
+        "--headless",
+        "--figure",
+        "fig1.1",
+        "--set",
+        "points=1e6",
+        "--format",
+        "csv",
+        "--out",
+        s(&dir.path().join("o")),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+// Item 17: options the chosen command does not use are errors naming the option.
+#[test]
+fn item17_options_the_command_ignores_are_errors_naming_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = dir.path().join("m.csv");
+    std::fs::write(&map, "1e-9,2e-9\n3e-9,0\n").unwrap();
+    let gsf = dir.path().join("m.gsf");
+    std::fs::write(&gsf, "Gwyddion Simple Field 1.0\n").unwrap();
+    let out = dir.path().join("o");
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            vec![
+                "--headless",
+                "--analyze-surface",
+                s(&map),
+                "--pixel-size",
+                "1e-8",
+                "--out",
+                s(&out),
+            ],
+            "--out",
+        ),
+        (
+            vec![
+                "--headless",
+                "--analyze-surface",
+                s(&map),
+                "--pixel-size",
+                "1e-8",
+                "--format",
+                "csv",
+            ],
+            "--format",
+        ),
+        (
+            vec![
+                "--headless",
+                "--figure",
+                "fig1.1",
+                "--seed",
+                "3",
+                "--out",
+                s(&out),
+            ],
+            "--seed",
+        ),
+        (
+            vec![
+                "--headless",
+                "--generate-surface",
+                "--hurst",
+                "0.5",
+                "--out",
+                "a.csv",
+            ],
+            "--hurst",
+        ),
+        (
+            vec!["--headless", "--reproduce", "--format", "json", "--out", s(&out)],
+            "--format",
+        ),
+        (
+            vec![
+                "--headless",
+                "--generate-surface",
+                "--format",
+                "png",
+                "--out",
+                "a.csv",
+            ],
+            "--format",
+        ),
+        (
+            vec!["--headless", "--analyze-surface", s(&gsf), "--pixel-size", "1e-8"],
+            "--pixel-size",
+        ),
+        (vec!["--list", "--figure", "fig1.1"], "--figure"),
+        (
+            vec![
+                "--headless",
+                "--figure",
+                "fig3.8",
+                "--shard",
+                "0/2",
+                "--format",
+                "csv",
+                "--out",
+                s(&out),
+            ],
+            "--format",
+        ),
+    ];
+    for (args, option) in cases {
+        let o = adhesion(&args);
+        assert_one_line_error(&o, &[option]);
+        assert!(o.stdout.is_empty(), "{args:?} printed");
+    }
+    assert!(!out.exists() && !Path::new("a.csv").exists());
 }
