@@ -299,9 +299,10 @@ pub fn finish(
 }
 
 /// A model's failure (or non-finite results) as the user can act on it: an error that already
-/// names one of the scene's parameters, a cancellation and file errors pass unchanged; any
-/// other, which names internal quantities (`no sign change on [..]`, `m0`, a Newton residual),
-/// is prefixed by the parameters the user changed, most changed first (by the ratio to the
+/// names one of the parameters the user changed (or any parameter when none was changed), a
+/// cancellation and file errors pass unchanged; any other, which names internal quantities
+/// (`no sign change on [..]`, `m0`, a Newton residual) or a parameter derived from the one the
+/// user set (`ring_width` from `radius`), is prefixed by the parameters the user changed, most changed first (by the ratio to the
 /// default), with their defaults, and its numbers are cut to 6 significant digits. `defaults`
 /// is what the changes are measured from: [`SceneDyn::baseline`] (in quick runs, the defaults
 /// in quick form).
@@ -323,12 +324,27 @@ pub fn attribute_failure(
         return error;
     }
     let message = error.to_string();
-    if values
+    let names = |name: &str| message.contains(&format!("`{name}`"));
+    let changed: Vec<&str> = values
         .specs
         .iter()
-        .any(|s| message.contains(&format!("`{}`", s.name)))
+        .zip(values.values.iter().zip(&defaults.values))
+        .filter(|(_, (v, d))| v != d)
+        .map(|(s, _)| s.name)
+        .collect();
+    // An error naming a parameter passes as it is when that is one the user changed (or the
+    // user changed none); one naming only another parameter (`ring_width` when `radius` was
+    // set, `alpha_min` when `alpha_max` was) is prefixed by what the user changed.
+    if values.specs.iter().any(|s| names(s.name)) && (changed.is_empty() || changed.iter().any(|n| names(n)))
     {
-        return error;
+        return match error {
+            Error::InvalidParameter { name, value, reason } => Error::InvalidParameter {
+                name,
+                value,
+                reason: crate::params::compact_numbers(&reason),
+            },
+            e => e,
+        };
     }
     Error::AtParameters {
         scene,

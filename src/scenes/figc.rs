@@ -540,9 +540,10 @@ impl Scene for Fig3_7d {
         }
         let f = fit.as_ref().map(|(f, _)| *f).ok();
         let get = |g: fn(&AbcFit) -> f64| f.as_ref().map_or(f64::NAN, g);
-        // A failed or degenerate fit reports no fitted values (its reason is a note), never
-        // numbers the map cannot support.
-        let fit_results = if f.is_some() {
+        // A failed or degenerate fit of a user's map reports no fitted values (its reason is a
+        // note), never numbers the map cannot support; for a generated map the parameters that
+        // made it are named (non-finite results are refused with them).
+        let fit_results = if f.is_some() || generated {
             vec![
                 ("fit_sigma_rms_m", get(|f| f.rms)),
                 ("fit_sigma_rms_error_m", get(|f| f.rms_error)),
