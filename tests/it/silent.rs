@@ -751,3 +751,57 @@ fn item05_gsf_data_of_another_length_than_the_header_is_refused() {
         assert_one_line_error(&o, &["m.gsf", needle]);
     }
 }
+
+// Item 13: an error names the parameter the user set, also when the check that fails is on a
+// parameter derived from it, with numbers of at most 6 significant digits.
+#[test]
+fn item13_errors_name_the_parameter_set_with_short_numbers() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o");
+    for (scene, set, needles) in [
+        (
+            "fig4.5",
+            "radius=0.001",
+            &["`radius` = 0.001", "`ring_width`"][..],
+        ),
+        (
+            "fig2.4",
+            "alpha=1e-300",
+            &["`alpha` = 1e-300", "-1.33333e300"][..],
+        ),
+        ("fig6.2", "peel_angles=0,90", &["`peel_angles`", "162.559°"][..]),
+        (
+            "fig2.5",
+            "alpha_max=1e-300",
+            &["`alpha_max` = 1e-300", "`alpha_min`"][..],
+        ),
+        (
+            "fig1.4b",
+            "start_separation_ho=-9999",
+            &["`start_separation_ho` = -9999"][..],
+        ),
+    ] {
+        let args = [
+            "--headless",
+            "--figure",
+            scene,
+            "--quick",
+            "--set",
+            set,
+            "--format",
+            "csv",
+            "--out",
+            s(&out),
+        ];
+        let o = adhesion_within(&args, &[], 60);
+        assert_one_line_error(&o, needles);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        let longest = stderr
+            .split(|c: char| !(c.is_ascii_digit() || c == '.'))
+            .map(|t| t.chars().filter(char::is_ascii_digit).collect::<String>())
+            .map(|d| d.trim_start_matches('0').trim_end_matches('0').len())
+            .max()
+            .unwrap_or(0);
+        assert!(longest <= 6, "{scene} {set}: {stderr}");
+    }
+}
