@@ -1,7 +1,8 @@
 //! Seeded mutation fuzzing of the input parsers: force-curve CSV, height-map CSV, .gsf,
-//! peeling-profile CSV and presets. Each parser gets valid seeds mutated (bytes flipped,
-//! inserted, deleted, duplicated; numbers such as 1e308, -0, nan spliced in) and must return
-//! `Ok` or `Err`, never panic. A short run is in CI; `ADHESION_FUZZ_ITERATIONS` sets the count
+//! peeling-profile CSV, presets, the point files of sharded sweeps, and the merge (a point
+//! file, its checksum forged after the mutation, assembled with the other points of its
+//! sweep). Each parser gets valid seeds mutated (bytes flipped, inserted, deleted, duplicated;
+//! numbers such as 1e308, -0, nan spliced in) and must return `Ok` or `Err`, never panic. A short run is in CI; `ADHESION_FUZZ_ITERATIONS` sets the count
 //! of the `#[ignore]`d long run (default one million per parser).
 
 use std::path::Path;
@@ -57,7 +58,49 @@ const TOKENS: &[&[u8]] = &[
     b"# adhesion height map: nx=2 ny=2 lx=1 ly=1",
     b"periodic=1",
     b"depth_nm,force_nN",
+    b"{",
+    b"}",
+    b":",
+    b"null",
+    b"\"NaN\"",
+    b"\"-1e300\"",
+    b"-1e300",
+    b"[]",
+    b"\"values\":[]",
+    b"\"point\":4",
 ];
+
+/// The sweep of the point-file and merge fuzzing: fig4.9b in quick form (cheap to assemble),
+/// its values, hash and point labels.
+struct MergeCase {
+    values: adhesion::params::ParamValues,
+    hash: String,
+    labels: Vec<String>,
+}
+
+static MERGE: std::sync::LazyLock<MergeCase> = std::sync::LazyLock::new(|| {
+    let scene = adhesion::scenes::find("fig4.9b").unwrap();
+    let values = scene.quick(&scene.defaults()).unwrap();
+    let labels = scene.sweep().unwrap().points(&values).unwrap();
+    MergeCase {
+        hash: adhesion::headless::shard::params_hash(&values),
+        values,
+        labels,
+    }
+});
+
+/// The point the fuzzed point files stand for.
+const POINT: usize = 4;
+
+fn expected(case: &MergeCase) -> adhesion::headless::shard::Expected<'_> {
+    adhesion::headless::shard::Expected {
+        scene: "fig4.9b",
+        point: POINT,
+        params_hash: &case.hash,
+        len: 2,
+        nan_allowed: false,
+    }
+}
 
 fn mutate(rng: &mut Rng, seed: &[u8]) -> Vec<u8> {
     let mut b = seed.to_vec();
@@ -102,12 +145,24 @@ fn seeds() -> Vec<(&'static str, Vec<u8>)> {
     }
     let profile = b"# x, y\n0,0\n0.1,0.01\n0.2,0.04\n0.3,0.09\n".to_vec();
     let preset = adhesion::headless::preset_text(adhesion::scenes::find("fig1.1").unwrap()).into_bytes();
+    let case = &*MERGE;
+    let point = adhesion::headless::shard::point_text(
+        "fig4.9b",
+        POINT,
+        &case.labels[POINT],
+        &case.hash,
+        1.25,
+        &[0.0123, 4.5e-3],
+    )
+    .into_bytes();
     vec![
         ("force-curve CSV", curve),
         ("height-map CSV", map),
         (".gsf", gsf),
         ("profile CSV", profile),
         ("preset", preset),
+        ("point file", point.clone()),
+        ("merge", point),
     ]
 }
 
@@ -130,6 +185,28 @@ fn panics(kind: &str, bytes: &[u8], dir: &Path) -> bool {
                 let _ = adhesion::surface::command::report(&m, adhesion::surface::Cutoff::None);
             }
         }
+        "point file" => {
+            use adhesion::headless::shard::{parse_point, reseal};
+            let text = String::from_utf8_lossy(bytes);
+            let case = &*MERGE;
+            let _ = parse_point(&text, &expected(case));
+            if let Some(forged) = reseal(&text) {
+                let _ = parse_point(&forged, &expected(case));
+            }
+        }
+        "merge" => {
+            use adhesion::headless::shard::{parse_point, reseal};
+            let case = &*MERGE;
+            let text = String::from_utf8_lossy(bytes);
+            if let Some(forged) = reseal(&text)
+                && let Ok((values, _)) = parse_point(&forged, &expected(case))
+            {
+                let mut points = vec![vec![0.01, 0.002]; case.labels.len()];
+                points[POINT] = values;
+                let sweep = adhesion::scenes::find("fig4.9b").unwrap().sweep().unwrap();
+                let _ = sweep.assemble(&case.values, &points, &adhesion::job::Job::quiet());
+            }
+        }
         "profile CSV" => {
             std::fs::write(&path, bytes).unwrap();
             let _ = adhesion::scenes::fig6::load_profile(&path);
@@ -147,7 +224,12 @@ fn panics(kind: &str, bytes: &[u8], dir: &Path) -> bool {
 fn fuzz(iterations: usize) -> Vec<(&'static str, usize, usize)> {
     let dir = tempfile::tempdir().unwrap();
     let mut out = Vec::new();
+    // ADHESION_FUZZ_PARSERS="point file,merge" limits a run to some parsers.
+    let only = std::env::var("ADHESION_FUZZ_PARSERS").ok();
     for (k, (kind, seed)) in seeds().into_iter().enumerate() {
+        if only.as_deref().is_some_and(|o| !o.split(',').any(|p| p.trim() == kind)) {
+            continue;
+        }
         let mut rng = Rng(SEED + k as u64);
         let mut corpus = vec![seed];
         let mut crashes = 0;
