@@ -828,7 +828,7 @@ impl Fig3_8Params {
         let rms = m.m0.sqrt();
         if let Some((name, v)) = [("m0", m.m0), ("m2", m.m2), ("m4", m.m4)]
             .into_iter()
-            .find(|(_, v)| !(*v > 0.0))
+            .find(|(_, v)| v.is_nan() || *v <= 0.0)
         {
             return Err(Error::invalid(
                 "surface",

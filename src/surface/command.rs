@@ -75,7 +75,7 @@ pub fn report(map: &HeightMap, cutoff: Cutoff) -> Result<SurfaceReport> {
     ];
     if let Some((name, v)) = [("m0", r.m0), ("m2", r.m2), ("m4", r.m4)]
         .into_iter()
-        .find(|(_, v)| !(*v > 0.0))
+        .find(|(_, v)| v.is_nan() || *v <= 0.0)
     {
         return Err(Error::invalid(
             "surface",

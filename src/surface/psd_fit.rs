@@ -148,7 +148,7 @@ pub fn fit_abc(psd: &RadialPsd, cutoff: Cutoff) -> Result<AbcFit> {
             crate::params::fmt_sig(10.0 / q_min)
         )));
     }
-    if !(x[2] > 0.0) {
+    if x[2].is_nan() || x[2] <= 0.0 {
         return Err(degenerate(format!(
             "n = {} is not positive",
             crate::params::fmt_sig(x[2])
