@@ -89,6 +89,9 @@ static MERGE: std::sync::LazyLock<MergeCase> = std::sync::LazyLock::new(|| {
     }
 });
 
+/// Mutated point files that passed every check and were assembled into the figure.
+static ASSEMBLED: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+
 /// The point the fuzzed point files stand for.
 const POINT: usize = 4;
 
@@ -205,6 +208,7 @@ fn panics(kind: &str, bytes: &[u8], dir: &Path) -> bool {
                 points[POINT] = values;
                 let sweep = adhesion::scenes::find("fig4.9b").unwrap().sweep().unwrap();
                 let _ = sweep.assemble(&case.values, &points, &adhesion::job::Job::quiet());
+                ASSEMBLED.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
             }
         }
         "profile CSV" => {
@@ -227,7 +231,10 @@ fn fuzz(iterations: usize) -> Vec<(&'static str, usize, usize)> {
     // ADHESION_FUZZ_PARSERS="point file,merge" limits a run to some parsers.
     let only = std::env::var("ADHESION_FUZZ_PARSERS").ok();
     for (k, (kind, seed)) in seeds().into_iter().enumerate() {
-        if only.as_deref().is_some_and(|o| !o.split(',').any(|p| p.trim() == kind)) {
+        if only
+            .as_deref()
+            .is_some_and(|o| !o.split(',').any(|p| p.trim() == kind))
+        {
             continue;
         }
         let mut rng = Rng(SEED + k as u64);
@@ -268,5 +275,9 @@ fn parsers_survive_a_million_mutated_inputs() {
     for (kind, n, crashes) in &results {
         println!("{kind}: {n} executions, {crashes} panics");
     }
+    println!(
+        "merge: {} mutated point files passed the checks and were assembled",
+        ASSEMBLED.load(std::sync::atomic::Ordering::Relaxed)
+    );
     assert!(results.iter().all(|r| r.2 == 0));
 }
