@@ -198,17 +198,34 @@ fn panics(kind: &str, bytes: &[u8], dir: &Path) -> bool {
             }
         }
         "merge" => {
-            use adhesion::headless::shard::{parse_point, reseal};
+            use adhesion::headless::shard::{parse_point, point_text, reseal};
             let case = &*MERGE;
             let text = String::from_utf8_lossy(bytes);
-            if let Some(forged) = reseal(&text)
-                && let Ok((values, _)) = parse_point(&forged, &expected(case))
-            {
-                let mut points = vec![vec![0.01, 0.002]; case.labels.len()];
-                points[POINT] = values;
-                let sweep = adhesion::scenes::find("fig4.9b").unwrap().sweep().unwrap();
-                let _ = sweep.assemble(&case.values, &points, &adhesion::job::Job::quiet());
-                ASSEMBLED.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            // The mutant with its checksum forged, and a well-formed point file of the numbers
+            // in the mutant (its last two, or one or three: wrong counts), so that odd values
+            // (1e308, -0, subnormals, NaN) reach the checks and the assembly.
+            let numbers: Vec<f64> = text
+                .split(|c: char| c.is_whitespace() || ",\":[]{}".contains(c))
+                .filter_map(|t| t.parse::<f64>().ok())
+                .collect();
+            let count = [2, 2, 2, 1, 3][bytes.len() % 5].min(numbers.len());
+            let seconds = numbers.first().copied().unwrap_or(0.0);
+            let rebuilt = point_text(
+                "fig4.9b",
+                POINT,
+                &case.labels[POINT],
+                &case.hash,
+                seconds,
+                &numbers[numbers.len() - count..],
+            );
+            for forged in reseal(&text).into_iter().chain([rebuilt]) {
+                if let Ok((values, _)) = parse_point(&forged, &expected(case)) {
+                    let mut points = vec![vec![0.01, 0.002]; case.labels.len()];
+                    points[POINT] = values;
+                    let sweep = adhesion::scenes::find("fig4.9b").unwrap().sweep().unwrap();
+                    let _ = sweep.assemble(&case.values, &points, &adhesion::job::Job::quiet());
+                    ASSEMBLED.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                }
             }
         }
         "profile CSV" => {
