@@ -324,7 +324,7 @@ pub fn attribute_failure(
         return error;
     }
     let message = error.to_string();
-    let names = |name: &str| message.contains(&format!("`{name}`"));
+    let names = |name: &str| names_word(&message, name);
     let changed: Vec<&str> = values
         .specs
         .iter()
@@ -332,11 +332,15 @@ pub fn attribute_failure(
         .filter(|(_, (v, d))| v != d)
         .map(|(s, _)| s.name)
         .collect();
-    // An error naming a parameter passes as it is when that is one the user changed (or the
-    // user changed none); one naming only another parameter (`ring_width` when `radius` was
-    // set, `alpha_min` when `alpha_max` was) is prefixed by what the user changed.
-    if values.specs.iter().any(|s| names(s.name)) && (changed.is_empty() || changed.iter().any(|n| names(n)))
-    {
+    // An error naming a parameter (quoted) passes as it is when it also names one the user
+    // changed, quoted or not ("must be below alpha_max"), or the user changed none; one naming
+    // only another parameter (`ring_width` when `radius` was set) is prefixed by what the user
+    // changed.
+    let quoted = values
+        .specs
+        .iter()
+        .any(|s| message.contains(&format!("`{}`", s.name)));
+    if quoted && (changed.is_empty() || changed.iter().any(|n| names(n))) {
         return match error {
             Error::InvalidParameter { name, value, reason } => Error::InvalidParameter {
                 name,
@@ -351,6 +355,17 @@ pub fn attribute_failure(
         at: changed_parameters(values, defaults),
         cause: crate::params::compact_numbers(&message),
     }
+}
+
+/// Whether `message` names `name` as a word of its own (`alpha_max`, also unquoted as in "must
+/// be below alpha_max"; not the `alpha` of `alpha_max`).
+pub fn names_word(message: &str, name: &str) -> bool {
+    let ident = |c: char| c.is_ascii_alphanumeric() || c == '_';
+    message.match_indices(name).any(|(i, _)| {
+        let before = message[..i].chars().next_back();
+        let after = message[i + name.len()..].chars().next();
+        !before.is_some_and(ident) && !after.is_some_and(ident)
+    })
 }
 
 /// The (at most three) parameters that differ most from their defaults, as

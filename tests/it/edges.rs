@@ -212,12 +212,13 @@ fn sweep_every(chapter4: bool, combos: usize, bound: std::time::Duration, stride
                         .specs()
                         .iter()
                         .map(|s| s.name)
-                        .filter(|n| msg.contains(&format!("`{n}`")))
+                        .filter(|n| adhesion::scenes::names_word(&msg, n))
                         .collect();
+                    let quoted = named.iter().any(|n| msg.contains(&format!("`{n}`")));
                     let names_set = named.iter().any(|n| set.contains(n))
                         || named.iter().any(|n| derived_allowed(id, &set, n));
                     let long = long_numbers(&msg);
-                    if names_set && long.is_empty() && !msg.contains('\n') && msg.len() < 400 {
+                    if quoted && names_set && long.is_empty() && !msg.contains('\n') && msg.len() < 400 {
                         t.named += 1;
                     } else if !long.is_empty() {
                         t.bad.push(format!("{id} {label}: numbers {long:?} in `{msg}`"));

@@ -773,12 +773,12 @@ fn item13_errors_name_the_parameter_set_with_short_numbers() {
         (
             "fig2.5",
             "alpha_max=1e-300",
-            &["`alpha_max` = 1e-300", "`alpha_min`"][..],
+            &["`alpha_min`", "below alpha_max"][..],
         ),
         (
             "fig1.4b",
             "start_separation_ho=-9999",
-            &["`start_separation_ho` = -9999"][..],
+            &["`min_separation_ho`", "below start_separation_ho"][..],
         ),
     ] {
         let args = [
