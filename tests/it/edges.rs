@@ -38,7 +38,11 @@ fn edges(kind: &ParamKind, min: Bound, max: Bound) -> Vec<f64> {
 }
 
 /// Errors that rightly name another parameter than the one set: (scene, parameter set,
-/// parameter named, why that one is the one to change).
+/// parameter named, why that one is the one to change). Empty after review: where a check
+/// fails on a parameter derived from the one set (`ring_width` from `radius`, `delta_min`
+/// against the pull-off that `alpha` moves, `peel_angle` for an entry of `peel_angles`), the
+/// message is prefixed by the parameters the user changed (`scenes::attribute_failure`), so it
+/// names both; an entry here is for a message that cannot.
 const DERIVED: &[(&str, &str, &str, &str)] = &[];
 
 /// Whether an error naming `named` is allowed when `set` was set in `scene` ([`DERIVED`]).
