@@ -43,11 +43,11 @@ pub struct Cli {
     pub all: bool,
 
     /// Parameter preset (TOML) for --figure.
-    #[arg(long, value_name = "FILE", requires = "figure")]
+    #[arg(long, value_name = "FILE")]
     pub preset: Option<PathBuf>,
 
     /// Set a parameter, NAME=VALUE (repeatable; applied after the preset).
-    #[arg(long = "set", value_name = "NAME=VALUE", requires = "figure")]
+    #[arg(long = "set", value_name = "NAME=VALUE")]
     pub set: Vec<String>,
 
     /// Output folder.
@@ -90,17 +90,54 @@ pub struct Cli {
     /// Rough-surface generation and analysis.
     #[command(flatten)]
     pub surface: crate::surface::SurfaceArgs,
+
+    /// The options given on the command line (clap's ids, `out`, `tip_radius`, ...), as
+    /// opposed to those left at their defaults: an option given to a command that does not use
+    /// it is an error ([`check_options`]). Filled by [`parse`].
+    #[arg(skip)]
+    pub given: Vec<String>,
+}
+
+/// Parse the command line (the program name first). Options that apply to one command only
+/// are not tied to it here (clap's `requires` would report them as "required arguments not
+/// provided" without naming them): [`check_options`] names them.
+///
+/// # Errors
+/// clap's errors (unknown options, bad values, `--help`, `--version`).
+pub fn parse<I: IntoIterator<Item = std::ffi::OsString>>(args: I) -> Result<Cli, clap::Error> {
+    use clap::{CommandFactory, FromArgMatches};
+    let matches = Cli::command()
+        .mut_args(|a| a.requires(clap::builder::Resettable::<clap::Id>::Reset))
+        .try_get_matches_from(join_negative_values(args))?;
+    let mut cli = Cli::from_arg_matches(&matches)?;
+    cli.given = matches
+        .ids()
+        .filter(|id| matches.value_source(id.as_str()) == Some(clap::parser::ValueSource::CommandLine))
+        .map(|id| id.as_str().to_string())
+        .collect();
+    Ok(cli)
 }
 
 /// A command-line parsing error as one line: clap's first line (without its usage block),
 /// with a pointer to `--help`.
 pub fn one_line(e: &clap::Error) -> String {
     let text = e.render().to_string();
-    let first = text
-        .lines()
-        .find(|l| !l.trim().is_empty())
-        .unwrap_or("error: bad command line");
-    let first = crate::params::escape_for_message(first, 200);
+    let mut lines = text.lines().skip_while(|l| l.trim().is_empty());
+    let mut first = lines
+        .next()
+        .unwrap_or("error: bad command line")
+        .trim_end()
+        .to_string();
+    if first.ends_with(':') {
+        // A list follows ("the following required arguments were not provided:"): its items
+        // are part of the message.
+        let items: Vec<&str> = lines
+            .take_while(|l| l.starts_with(char::is_whitespace) && !l.trim().is_empty())
+            .map(str::trim)
+            .collect();
+        first = format!("{first} {}", items.join(", "));
+    }
+    let first = crate::params::escape_for_message(&first, 200);
     if first.starts_with("error:") {
         format!("{first} (see --help)")
     } else {
@@ -115,6 +152,32 @@ pub fn one_line(e: &clap::Error) -> String {
 /// The first conflict found.
 pub fn check_options(cli: &Cli) -> crate::error::Result<()> {
     let s = &cli.surface;
+    let given = |id: &str| cli.given.iter().any(|g| g == id);
+    // --list, --describe and --print-preset print and exit: nothing else applies.
+    let printers: Vec<&str> = [
+        (cli.list, "--list"),
+        (cli.describe.is_some(), "--describe"),
+        (cli.print_preset.is_some(), "--print-preset"),
+    ]
+    .into_iter()
+    .filter_map(|(on, name)| on.then_some(name))
+    .collect();
+    if let Some(printer) = printers.first() {
+        if printers.len() > 1 {
+            return Err(crate::error::Error::Usage(format!(
+                "{} cannot be combined: give one of them at a time",
+                printers.join(" and ")
+            )));
+        }
+        let ids = ["list", "describe", "print_preset", "headless"];
+        if let Some(other) = cli.given.iter().find(|g| !ids.contains(&g.as_str())) {
+            return Err(conflict(
+                &option_name(other),
+                &format!("does not apply to {printer}"),
+            ));
+        }
+        return Ok(());
+    }
     let commands: Vec<&str> = [
         (cli.figure.is_some(), "--figure"),
         (cli.all, "--all"),
@@ -133,13 +196,21 @@ pub fn check_options(cli: &Cli) -> crate::error::Result<()> {
         )));
     }
     let command = commands.first().copied().unwrap_or("");
+    // --shard and --merge are modes of --figure with their own outputs.
+    let mode = if cli.shard.is_some() {
+        "--shard"
+    } else if cli.merge {
+        "--merge"
+    } else {
+        command
+    };
     let used = |on: bool, name: &'static str, by: &[&str]| -> crate::error::Result<()> {
-        if on && !by.contains(&command) {
+        if on && !by.contains(&command) && !by.contains(&mode) {
             let by = by.join(" or ");
             let reason = if command.is_empty() {
                 format!("applies to {by} only")
             } else {
-                format!("applies to {by} only, not {command}")
+                format!("applies to {by} only, not {mode}")
             };
             return Err(conflict(name, &reason));
         }
@@ -151,20 +222,91 @@ pub fn check_options(cli: &Cli) -> crate::error::Result<()> {
     used(cli.quick, "--quick", &["--figure", "--all"])?;
     used(cli.shard.is_some(), "--shard", &["--figure"])?;
     used(cli.merge, "--merge", &["--figure"])?;
+    // --shard writes point files, --reproduce its report, --generate-surface the --out file,
+    // --analyze-surface prints: --format is theirs only where figures are written.
+    let by_format: &[&str] = if cli.shard.is_some() {
+        &["--merge"]
+    } else {
+        &["--figure", "--all", "--merge"]
+    };
+    used(given("format"), "--format", by_format)?;
+    used(
+        given("out"),
+        "--out",
+        &["--figure", "--all", "--reproduce", "--fit", "--generate-surface"],
+    )?;
+    used(cli.fit.tip_radius.is_some(), "--tip-radius", &["--fit"])?;
+    used(cli.fit.spring_constant.is_some(), "--spring-constant", &["--fit"])?;
+    used(cli.fit.model.is_some(), "--model", &["--fit"])?;
+    used(cli.fit.segment.is_some(), "--segment", &["--fit"])?;
+    used(cli.fit.poisson.is_some(), "--poisson", &["--fit"])?;
+    used(cli.fit.curve.is_some(), "--curve", &["--fit"])?;
+    used(cli.fit.sensitivity.is_some(), "--sensitivity", &["--fit"])?;
+    used(cli.fit.baseline_tilt, "--baseline-tilt", &["--fit"])?;
     used(s.pixel_size.is_some(), "--pixel-size", &["--analyze-surface"])?;
     used(s.periodic, "--periodic", &["--analyze-surface"])?;
     used(s.remove_tilt, "--remove-tilt", &["--analyze-surface"])?;
-    used(s.rms.is_some(), "--rms", &["--generate-surface"])?;
-    used(
-        s.correlation_length.is_some(),
-        "--correlation-length",
-        &["--generate-surface"],
-    )?;
-    used(!s.size.is_empty(), "--size", &["--generate-surface"])?;
-    used(!s.length.is_empty(), "--length", &["--generate-surface"])?;
-    used(s.q_roll.is_some(), "--q-roll", &["--generate-surface"])?;
-    used(s.q_high.is_some(), "--q-high", &["--generate-surface"])?;
+    used(given("fit_cutoff"), "--fit-cutoff", &["--analyze-surface"])?;
+    let generation: [(&str, bool); 12] = [
+        ("--seed", given("seed")),
+        ("--rms", s.rms.is_some()),
+        ("--correlation-length", s.correlation_length.is_some()),
+        ("--size", !s.size.is_empty()),
+        ("--length", !s.length.is_empty()),
+        ("--q-roll", s.q_roll.is_some()),
+        ("--q-high", s.q_high.is_some()),
+        ("--spectrum", given("spectrum")),
+        ("--exponent", given("exponent")),
+        ("--cutoff", given("cutoff")),
+        ("--hurst", given("hurst")),
+        ("--q-low", given("q_low")),
+    ];
+    for (name, on) in generation {
+        used(on, name, &["--generate-surface"])?;
+    }
+    if s.generate_surface {
+        // Each spectrum's own options: another spectrum ignores them.
+        let spectra: [(&str, bool, &[&str]); 7] = [
+            (
+                "--correlation-length",
+                s.correlation_length.is_some(),
+                &["gaussian", "abc"],
+            ),
+            ("--exponent", given("exponent"), &["abc"]),
+            ("--cutoff", given("cutoff"), &["abc"]),
+            ("--hurst", given("hurst"), &["self-affine"]),
+            ("--q-low", given("q_low"), &["self-affine"]),
+            ("--q-roll", s.q_roll.is_some(), &["self-affine"]),
+            ("--q-high", s.q_high.is_some(), &["self-affine"]),
+        ];
+        for (name, on, kinds) in spectra {
+            if on && !kinds.contains(&s.spectrum.as_str()) {
+                return Err(conflict(
+                    name,
+                    &format!(
+                        "applies to --spectrum {} only, not {}",
+                        kinds.join(" or "),
+                        s.spectrum
+                    ),
+                ));
+            }
+        }
+    }
+    if let Some(map) = &s.analyze_surface
+        && s.pixel_size.is_some()
+        && crate::surface::io::MapFormat::of(map) == crate::surface::io::MapFormat::Gsf
+    {
+        return Err(conflict(
+            "--pixel-size",
+            "does not apply to a .gsf map: its header gives the lengths (XReal, YReal)",
+        ));
+    }
     Ok(())
+}
+
+/// The command-line spelling of a clap id: `print_preset` → `--print-preset`.
+fn option_name(id: &str) -> String {
+    format!("--{}", id.replace('_', "-"))
 }
 
 fn conflict(name: &str, reason: &str) -> crate::error::Error {

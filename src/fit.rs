@@ -311,7 +311,7 @@ pub fn parse_curve(text: &str, path: &Path) -> Result<Curve> {
 /// # Errors
 /// As [`parse_curve`]; unreadable files.
 pub fn read_curve(path: &Path) -> Result<Curve> {
-    let bytes = std::fs::read(path).map_err(|e| Error::data_file(path, 0, format!("cannot read: {e}")))?;
+    let bytes = crate::input::read_input(path, crate::input::limit())?;
     let text = String::from_utf8(bytes).map_err(|_| Error::data_file(path, 0, "not UTF-8 text"))?;
     parse_curve(&text, path)
 }
@@ -410,7 +410,7 @@ pub fn detect_contact(
             path,
             line,
             format!(
-                "only {} in-contact point(s) (force above {threshold:.3e} N); at least {min_points} are needed",
+                "only {} in-contact point(s) (force above {threshold:.3e} N; baselines of {len_s} rows at the start and {len_e} at the end); at least {min_points} are needed",
                 range.len()
             ),
         ));
@@ -442,6 +442,12 @@ pub(crate) fn baseline(
     deviations.sort_by(f64::total_cmp);
     let sigma = noise_level(&head).max(1.4826 * deviations[deviations.len() / 2]);
     if zero_level && level.abs() > (5.0 * sigma).max(0.02 * p_max) {
+        return None;
+    }
+    // Rows that spread over more than a twentieth of the force range are no baseline: they
+    // straddle a jump (a file that ends two rows after the pull-off, with its rows duplicated,
+    // gives 10 end rows of which four are at zero and six in contact).
+    if sigma > 0.05 * p_max {
         return None;
     }
     let tol = (6.0 * sigma).max(0.005 * p_max);
@@ -657,6 +663,11 @@ fn check_meaningful_data(h: &[f64], p: &[f64], path: &Path, lines: (usize, usize
     Ok(())
 }
 
+/// The tip radii a fit accepts [m]: from a sharp AFM tip (0.1 nm) to a 10 cm indenter.
+pub const TIP_RADIUS_RANGE: (f64, f64) = (1e-10, 0.1);
+/// The spring constants a fit accepts [N/m]: the softest cantilevers to stiff indenter frames.
+pub const SPRING_CONSTANT_RANGE: (f64, f64) = (1e-5, 1e7);
+
 /// Options of a fit beside the data.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FitSettings {
@@ -722,13 +733,29 @@ pub fn fit_curve(
 /// model choice.
 pub fn fit_with(curve: &Curve, path: &Path, settings: &FitSettings) -> Result<FitReport> {
     let radius = settings.radius;
-    if !(radius.is_finite() && radius > 0.0) {
-        return Err(Error::invalid("tip-radius", radius, "must be positive (metres)"));
+    if !(radius.is_finite() && (TIP_RADIUS_RANGE.0..=TIP_RADIUS_RANGE.1).contains(&radius)) {
+        return Err(Error::invalid(
+            "tip-radius",
+            crate::params::fmt_sig(radius),
+            format!(
+                "must lie in [{}, {}] m",
+                crate::params::fmt_sig(TIP_RADIUS_RANGE.0),
+                crate::params::fmt_sig(TIP_RADIUS_RANGE.1)
+            ),
+        ));
     }
     if let Some(k) = settings.spring_constant
-        && !(k.is_finite() && k > 0.0)
+        && !(k.is_finite() && (SPRING_CONSTANT_RANGE.0..=SPRING_CONSTANT_RANGE.1).contains(&k))
     {
-        return Err(Error::invalid("spring-constant", k, "must be positive (N/m)"));
+        return Err(Error::invalid(
+            "spring-constant",
+            crate::params::fmt_sig(k),
+            format!(
+                "must lie in [{}, {}] N/m",
+                crate::params::fmt_sig(SPRING_CONSTANT_RANGE.0),
+                crate::params::fmt_sig(SPRING_CONSTANT_RANGE.1)
+            ),
+        ));
     }
     if let Some(nu) = settings.poisson
         && !(nu.is_finite() && (-1.0..0.5 + 1e-12).contains(&nu))
@@ -1184,9 +1211,6 @@ pub fn command(args: &FitArgs, out: &Path) -> Result<Vec<PathBuf>> {
     let radius = args
         .tip_radius
         .ok_or_else(|| Error::invalid("tip-radius", "", "--fit needs --tip-radius (metres)"))?;
-    if !(radius.is_finite() && radius > 0.0) {
-        return Err(Error::invalid("tip-radius", radius, "must be positive (metres)"));
-    }
     let settings = FitSettings {
         radius,
         spring_constant: args.spring_constant,
@@ -1194,7 +1218,7 @@ pub fn command(args: &FitArgs, out: &Path) -> Result<Vec<PathBuf>> {
         segment: args.segment,
         poisson: args.poisson,
     };
-    let bytes = std::fs::read(path).map_err(|e| Error::data_file(path, 0, format!("cannot read: {e}")))?;
+    let bytes = crate::input::read_input(path, crate::input::limit())?;
     let files: Vec<(PathBuf, Vec<u8>)> = if looks_like_curve_csv(&bytes) {
         if args.curve.is_some() || args.baseline_tilt || args.sensitivity.is_some() {
             return Err(Error::Usage(

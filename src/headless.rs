@@ -26,31 +26,31 @@ pub mod shard;
 /// # Errors
 /// Any problem, as one line of context and cause.
 pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
+    crate::cli::check_options(cli)?;
     if cli.list {
-        print!("{}", list());
+        emit(&list())?;
         return Ok(ExitCode::SUCCESS);
     }
     if let Some(id) = &cli.describe {
-        print!("{}", describe(id)?);
+        emit(&describe(id)?)?;
         return Ok(ExitCode::SUCCESS);
     }
     if let Some(id) = &cli.print_preset {
-        print!("{}", preset_text(scenes::find(id)?));
+        emit(&preset_text(scenes::find(id)?))?;
         return Ok(ExitCode::SUCCESS);
     }
-    crate::cli::check_options(cli)?;
     let formats = parse_formats(&cli.format)?;
     if cli.reproduce {
         return reproduce_command(&cli.out);
     }
     if cli.fit.fit.is_some() {
         for p in crate::fit::command(&cli.fit, &cli.out)? {
-            println!("{}", p.display());
+            emit_line(&p.display())?;
         }
         return Ok(ExitCode::SUCCESS);
     }
     if cli.surface.generate_surface || cli.surface.analyze_surface.is_some() {
-        print!("{}", crate::surface::command::run(&cli.surface, &cli.out)?);
+        emit(&crate::surface::command::run(&cli.surface, &cli.out)?)?;
         return Ok(ExitCode::SUCCESS);
     }
     if let Some(id) = &cli.figure {
@@ -78,18 +78,18 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
         }
         let values = resolve_values(scene, cli.preset.as_deref(), &sets, cli.quick)?;
         if let Some(part) = cli.shard {
-            println!("{}", shard::run_shard(scene, &values, part, &cli.out)?.display());
+            emit_line(&shard::run_shard(scene, &values, part, &cli.out)?.display())?;
             return Ok(ExitCode::SUCCESS);
         }
         if cli.merge {
             for p in shard::merge(scene, &values, &cli.out, &formats)? {
-                println!("{}", p.display());
+                emit_line(&p.display())?;
             }
             return Ok(ExitCode::SUCCESS);
         }
         let written = export_scene(scene, &values, &cli.out, &formats, &progress_job(id))?;
         for p in written {
-            println!("{}", p.display());
+            emit_line(&p.display())?;
         }
         return Ok(ExitCode::SUCCESS);
     }
@@ -110,7 +110,7 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
             match outcome {
                 Ok(paths) => {
                     for p in paths {
-                        println!("{}", p.display());
+                        emit_line(&p.display())?;
                     }
                     gallery.push(GalleryEntry {
                         id,
@@ -135,13 +135,33 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
         }
         let index = cli.out.join("index.html");
         crate::render::write_atomic(&index, gallery_html(&gallery).as_bytes())?;
-        println!("{}", index.display());
+        emit_line(&index.display())?;
         if failed > 0 {
             bail!("{failed} scene(s) failed");
         }
         return Ok(ExitCode::SUCCESS);
     }
     bail!("nothing to do: give --figure ID, --all or --reproduce (see --help)")
+}
+
+/// Write `text` to stdout and flush it: a failed write (a full disk behind a redirection, a
+/// closed pipe) is an error naming stdout, never a panic.
+///
+/// # Errors
+/// [`Error::File`] for "standard output".
+pub fn emit(text: &str) -> Result<()> {
+    let mut out = std::io::stdout().lock();
+    out.write_all(text.as_bytes())
+        .and_then(|()| out.flush())
+        .map_err(Error::file("writing to", Path::new("standard output")))
+}
+
+/// [`emit`] of one line: `line` and a newline.
+///
+/// # Errors
+/// As [`emit`].
+pub fn emit_line(line: &dyn std::fmt::Display) -> Result<()> {
+    emit(&format!("{line}\n"))
 }
 
 /// One figure of the gallery page.
@@ -315,7 +335,8 @@ pub fn preset_header(scene: &dyn SceneDyn) -> String {
     )
 }
 
-/// Defaults, then the preset, then the `--set` assignments; validated.
+/// Defaults, then the preset, then the `--set` assignments; validated. In quick form the
+/// scene's quick values, then the `--set` assignments again: a value the user set is kept.
 ///
 /// # Errors
 /// Preset problems, unknown names, bad values, failed cross-field checks.
@@ -335,6 +356,11 @@ pub fn resolve_values(
     scene.validate(&values)?;
     if quick {
         values = scene.quick(&values)?;
+        // A value the user set wins over the quick form's (which lowers resolutions).
+        for s in sets {
+            values.set_assignment(s)?;
+        }
+        scene.validate(&values)?;
     }
     Ok(values)
 }
@@ -484,7 +510,7 @@ fn reproduce_command(out: &Path) -> anyhow::Result<ExitCode> {
         (out.join("reproduction.json"), json.into_bytes()),
     ])?;
     for o in &outcomes {
-        println!(
+        emit_line(&format_args!(
             "{:<44} {:<12} printed {:<14} computed {:<14} {:?}{}",
             o.id,
             o.source,
@@ -496,10 +522,10 @@ fn reproduce_command(out: &Path) -> anyhow::Result<ExitCode> {
             },
             o.status,
             if o.as_expected { "" } else { "  UNEXPECTED" }
-        );
+        ))?;
     }
-    println!("{}", out.join("reproduction.md").display());
-    println!("{}", out.join("reproduction.json").display());
+    emit_line(&out.join("reproduction.md").display())?;
+    emit_line(&out.join("reproduction.json").display())?;
     if outcomes.iter().all(|o| o.as_expected) {
         Ok(ExitCode::SUCCESS)
     } else {

@@ -54,6 +54,7 @@ pub mod error;
 pub mod figure;
 pub mod fit;
 pub mod headless;
+pub mod input;
 pub mod job;
 pub mod models;
 pub mod numerics;

@@ -2,24 +2,33 @@
 
 use std::process::ExitCode;
 
-use clap::Parser;
-
 fn main() -> ExitCode {
-    let cli =
-        match adhesion::cli::Cli::try_parse_from(adhesion::cli::join_negative_values(std::env::args_os())) {
-            Ok(cli) => cli,
-            Err(e) if !e.use_stderr() => {
-                // --help, --version.
-                let _ = e.print();
-                return ExitCode::SUCCESS;
-            }
-            Err(e) => {
-                eprintln!("{}", adhesion::cli::one_line(&e));
-                return ExitCode::from(2);
-            }
-        };
+    let cli = match adhesion::cli::parse(std::env::args_os()) {
+        Ok(cli) => cli,
+        Err(e) if !e.use_stderr() => {
+            // --help, --version: a failed write to stdout is an error, as for every output.
+            use std::io::Write;
+            let printed = e.print().and_then(|()| std::io::stdout().flush());
+            return match printed {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(cause) => {
+                    eprintln!("error: writing to standard output: {cause}");
+                    ExitCode::FAILURE
+                }
+            };
+        }
+        Err(e) => {
+            eprintln!("{}", adhesion::cli::one_line(&e));
+            return ExitCode::from(2);
+        }
+    };
     let interactive = !(cli.headless || cli.list || cli.describe.is_some() || cli.print_preset.is_some());
-    let result = if interactive {
+    let result = if interactive && let Some(first) = cli.given.first() {
+        Err(anyhow::anyhow!(
+            "--{} needs --headless (without options, adhesion starts the terminal UI)",
+            first.replace('_', "-")
+        ))
+    } else if interactive {
         adhesion::tui::run()
     } else {
         adhesion::headless::run(&cli)

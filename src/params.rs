@@ -184,7 +184,19 @@ impl ParamSpec {
         let value = match self.kind {
             ParamKind::Float => toml::Value::Float(parse_float(t).ok_or_else(parse_err)?),
             ParamKind::Int => {
-                let v: i64 = t.replace('_', "").parse().map_err(|_| parse_err())?;
+                let v: i64 = match t.replace('_', "").parse() {
+                    Ok(v) => v,
+                    // `1e6`, `2.0`: a whole number in another notation, as --describe prints
+                    // ranges; exact below 2^53.
+                    Err(_) => match parse_float(t) {
+                        Some(x)
+                            if x.is_finite() && x.fract() == 0.0 && x.abs() < 9.007_199_254_740_992e15 =>
+                        {
+                            x as i64
+                        }
+                        _ => return Err(parse_err()),
+                    },
+                };
                 if v < 0 {
                     return Err(Error::invalid(self.name, v, "must not be negative"));
                 }
@@ -573,7 +585,10 @@ impl ParamValues {
             path: path.to_path_buf(),
             message,
         };
-        let text = std::fs::read_to_string(path).map_err(|e| preset_err(e.to_string()))?;
+        let text = crate::input::read_text(path).map_err(|e| match e {
+            Error::DataFile { message, .. } => preset_err(message),
+            other => preset_err(other.to_string()),
+        })?;
         // As the data files: a UTF-8 byte-order mark is skipped, CRLF and CR alone end lines.
         let text = normalise_line_ends(&text);
         let table: toml::Table = toml::from_str(&text).map_err(|e| preset_err(toml_error_at(&text, &e)))?;

@@ -112,6 +112,9 @@ impl Staged {
         let mut folders: Vec<PathBuf> = files.iter().map(|(p, _)| folder_of(p)).collect();
         folders.sort();
         folders.dedup();
+        for d in &folders {
+            remove_stale_temporaries(d);
+        }
         // Held until the end of this function; a folder that cannot be locked (a file system
         // without locks) is written without.
         let _locks: Vec<std::fs::File> = folders
@@ -207,7 +210,9 @@ fn create_exclusive(path: &Path, kind: &str) -> std::io::Result<(std::fs::File, 
     Err(last.unwrap_or_else(|| std::io::Error::other("no free temporary name")))
 }
 
-/// `.<name>.<pid>-<random>.<kind>` next to `path`.
+/// `.<name>.<pid>@<host>-<random>.<kind>` next to `path`: the process that owns a temporary
+/// can be told from its name ([`temporary_owner`]), so that the temporaries of a killed run are
+/// removed by the next write into the folder ([`remove_stale_temporaries`]).
 fn temporary_name(path: &Path, kind: &str) -> PathBuf {
     use std::hash::{BuildHasher, Hasher};
     let name = path
@@ -222,10 +227,84 @@ fn temporary_name(path: &Path, kind: &str) -> PathBuf {
             .map_or(0, |d| d.as_nanos()),
     );
     path.with_file_name(format!(
-        ".{name}.{}-{:016x}.{kind}",
+        ".{name}.{}@{}-{:016x}.{kind}",
         std::process::id(),
+        host_tag(),
         h.finish()
     ))
+}
+
+/// This machine's name as it appears in temporary names: the host name up to its first dot,
+/// other characters than letters, digits and `-` as `_` (`localhost` when it is not known).
+/// Temporaries are only judged stale by a process of the same host: a shared folder (a
+/// cluster's scratch) holds temporaries of processes on other nodes.
+pub fn host_tag() -> String {
+    let name = std::fs::read_to_string("/proc/sys/kernel/hostname")
+        .or_else(|_| std::fs::read_to_string("/etc/hostname"))
+        .unwrap_or_default();
+    let short: String = name
+        .trim()
+        .split('.')
+        .next()
+        .unwrap_or("")
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if short.is_empty() {
+        "localhost".into()
+    } else {
+        short
+    }
+}
+
+/// The process id and host of a temporary's file name (`.<name>.<pid>@<host>-<16 hex>.tmp` or
+/// `.bak`), or `None` for another name.
+pub fn temporary_owner(file_name: &str) -> Option<(u32, String)> {
+    let rest = file_name.strip_prefix('.')?;
+    let rest = rest.strip_suffix(".tmp").or_else(|| rest.strip_suffix(".bak"))?;
+    let (rest, random) = rest.rsplit_once('-')?;
+    if random.len() != 16 || !random.bytes().all(|b| b.is_ascii_hexdigit()) {
+        return None;
+    }
+    let (_, owner) = rest.rsplit_once('.')?;
+    let (pid, host) = owner.split_once('@')?;
+    if host.is_empty() || !pid.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    Some((pid.parse().ok()?, host.to_string()))
+}
+
+/// Remove the temporaries in `folder` left by killed runs on this host: those whose process is
+/// gone (no `/proc/<pid>`). Temporaries of live processes, of other hosts and other files are
+/// left alone; nothing is done without `/proc`. Returns the files removed.
+pub fn remove_stale_temporaries(folder: &Path) -> Vec<PathBuf> {
+    if !Path::new("/proc/self").exists() {
+        return Vec::new();
+    }
+    let Ok(entries) = std::fs::read_dir(folder) else {
+        return Vec::new();
+    };
+    let (me, host) = (std::process::id(), host_tag());
+    let mut removed = Vec::new();
+    for e in entries.filter_map(std::result::Result::ok) {
+        let name = e.file_name();
+        let Some((pid, owner_host)) = name.to_str().and_then(temporary_owner) else {
+            continue;
+        };
+        if owner_host != host || pid == me || Path::new(&format!("/proc/{pid}")).exists() {
+            continue;
+        }
+        if e.file_type().is_ok_and(|t| t.is_file()) && std::fs::remove_file(e.path()).is_ok() {
+            removed.push(e.path());
+        }
+    }
+    removed
 }
 
 /// Held while a set is renamed into place, and by the signal handler before it exits.

@@ -299,9 +299,10 @@ pub fn finish(
 }
 
 /// A model's failure (or non-finite results) as the user can act on it: an error that already
-/// names one of the scene's parameters, a cancellation and file errors pass unchanged; any
-/// other, which names internal quantities (`no sign change on [..]`, `m0`, a Newton residual),
-/// is prefixed by the parameters the user changed, most changed first (by the ratio to the
+/// names one of the parameters the user changed (or any parameter when none was changed), a
+/// cancellation and file errors pass unchanged; any other, which names internal quantities
+/// (`no sign change on [..]`, `m0`, a Newton residual) or a parameter derived from the one the
+/// user set (`ring_width` from `radius`), is prefixed by the parameters the user changed, most changed first (by the ratio to the
 /// default), with their defaults, and its numbers are cut to 6 significant digits. `defaults`
 /// is what the changes are measured from: [`SceneDyn::baseline`] (in quick runs, the defaults
 /// in quick form).
@@ -323,18 +324,48 @@ pub fn attribute_failure(
         return error;
     }
     let message = error.to_string();
-    if values
+    let names = |name: &str| names_word(&message, name);
+    let changed: Vec<&str> = values
         .specs
         .iter()
-        .any(|s| message.contains(&format!("`{}`", s.name)))
-    {
-        return error;
+        .zip(values.values.iter().zip(&defaults.values))
+        .filter(|(_, (v, d))| v != d)
+        .map(|(s, _)| s.name)
+        .collect();
+    // An error naming a parameter (quoted) passes as it is when it also names one the user
+    // changed, quoted or not ("must be below alpha_max"), or the user changed none; one naming
+    // only another parameter (`ring_width` when `radius` was set) is prefixed by what the user
+    // changed.
+    let quoted = values
+        .specs
+        .iter()
+        .any(|s| message.contains(&format!("`{}`", s.name)));
+    if quoted && (changed.is_empty() || changed.iter().any(|n| names(n))) {
+        return match error {
+            Error::InvalidParameter { name, value, reason } => Error::InvalidParameter {
+                name,
+                value,
+                reason: crate::params::compact_numbers(&reason),
+            },
+            e => e,
+        };
     }
     Error::AtParameters {
         scene,
         at: changed_parameters(values, defaults),
         cause: crate::params::compact_numbers(&message),
     }
+}
+
+/// Whether `message` names `name` as a word of its own (`alpha_max`, also unquoted as in "must
+/// be below alpha_max"; not the `alpha` of `alpha_max`).
+pub fn names_word(message: &str, name: &str) -> bool {
+    let ident = |c: char| c.is_ascii_alphanumeric() || c == '_';
+    message.match_indices(name).any(|(i, _)| {
+        let before = message[..i].chars().next_back();
+        let after = message[i + name.len()..].chars().next();
+        !before.is_some_and(ident) && !after.is_some_and(ident)
+    })
 }
 
 /// The (at most three) parameters that differ most from their defaults, as

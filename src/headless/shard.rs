@@ -106,9 +106,14 @@ fn fnv1a(bytes: &[u8]) -> u64 {
     })
 }
 
+/// The hash of a parameter set: 16 hex digits of the FNV-1a hash of its [`canonical`] text.
+pub fn params_hash(values: &ParamValues) -> String {
+    format!("{:016x}", fnv1a(canonical(values).as_bytes()))
+}
+
 /// The folder of a sweep's points: `<out>/<scene-id>-<16 hex digits of the parameters' hash>`.
 pub fn folder(out: &Path, scene_id: &str, values: &ParamValues) -> PathBuf {
-    out.join(format!("{scene_id}-{:016x}", fnv1a(canonical(values).as_bytes())))
+    out.join(format!("{scene_id}-{}", params_hash(values)))
 }
 
 /// The file of point `id` in a sweep's folder.
@@ -116,14 +121,148 @@ pub fn point_path(folder: &Path, id: usize) -> PathBuf {
     folder.join(format!("point-{id:06}.json"))
 }
 
-/// A point's result as stored.
+/// The largest point file read (a point holds at most a few thousand numbers).
+const POINT_FILE_LIMIT: u64 = 64 << 20;
+
+/// The longest computing time a point file may claim, in seconds (about 30 years).
+const MAX_POINT_SECONDS: f64 = 1e9;
+
+/// A point's result as stored: the parameter set's hash ([`params_hash`]) ties it to its
+/// sweep, and the checksum over everything else to the text the shard wrote.
 #[derive(Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 struct PointFile {
     scene: String,
     point: usize,
     label: String,
+    params: String,
     seconds: f64,
     values: Vec<String>,
+    checksum: String,
+}
+
+impl PointFile {
+    /// The checksum of the other fields: 16 hex digits of FNV-1a over their text.
+    fn digest(&self) -> String {
+        let text = format!(
+            "{}\n{}\n{}\n{}\n{}\n{}",
+            self.scene,
+            self.point,
+            self.label,
+            self.params,
+            encode(self.seconds),
+            self.values.join(",")
+        );
+        format!("{:016x}", fnv1a(text.as_bytes()))
+    }
+}
+
+/// What a point file must hold to be merged.
+#[derive(Debug, Clone, Copy)]
+pub struct Expected<'a> {
+    /// The scene id.
+    pub scene: &'a str,
+    /// The point id.
+    pub point: usize,
+    /// The hash of the sweep's parameter set ([`params_hash`]).
+    pub params_hash: &'a str,
+    /// The number of values of the point ([`crate::scenes::sweep::SweepDyn::point_len`]).
+    pub len: usize,
+    /// Whether a value may be NaN (a map cell where the quantity is not defined).
+    pub nan_allowed: bool,
+}
+
+/// The text of a point file (JSON, one line).
+pub fn point_text(
+    scene: &str,
+    point: usize,
+    label: &str,
+    params_hash: &str,
+    seconds: f64,
+    values: &[f64],
+) -> String {
+    let mut file = PointFile {
+        scene: scene.to_string(),
+        point,
+        label: label.to_string(),
+        params: params_hash.to_string(),
+        seconds,
+        values: values.iter().map(|&x| encode(x)).collect(),
+        checksum: String::new(),
+    };
+    file.checksum = file.digest();
+    serde_json::to_string(&file).unwrap_or_default()
+}
+
+/// A point file's text with its checksum recomputed, or `None` if it is not a point file's
+/// JSON: what an edit that also forges the checksum gives (for fuzzing the checks behind it).
+pub fn reseal(text: &str) -> Option<String> {
+    let mut file: PointFile = serde_json::from_str(text).ok()?;
+    file.checksum = file.digest();
+    serde_json::to_string(&file).ok()
+}
+
+/// Parse and check a point file's text: the values and the seconds the point took, or why
+/// the file cannot be merged (one line).
+///
+/// # Errors
+/// Not a point file's JSON; another scene or point; another parameter set; a checksum that
+/// does not match; seconds that are not finite and in [0, 1e9]; a wrong number of values; a
+/// value that is not a number, or not finite (NaN where `nan_allowed`).
+pub fn parse_point(text: &str, expected: &Expected<'_>) -> Result<(Vec<f64>, f64), String> {
+    let f: PointFile =
+        serde_json::from_str(text).map_err(|e| crate::params::escape_for_message(&e.to_string(), 200))?;
+    if f.scene != expected.scene || f.point != expected.point {
+        return Err(format!(
+            "it holds point {} of {}",
+            f.point,
+            crate::params::escape_for_message(&f.scene, 40)
+        ));
+    }
+    if f.params != expected.params_hash {
+        return Err(format!(
+            "it was computed with another parameter set (hash {}, this sweep's is {}): copied from \
+             another sweep's folder?",
+            crate::params::escape_for_message(&f.params, 40),
+            expected.params_hash
+        ));
+    }
+    if f.checksum != f.digest() {
+        return Err("its content does not match its checksum (edited or truncated)".into());
+    }
+    if !(f.seconds.is_finite() && (0.0..=MAX_POINT_SECONDS).contains(&f.seconds)) {
+        return Err(format!(
+            "its computing time {} s is not in [0, {}]",
+            crate::params::fmt_sig(f.seconds),
+            crate::params::fmt_sig(MAX_POINT_SECONDS)
+        ));
+    }
+    if f.values.len() != expected.len {
+        return Err(format!(
+            "it holds {} values, the point has {}",
+            f.values.len(),
+            expected.len
+        ));
+    }
+    let values = f
+        .values
+        .iter()
+        .enumerate()
+        .map(|(k, t)| {
+            let x = decode(t).ok_or_else(|| {
+                format!(
+                    "value {k} `{}` is not a number",
+                    crate::params::escape_for_message(t, 40)
+                )
+            })?;
+            if x.is_finite() || (x.is_nan() && expected.nan_allowed) {
+                Ok(x)
+            } else {
+                Err(format!("value {k} is {x}, not a finite number"))
+            }
+        })
+        .collect::<Result<Vec<f64>, String>>()?;
+    Ok((values, f.seconds))
 }
 
 /// An `f64` as text that reads back to the same value (`-0e0`, `NaN`, `inf` included).
@@ -137,29 +276,18 @@ pub fn decode(text: &str) -> Option<f64> {
 }
 
 /// A stored point: `None` if there is no file, `Some(Err)` naming what is wrong if the file is
-/// damaged or belongs to another point, else the values and the seconds the point took.
-fn read_point(folder: &Path, scene_id: &str, id: usize) -> Option<anyhow::Result<(Vec<f64>, f64)>> {
-    let path = point_path(folder, id);
-    let text = match std::fs::read_to_string(&path) {
-        Ok(t) => t,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return None,
-        Err(e) => return Some(Err(anyhow!("reading {}: {e}", path.display()))),
+/// damaged, belongs to another point or parameter set, or holds values the point cannot have,
+/// else the values and the seconds the point took.
+fn read_point(folder: &Path, expected: &Expected<'_>) -> Option<anyhow::Result<(Vec<f64>, f64)>> {
+    let path = point_path(folder, expected.point);
+    if std::fs::symlink_metadata(&path).is_err() {
+        return None;
+    }
+    let parsed = match crate::input::read_input(&path, POINT_FILE_LIMIT.min(crate::input::limit())) {
+        Ok(bytes) => parse_point(&String::from_utf8_lossy(&bytes), expected).map_err(|e| anyhow!(e)),
+        Err(e) => Err(anyhow!(e)),
     };
-    let parsed = serde_json::from_str::<PointFile>(&text)
-        .map_err(|e| anyhow!("{e}"))
-        .and_then(|f| {
-            if f.scene != scene_id || f.point != id {
-                bail!("it holds point {} of {}", f.point, f.scene);
-            }
-            let values = f
-                .values
-                .iter()
-                .map(|t| decode(t).ok_or_else(|| anyhow!("`{t}` is not a number")))
-                .collect::<anyhow::Result<Vec<f64>>>()?;
-            Ok((values, f.seconds))
-        })
-        .with_context(|| format!("point file {} is damaged", path.display()));
-    Some(parsed)
+    Some(parsed.with_context(|| format!("point file {} is damaged", path.display())))
 }
 
 /// The scene's sweep interface, or a one-line error naming the scenes that have one.
@@ -211,6 +339,25 @@ fn check_params(scene: &dyn SceneDyn, values: &ParamValues, folder: &Path) -> an
     )
 }
 
+/// Create `folder` and its missing parents; the folders created, outermost first.
+fn create_folders(folder: &Path) -> anyhow::Result<Vec<PathBuf>> {
+    let missing: Vec<PathBuf> = folder
+        .ancestors()
+        .take_while(|d| !d.as_os_str().is_empty() && std::fs::symlink_metadata(d).is_err())
+        .map(Path::to_path_buf)
+        .collect();
+    create_folder(folder)?;
+    Ok(missing.into_iter().rev().collect())
+}
+
+/// Whether a sweep folder holds a point file.
+fn has_points(folder: &Path) -> bool {
+    std::fs::read_dir(folder).is_ok_and(|rd| {
+        rd.filter_map(Result::ok)
+            .any(|e| e.file_name().to_string_lossy().starts_with("point-"))
+    })
+}
+
 /// A duration as "1.23 s" or "4.5 ms".
 fn fmt_seconds(s: f64) -> String {
     if s < 1.0 {
@@ -241,9 +388,29 @@ pub fn run_shard(
     let id = scene.info().id;
     let labels = sweep.points(values)?;
     let n = labels.len();
+    let hash = params_hash(values);
+    let expected = |point: usize| -> crate::error::Result<Expected<'_>> {
+        Ok(Expected {
+            scene: id,
+            point,
+            params_hash: &hash,
+            len: sweep.point_len(values, point)?,
+            nan_allowed: sweep.nan_values(),
+        })
+    };
     let folder = folder(out, id, values);
-    create_folder(&folder)?;
-    if !check_params(scene, values, &folder)? {
+    let created = create_folders(&folder)?;
+    // A shard that fails before its first point is stored removes the folders it created.
+    let undo = |e: anyhow::Error| {
+        if !created.is_empty() && !has_points(&folder) {
+            let _ = std::fs::remove_file(folder.join(PARAMS_FILE));
+            for d in created.iter().rev() {
+                let _ = std::fs::remove_dir(d);
+            }
+        }
+        e
+    };
+    if !check_params(scene, values, &folder).map_err(undo)? {
         let header = format!(
             "Parameters of the sharded sweep {id} in this folder ({n} points): the same set is \
              needed for every shard and for --merge.\nRun again with `adhesion --headless --figure {id} \
@@ -253,14 +420,16 @@ pub fn run_shard(
         write_atomic(
             &folder.join(PARAMS_FILE),
             values.to_preset_text(&header).as_bytes(),
-        )?;
+        )
+        .map_err(|e| undo(e.into()))?;
     }
     let mine: Vec<usize> = (shard.index..n).step_by(shard.count).collect();
-    let todo: Vec<usize> = mine
-        .iter()
-        .copied()
-        .filter(|&k| !matches!(read_point(&folder, id, k), Some(Ok(_))))
-        .collect();
+    let mut todo = Vec::new();
+    for &k in &mine {
+        if !matches!(read_point(&folder, &expected(k)?), Some(Ok(_))) {
+            todo.push(k);
+        }
+    }
     let tag = format!("{id} shard {}/{}", shard.index, shard.count);
     eprintln!(
         "{tag}: {} of the {n} points, {} already done in {}, {} to compute",
@@ -277,14 +446,7 @@ pub fn run_shard(
         let t0 = Instant::now();
         let result = task().and_then(|v| {
             let seconds = t0.elapsed().as_secs_f64();
-            let file = PointFile {
-                scene: id.to_string(),
-                point: k,
-                label: labels[k].clone(),
-                seconds,
-                values: v.iter().map(|&x| encode(x)).collect(),
-            };
-            let text = serde_json::to_string(&file).expect("a point file has string keys and string values");
+            let text = point_text(id, k, &labels[k], &hash, seconds, &v);
             write_atomic(&point_path(&folder, k), text.as_bytes()).map(|()| seconds)
         });
         let seconds = match result {
@@ -312,10 +474,10 @@ pub fn run_shard(
     };
     if let Err(e) = sweep.run_points(values, &todo, &Job::quiet(), &visit) {
         let point = failed.lock().ok().and_then(|f| *f);
-        return Err(match point {
+        return Err(undo(match point {
             Some(k) => anyhow!(e).context(format!("{tag}: point {}", named(k, &labels))),
             None => anyhow!(e).context(tag),
-        });
+        }));
     }
     eprintln!(
         "{tag}: finished, {} points computed in {:.1} s",
@@ -351,11 +513,19 @@ pub fn merge(
         );
     }
     check_params(scene, values, &folder)?;
+    let hash = params_hash(values);
     let mut points = Vec::with_capacity(n);
     let mut missing = Vec::new();
     let mut seconds = 0.0;
     for k in 0..n {
-        match read_point(&folder, id, k) {
+        let expected = Expected {
+            scene: id,
+            point: k,
+            params_hash: &hash,
+            len: sweep.point_len(values, k)?,
+            nan_allowed: sweep.nan_values(),
+        };
+        match read_point(&folder, &expected) {
             None => missing.push(k),
             Some(Err(e)) => return Err(e.context("delete it and run its shard again")),
             Some(Ok((v, s))) => {

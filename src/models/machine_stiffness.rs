@@ -479,7 +479,7 @@ impl MachineStiffness {
                 delta_min,
                 format!(
                     "must lie below the pull-off stage displacement {}",
-                    pull_off.before.delta
+                    crate::params::fmt_sig(pull_off.before.delta)
                 ),
             ));
         }

@@ -586,11 +586,11 @@ impl<'p> WavyPeeling<'p> {
                 "peel_angle",
                 format!("{:.4}°", theta.to_degrees()),
                 format!(
-                    "the peeled film would touch the {} substrate of aspect ratio A = {}: the comparability condition (Sec. 6.2.1) needs {:.4}° <= θ <= {:.4}°",
+                    "the peeled film would touch the {} substrate of aspect ratio A = {}: the comparability condition (Sec. 6.2.1) needs {}° <= θ <= {}°",
                     profile.name(),
-                    aspect_ratio,
-                    lo.to_degrees(),
-                    hi.to_degrees()
+                    crate::params::fmt_sig(aspect_ratio),
+                    crate::params::fmt_sig(lo.to_degrees()),
+                    crate::params::fmt_sig(hi.to_degrees())
                 ),
             ));
         }

@@ -58,13 +58,31 @@ pub fn nice_step(span: f64, target: usize) -> f64 {
     nice * mag
 }
 
-/// Ticks for the range `[lo, hi]`.
+/// The most ticks of a linear axis: more means the step is below the numbers' resolution.
+const MAX_TICKS: usize = 1000;
+
+/// The largest decade exponent of a log axis (the double range is 1e-324 to 1.8e308).
+const MAX_DECADE: f64 = 330.0;
+
+/// Ticks for the range `[lo, hi]`, in bounded time for any range (spans of hundreds of
+/// decades, or below the resolution of the numbers, included).
 pub fn ticks(lo: f64, hi: f64, scale: Scale, target: usize) -> Ticks {
     match scale {
         Scale::Linear => {
             let step = nice_step(hi - lo, target);
-            let first = (lo / step).ceil() as i64;
-            let last = (hi / step).floor() as i64;
+            let (first, last) = ((lo / step).ceil(), (hi / step).floor());
+            // A span that is zero, not finite or below the numbers' resolution (1e-300 next to
+            // 1) gives no usable step: the ends alone are labelled, never an endless count.
+            if !(step > 0.0 && first.is_finite() && last.is_finite() && last - first <= MAX_TICKS as f64) {
+                let values: Vec<f64> = [lo, hi].into_iter().filter(|v| v.is_finite()).collect();
+                let labels = values.iter().map(|&v| format_number(v)).collect();
+                return Ticks {
+                    values,
+                    labels,
+                    minor: Vec::new(),
+                };
+            }
+            let (first, last) = (first as i64, last as i64);
             let values: Vec<f64> = (first..=last).map(|k| k as f64 * step).collect();
             let labels = format_ticks(&values, step);
             Ticks {
@@ -74,7 +92,19 @@ pub fn ticks(lo: f64, hi: f64, scale: Scale, target: usize) -> Ticks {
             }
         }
         Scale::Log => {
-            let (l, h) = (lo.log10(), hi.log10());
+            // Ends outside the double range (0, a negative number, infinity) are clamped to it:
+            // at most about 630 decades are visited.
+            let clamp = |v: f64| {
+                if v.is_finite() {
+                    v.clamp(-MAX_DECADE, MAX_DECADE)
+                } else if v > 0.0 {
+                    MAX_DECADE
+                } else {
+                    -MAX_DECADE
+                }
+            };
+            let (l, h) = (clamp(lo.log10()), clamp(hi.log10()));
+            let (l, h) = (l.min(h), h.max(l));
             let decades = h - l;
             let every = if decades > 12.0 {
                 (decades / 6.0).ceil() as i64
@@ -211,6 +241,37 @@ mod tests {
     }
 
     // A constant field's colour bar has a zero tick step: labels, not a formatting panic.
+    #[test]
+    fn any_range_gives_few_ticks_at_once() {
+        for (lo, hi) in [
+            (1.0, 1.0 + 1e-15),
+            (1.0, 1.0),
+            (0.0, 0.0),
+            (-1e308, 1e308),
+            (f64::MIN, f64::MAX),
+            (1e-300, 1.0),
+            (1.0, f64::INFINITY),
+            (f64::NAN, 1.0),
+        ] {
+            let t = ticks(lo, hi, Scale::Linear, 6);
+            assert!(t.values.len() <= MAX_TICKS + 1, "{lo} {hi}");
+        }
+        for (lo, hi) in [
+            (0.0, 1.0),
+            (1e-320, 1e300),
+            (5e-324, f64::MAX),
+            (-1.0, 1.0),
+            (1.0, f64::INFINITY),
+        ] {
+            let t = ticks(lo, hi, Scale::Log, 6);
+            assert!(
+                t.values.len() <= 20 && t.minor.len() <= 9 * 700,
+                "{lo} {hi}: {}",
+                t.values.len()
+            );
+        }
+    }
+
     #[test]
     fn a_degenerate_step_still_gives_labels() {
         assert_eq!(format_ticks(&[4.5, 4.5], 0.0), vec![format_number(4.5); 2]);

@@ -132,8 +132,8 @@ fn branch_figure(id: &str, title: &str, spec: &BranchSpec, job: &Job) -> Result<
             "delta_min",
             delta_min,
             format!(
-                "must lie below the pull-off stage displacement {:.4}",
-                pull_off.before.delta
+                "must lie below the pull-off stage displacement {}",
+                crate::params::fmt_sig(pull_off.before.delta)
             ),
         ));
     }

@@ -815,18 +815,28 @@ impl Fig3_8Params {
         }
         let pixel = (self.pixel_size > 0.0).then_some(self.pixel_size);
         let mut map = read_height_map(std::path::Path::new(&self.surface), pixel)?;
+        let largest = crate::surface::command::largest_height(&map);
         if self.remove_tilt {
             map.remove_tilt();
         } else {
             map.remove_mean();
         }
+        if let Some(reason) = crate::surface::command::flat_map(&map, largest) {
+            return Err(Error::invalid("surface", &self.surface, reason));
+        }
         let m = moments_of_map(&map);
         let rms = m.m0.sqrt();
-        if rms.is_nan() || rms <= 0.0 {
+        if let Some((name, v)) = [("m0", m.m0), ("m2", m.m2), ("m4", m.m4)]
+            .into_iter()
+            .find(|(_, v)| v.is_nan() || *v <= 0.0)
+        {
             return Err(Error::invalid(
                 "surface",
                 &self.surface,
-                "is flat (zero RMS height)",
+                format!(
+                    "its spectral moment {name} = {} is not positive: the map is flat or near-flat",
+                    crate::params::fmt_sig(v)
+                ),
             ));
         }
         Ok((m, rms))
@@ -1014,6 +1024,10 @@ impl Scene for Fig3_8 {
 /// assembly.
 impl Sweep for Fig3_8 {
     type Context = (Moments, f64);
+
+    fn point_len(p: &Self::Params, _id: usize) -> usize {
+        p.grid_points
+    }
 
     fn context(p: &Self::Params, _job: &Job) -> Result<Self::Context> {
         p.base_moments()

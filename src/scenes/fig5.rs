@@ -891,6 +891,10 @@ impl Scene for Fig5_8 {
 impl Sweep for Fig5_8 {
     type Context = Vec<Vec<f64>>;
 
+    fn point_len(p: &Self::Params, _id: usize) -> usize {
+        p.samples
+    }
+
     fn context(p: &Self::Params, job: &Job) -> Result<Self::Context> {
         unit_surfaces(p.springs, p.springs, p.correlation_length, p.samples, p.seed, job)
     }
@@ -1067,6 +1071,10 @@ impl Scene for Fig5_9 {
 /// at that length. A point's result is the adhesion efficiency of each sample.
 impl Sweep for Fig5_9 {
     type Context = ();
+
+    fn point_len(p: &Self::Params, _id: usize) -> usize {
+        p.samples
+    }
 
     fn context(_p: &Self::Params, _job: &Job) -> Result<()> {
         Ok(())

@@ -46,8 +46,7 @@ const YELLOW: usize = 4;
 /// or a profile [`SampledProfile::new`] refuses (too few samples, x not increasing, not closing,
 /// flat).
 pub fn load_profile(path: &Path) -> Result<Profile> {
-    let text =
-        std::fs::read_to_string(path).map_err(|e| Error::data_file(path, 0, format!("cannot read: {e}")))?;
+    let text = crate::input::read_text(path)?;
     let mut points = Vec::new();
     let mut header_seen = false;
     for (k, raw) in crate::params::normalise_line_ends(&text).lines().enumerate() {
@@ -590,6 +589,14 @@ impl Sweep for Fig6_3 {
         profile_of(&p.profile_file, &Profile::Sinusoid)
     }
 
+    /// The column's forces and works at every angle, then its extrema ([`map_point`]); NaN
+    /// where an angle is not admissible.
+    fn point_len(p: &Self::Params, _id: usize) -> usize {
+        2 * p.angle_points + 7
+    }
+
+    const NAN_VALUES: bool = true;
+
     fn points(p: &Self::Params) -> Vec<String> {
         map_points(p)
     }
@@ -675,6 +682,14 @@ impl Sweep for Fig6_5 {
     fn context(p: &Self::Params, _job: &Job) -> Result<Profile> {
         profile_of(&p.profile_file, &Profile::Zigzag)
     }
+
+    /// The column's forces and works at every angle, then its extrema ([`map_point`]); NaN
+    /// where an angle is not admissible.
+    fn point_len(p: &Self::Params, _id: usize) -> usize {
+        2 * p.angle_points + 7
+    }
+
+    const NAN_VALUES: bool = true;
 
     fn points(p: &Self::Params) -> Vec<String> {
         map_points(p)

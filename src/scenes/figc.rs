@@ -459,10 +459,14 @@ impl Scene for Fig3_7d {
             let pixel = (p.pixel_size > 0.0).then_some(p.pixel_size);
             read_height_map(std::path::Path::new(&p.surface), pixel)?
         };
+        let largest = crate::surface::command::largest_height(&map);
         if p.remove_tilt {
             map.remove_tilt();
         } else {
             map.remove_mean();
+        }
+        if !generated && let Some(reason) = crate::surface::command::flat_map(&map, largest) {
+            return Err(Error::invalid("surface", &p.surface, reason));
         }
         job.check()?;
         job.progress(0.3, "PSD");
@@ -536,19 +540,27 @@ impl Scene for Fig3_7d {
         }
         let f = fit.as_ref().map(|(f, _)| *f).ok();
         let get = |g: fn(&AbcFit) -> f64| f.as_ref().map_or(f64::NAN, g);
-        for (name, v) in [
-            ("fit_sigma_rms_m", get(|f| f.rms)),
-            ("fit_sigma_rms_error_m", get(|f| f.rms_error)),
-            ("fit_correlation_length_m", get(|f| f.correlation_length)),
-            (
-                "fit_correlation_length_error_m",
-                get(|f| f.correlation_length_error),
-            ),
-            ("fit_exponent_norm", get(|f| f.exponent)),
-            ("fit_exponent_error_norm", get(|f| f.exponent_error)),
-            ("fit_cutoff_per_m", get(|f| f.cutoff)),
-            ("fit_log_residual_rms_norm", get(|f| f.log_residual_rms)),
-        ] {
+        // A failed or degenerate fit of a user's map reports no fitted values (its reason is a
+        // note), never numbers the map cannot support; for a generated map the parameters that
+        // made it are named (non-finite results are refused with them).
+        let fit_results = if f.is_some() || generated {
+            vec![
+                ("fit_sigma_rms_m", get(|f| f.rms)),
+                ("fit_sigma_rms_error_m", get(|f| f.rms_error)),
+                ("fit_correlation_length_m", get(|f| f.correlation_length)),
+                (
+                    "fit_correlation_length_error_m",
+                    get(|f| f.correlation_length_error),
+                ),
+                ("fit_exponent_norm", get(|f| f.exponent)),
+                ("fit_exponent_error_norm", get(|f| f.exponent_error)),
+                ("fit_cutoff_per_m", get(|f| f.cutoff)),
+                ("fit_log_residual_rms_norm", get(|f| f.log_residual_rms)),
+            ]
+        } else {
+            Vec::new()
+        };
+        for (name, v) in fit_results {
             fig.result(name, v);
         }
         if let Err(e) = &fit {

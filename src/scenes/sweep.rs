@@ -51,6 +51,15 @@ pub trait Sweep: Scene {
     /// Model errors of the parts of the figure that are not points.
     fn assemble(params: &Self::Params, points: &[Vec<f64>], job: &Job) -> Result<Figure>;
 
+    /// The number of values [`Sweep::run_point`] gives for point `id`: a stored point of
+    /// another length is refused by a merge.
+    fn point_len(params: &Self::Params, id: usize) -> usize;
+
+    /// Whether a point's values may be NaN (a map cell where the quantity is not defined);
+    /// otherwise a merge refuses a stored point with a non-finite value. Infinities are always
+    /// refused.
+    const NAN_VALUES: bool = false;
+
     /// The shares of an unsharded run's time spent building the context, computing the points
     /// and assembling the figure (any unit), for its progress: the gauge crosses each part in
     /// its share. By default nearly all of it is the points.
@@ -118,8 +127,17 @@ pub trait SweepDyn: Sync {
     /// Validate the values and build the figure from the results of all points, in id order.
     ///
     /// # Errors
-    /// Invalid values, errors of the assembly.
+    /// Invalid values, errors of the assembly; points of the wrong length.
     fn assemble(&self, values: &ParamValues, points: &[Vec<f64>], job: &Job) -> Result<Figure>;
+
+    /// The number of values of point `id` ([`Sweep::point_len`]).
+    ///
+    /// # Errors
+    /// Invalid values.
+    fn point_len(&self, values: &ParamValues, id: usize) -> Result<usize>;
+
+    /// Whether a point's values may be NaN ([`Sweep::NAN_VALUES`]).
+    fn nan_values(&self) -> bool;
 }
 
 /// Adapter from a typed [`Sweep`] scene to [`SceneDyn`] (with [`SceneDyn::sweep`]) and
@@ -170,6 +188,14 @@ impl<S: Sweep> SceneDyn for Swept<S> {
 }
 
 impl<S: Sweep> SweepDyn for Swept<S> {
+    fn point_len(&self, values: &ParamValues, id: usize) -> Result<usize> {
+        Ok(S::point_len(&Self::params(values)?, id))
+    }
+
+    fn nan_values(&self) -> bool {
+        S::NAN_VALUES
+    }
+
     fn points(&self, values: &ParamValues) -> Result<Vec<String>> {
         Ok(S::points(&Self::params(values)?))
     }
@@ -199,6 +225,23 @@ impl<S: Sweep> SweepDyn for Swept<S> {
 
     fn assemble(&self, values: &ParamValues, points: &[Vec<f64>], job: &Job) -> Result<Figure> {
         let p = Self::params(values)?;
+        let labels = S::points(&p);
+        if points.len() != labels.len() {
+            return Err(crate::error::Error::Unresolvable {
+                model: "sweep",
+                reason: format!("{} points given, the sweep has {}", points.len(), labels.len()),
+            });
+        }
+        if let Some((id, v)) = points
+            .iter()
+            .enumerate()
+            .find(|(id, v)| v.len() != S::point_len(&p, *id))
+        {
+            return Err(crate::error::Error::Unresolvable {
+                model: "sweep",
+                reason: format!("point {id} has {} values, not {}", v.len(), S::point_len(&p, id)),
+            });
+        }
         crate::scenes::finish(
             S::ID,
             values,

@@ -73,6 +73,19 @@ pub fn report(map: &HeightMap, cutoff: Cutoff) -> Result<SurfaceReport> {
         ("peak_density", r.peak_density),
         ("mean_nearest_peak_distance", r.mean_nearest_peak_distance),
     ];
+    if let Some((name, v)) = [("m0", r.m0), ("m2", r.m2), ("m4", r.m4)]
+        .into_iter()
+        .find(|(_, v)| v.is_nan() || *v <= 0.0)
+    {
+        return Err(Error::invalid(
+            "surface",
+            format!("{} x {} map", map.nx, map.ny),
+            format!(
+                "its spectral moment {name} = {} is not positive: the map is flat or near-flat",
+                fmt_sig(v)
+            ),
+        ));
+    }
     for (name, v) in fields {
         let undefined_distance = name == "mean_nearest_peak_distance" && r.peak_count < 2 && v.is_nan();
         if !v.is_finite() && !undefined_distance {
@@ -89,6 +102,28 @@ pub fn report(map: &HeightMap, cutoff: Cutoff) -> Result<SurfaceReport> {
         }
     }
     Ok(r)
+}
+
+/// The largest height of a map in magnitude [m].
+pub fn largest_height(map: &HeightMap) -> f64 {
+    map.z.iter().fold(0.0_f64, |a, z| a.max(z.abs()))
+}
+
+/// Why a map (its mean or plane removed) is too flat to analyse, or `None`: its RMS height is
+/// zero, or below 1e-9 of `largest`, the largest height before the removal (what is left is
+/// the rounding of the heights). The rule of `--analyze-surface` and of the scenes that read
+/// a map.
+pub fn flat_map(map: &HeightMap, largest: f64) -> Option<String> {
+    let rms = map.rms();
+    if rms > 1e-9 * largest && rms > 0.0 {
+        return None;
+    }
+    Some(format!(
+        "the map is flat: its RMS height is {} m after removing the mean (or tilt), with heights \
+         up to {} m (nothing to analyse)",
+        fmt_sig(rms),
+        fmt_sig(largest)
+    ))
 }
 
 fn report_unchecked(map: &HeightMap, cutoff: Cutoff) -> SurfaceReport {
@@ -236,12 +271,19 @@ pub fn run(args: &SurfaceArgs, out: &Path) -> Result<String> {
         if args.periodic {
             map.periodic = true;
         }
+        let largest = largest_height(&map);
         if args.remove_tilt {
             map.remove_tilt();
         } else {
             map.remove_mean();
         }
+        if let Some(reason) = flat_map(&map, largest) {
+            return Err(Error::data_file(path, 0, reason));
+        }
         let r = report(&map, cutoff)?;
+        if let Some(e) = &r.psd_fit_error {
+            eprintln!("warning: {}: {e}", path.display());
+        }
         let json =
             serde_json::to_string_pretty(&r).map_err(|e| Error::invalid("report", "json", e.to_string()))?;
         return Ok(format!("{json}\n"));

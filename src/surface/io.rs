@@ -267,7 +267,7 @@ pub fn metres_per_unit(unit: &str) -> Option<f64> {
 /// # Errors
 /// [`Error::DataFile`] for a missing magic line, a missing or bad XRes/YRes/XReal/YReal, an
 /// XYUnits or ZUnits that is not a length ([`metres_per_unit`]), a header without its NUL
-/// padding, truncated data, or non-finite heights.
+/// padding, data shorter or longer than XRes x YRes, or non-finite heights.
 pub fn parse_gsf(bytes: &[u8], path: &Path) -> Result<HeightMap> {
     if !bytes.starts_with(GSF_MAGIC.as_bytes()) {
         return Err(Error::data_file(
@@ -333,14 +333,17 @@ pub fn parse_gsf(bytes: &[u8], path: &Path) -> Result<HeightMap> {
         .checked_mul(ny)
         .and_then(|n| n.checked_mul(4))
         .ok_or_else(|| Error::data_file(path, 0, "XRes x YRes overflows"))?;
-    if bytes.len() < start + need {
+    if bytes.len() != start.saturating_add(need) {
+        let have = bytes.len().saturating_sub(start);
+        let what = if have < need {
+            "truncated .gsf"
+        } else {
+            ".gsf data longer than its header says"
+        };
         return Err(Error::data_file(
             path,
             0,
-            format!(
-                "truncated .gsf: {} bytes of data, XRes x YRes = {nx} x {ny} needs {need}",
-                bytes.len().saturating_sub(start)
-            ),
+            format!("{what}: {have} bytes of data, XRes x YRes = {nx} x {ny} needs {need}"),
         ));
     }
     let z: Vec<f64> = bytes[start..start + need]
@@ -376,7 +379,7 @@ pub fn parse_gsf(bytes: &[u8], path: &Path) -> Result<HeightMap> {
 /// # Errors
 /// [`Error::DataFile`] as [`parse_csv`] and [`parse_gsf`], or when the file cannot be read.
 pub fn read_height_map(path: &Path, pixel_size: Option<f64>) -> Result<HeightMap> {
-    let bytes = std::fs::read(path).map_err(|e| Error::data_file(path, 0, format!("cannot read: {e}")))?;
+    let bytes = crate::input::read_input(path, crate::input::limit())?;
     match MapFormat::of(path) {
         MapFormat::Gsf => parse_gsf(&bytes, path),
         MapFormat::Csv => {

@@ -62,7 +62,9 @@ impl AbcFit {
 ///
 /// # Errors
 /// [`Error::InvalidParameter`] with fewer usable points than parameters or a bad cut-off;
-/// [`Error::NoConvergence`] when the fit does not converge.
+/// [`Error::NoConvergence`] when the fit does not converge; [`Error::Unresolvable`] when the
+/// fit is degenerate: a standard error undefined, L_c outside 0.1/q_max to 10/q_min of the
+/// fitted points, or n not positive.
 pub fn fit_abc(psd: &RadialPsd, cutoff: Cutoff) -> Result<AbcFit> {
     let pts: Vec<(f64, f64)> = psd
         .q
@@ -125,6 +127,33 @@ pub fn fit_abc(psd: &RadialPsd, cutoff: Cutoff) -> Result<AbcFit> {
         Cutoff::Free(_) => (x[3].exp(), x[3].exp() * se[3]),
         Cutoff::None => (f64::INFINITY, 0.0),
     };
+    let (q_min, q_max) = (pts[0].0, pts[pts.len() - 1].0);
+    let degenerate = |reason: String| Error::Unresolvable {
+        model: "fit of (3.16)",
+        reason: format!("degenerate, not reported: {reason}"),
+    };
+    if let Some(k) = se.iter().take(n_par).position(|e| !e.is_finite()) {
+        let name = ["sigma_rms", "L_c", "n", "q0"][k];
+        return Err(degenerate(format!(
+            "the standard error of {name} is undefined (the PSD does not determine the parameters; \
+             check the pixel size)"
+        )));
+    }
+    let lc = x[1].exp();
+    if !(lc >= 0.1 / q_max && lc <= 10.0 / q_min) {
+        return Err(degenerate(format!(
+            "L_c = {} m is outside the lengths the map resolves ({} to {} m; check the pixel size)",
+            crate::params::fmt_sig(lc),
+            crate::params::fmt_sig(0.1 / q_max),
+            crate::params::fmt_sig(10.0 / q_min)
+        )));
+    }
+    if x[2].is_nan() || x[2] <= 0.0 {
+        return Err(degenerate(format!(
+            "n = {} is not positive",
+            crate::params::fmt_sig(x[2])
+        )));
+    }
     Ok(AbcFit {
         rms: x[0].exp(),
         rms_error: x[0].exp() * se[0],

@@ -347,3 +347,42 @@ fn maugis_dugdale_fit_recovers_the_range() {
         j.work_of_adhesion
     );
 }
+
+/// A cycle whose rows are all duplicated (as a logger writing each sample twice does) fits as
+/// the cycle does: the end rows that straddle the pull-off are not taken for a baseline
+/// (issue 33, item 16: "only 0 in-contact point(s)").
+#[test]
+fn duplicated_rows_fit_as_the_cycle_does() {
+    let path = crate::common::root().join("tests/fixtures/curves/synthetic_cycle.csv");
+    let c = adhesion::fit::read_curve(&path).unwrap();
+    let mut d = c.clone();
+    d.depth = c.depth.iter().flat_map(|v| [*v, *v]).collect();
+    d.force = c.force.iter().flat_map(|v| [*v, *v]).collect();
+    d.lines = c.lines.iter().flat_map(|v| [*v, *v]).collect();
+    let a = adhesion::fit::fit_curve(&c, &path, 1e-6, Some(0.5), None).unwrap();
+    let b = adhesion::fit::fit_curve(&d, &path, 1e-6, Some(0.5), None).unwrap();
+    let (wa, wb) = (a.work_of_adhesion().unwrap(), b.work_of_adhesion().unwrap());
+    assert!(rel(wa.value, wb.value) < 0.01, "{wa:?} vs {wb:?}");
+    assert!(rel(a.plane_strain_modulus_pa.value, b.plane_strain_modulus_pa.value) < 0.01);
+}
+
+/// A tip radius or spring constant outside the declared ranges is refused naming the option
+/// (issue 33, item 13: `--tip-radius 1e-300` was reported as a parameter `x0`).
+#[test]
+fn out_of_range_fit_options_are_named() {
+    let path = crate::common::root().join("tests/fixtures/curves/synthetic_cycle.csv");
+    let c = adhesion::fit::read_curve(&path).unwrap();
+    for (r, k, name) in [
+        (1e-300, 0.5, "tip-radius"),
+        (1.0, 0.5, "tip-radius"),
+        (1e-6, 1e-300, "spring-constant"),
+    ] {
+        let e = adhesion::fit::fit_curve(&c, &path, r, Some(k), None)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains(&format!("`{name}`")) && !e.contains("x0") && e.len() < 200,
+            "{e}"
+        );
+    }
+}

@@ -1,12 +1,14 @@
 //! Seeded mutation fuzzing of the input parsers: force-curve CSV, height-map CSV, .gsf,
-//! peeling-profile CSV, presets, and the instrument force-distance readers (JPK archives, also
-//! re-zipped from mutated entries so that mutations reach the headers and channels past the zip's
-//! checksums; Asylum .ibw; afmformats .h5; AFM Workshop CSV and zip; NT-MDT, Chiaro, afmformats .tab text).
-//! Each parser gets valid seeds mutated (bytes flipped,
-//! inserted, deleted, duplicated; numbers such as 1e308, -0, nan spliced in) and must return
-//! `Ok` or `Err`, never panic. A short run is in CI; `ADHESION_FUZZ_ITERATIONS` sets the count
-//! of the `#[ignore]`d long run (default one million per parser), `ADHESION_FUZZ_ONLY` a part of
-//! the names of the parsers it runs (e.g. `afm` for the force-distance readers).
+//! peeling-profile CSV, presets, the point files of sharded sweeps, the merge (a point file,
+//! its checksum forged after the mutation, assembled with the other points of its sweep), and
+//! the instrument force-distance readers (JPK archives, also re-zipped from mutated entries so
+//! that mutations reach the headers and channels past the zip's checksums; Asylum .ibw;
+//! afmformats .h5; AFM Workshop CSV and zip; NT-MDT, Chiaro, afmformats .tab text). Each parser
+//! gets valid seeds mutated (bytes flipped, inserted, deleted, duplicated; numbers such as
+//! 1e308, -0, nan spliced in) and must return `Ok` or `Err`, never panic. A short run is in CI;
+//! `ADHESION_FUZZ_ITERATIONS` sets the count of the `#[ignore]`d long run (default one million
+//! per parser), `ADHESION_FUZZ_PARSERS` a comma-separated list of the parsers it runs, and
+//! `ADHESION_FUZZ_ONLY` a part of their names (e.g. `afm` for the force-distance readers).
 
 use std::path::Path;
 
@@ -61,7 +63,52 @@ const TOKENS: &[&[u8]] = &[
     b"# adhesion height map: nx=2 ny=2 lx=1 ly=1",
     b"periodic=1",
     b"depth_nm,force_nN",
+    b"{",
+    b"}",
+    b":",
+    b"null",
+    b"\"NaN\"",
+    b"\"-1e300\"",
+    b"-1e300",
+    b"[]",
+    b"\"values\":[]",
+    b"\"point\":4",
 ];
+
+/// The sweep of the point-file and merge fuzzing: fig4.9b in quick form (cheap to assemble),
+/// its values, hash and point labels.
+struct MergeCase {
+    values: adhesion::params::ParamValues,
+    hash: String,
+    labels: Vec<String>,
+}
+
+static MERGE: std::sync::LazyLock<MergeCase> = std::sync::LazyLock::new(|| {
+    let scene = adhesion::scenes::find("fig4.9b").unwrap();
+    let values = scene.quick(&scene.defaults()).unwrap();
+    let labels = scene.sweep().unwrap().points(&values).unwrap();
+    MergeCase {
+        hash: adhesion::headless::shard::params_hash(&values),
+        values,
+        labels,
+    }
+});
+
+/// Mutated point files that passed every check and were assembled into the figure.
+static ASSEMBLED: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+
+/// The point the fuzzed point files stand for.
+const POINT: usize = 4;
+
+fn expected(case: &MergeCase) -> adhesion::headless::shard::Expected<'_> {
+    adhesion::headless::shard::Expected {
+        scene: "fig4.9b",
+        point: POINT,
+        params_hash: &case.hash,
+        len: 2,
+        nan_allowed: false,
+    }
+}
 
 fn mutate(rng: &mut Rng, seed: &[u8]) -> Vec<u8> {
     let mut b = seed.to_vec();
@@ -106,12 +153,24 @@ fn seeds() -> Vec<(&'static str, Vec<u8>)> {
     }
     let profile = b"# x, y\n0,0\n0.1,0.01\n0.2,0.04\n0.3,0.09\n".to_vec();
     let preset = adhesion::headless::preset_text(adhesion::scenes::find("fig1.1").unwrap()).into_bytes();
+    let case = &*MERGE;
+    let point = adhesion::headless::shard::point_text(
+        "fig4.9b",
+        POINT,
+        &case.labels[POINT],
+        &case.hash,
+        1.25,
+        &[0.0123, 4.5e-3],
+    )
+    .into_bytes();
     let mut out = vec![
         ("force-curve CSV", curve),
         ("height-map CSV", map),
         (".gsf", gsf),
         ("profile CSV", profile),
         ("preset", preset),
+        ("point file", point.clone()),
+        ("merge", point),
     ];
     out.extend(afm_seeds());
     out
@@ -253,6 +312,46 @@ fn panics(kind: &str, bytes: &[u8], dir: &Path) -> bool {
                 let _ = adhesion::surface::command::report(&m, adhesion::surface::Cutoff::None);
             }
         }
+        "point file" => {
+            use adhesion::headless::shard::{parse_point, reseal};
+            let text = String::from_utf8_lossy(bytes);
+            let case = &*MERGE;
+            let _ = parse_point(&text, &expected(case));
+            if let Some(forged) = reseal(&text) {
+                let _ = parse_point(&forged, &expected(case));
+            }
+        }
+        "merge" => {
+            use adhesion::headless::shard::{parse_point, point_text, reseal};
+            let case = &*MERGE;
+            let text = String::from_utf8_lossy(bytes);
+            // The mutant with its checksum forged, and a well-formed point file of the numbers
+            // in the mutant (its last two, or one or three: wrong counts), so that odd values
+            // (1e308, -0, subnormals, NaN) reach the checks and the assembly.
+            let numbers: Vec<f64> = text
+                .split(|c: char| c.is_whitespace() || ",\":[]{}".contains(c))
+                .filter_map(|t| t.parse::<f64>().ok())
+                .collect();
+            let count = [2, 2, 2, 1, 3][bytes.len() % 5].min(numbers.len());
+            let seconds = numbers.first().copied().unwrap_or(0.0);
+            let rebuilt = point_text(
+                "fig4.9b",
+                POINT,
+                &case.labels[POINT],
+                &case.hash,
+                seconds,
+                &numbers[numbers.len() - count..],
+            );
+            for forged in reseal(&text).into_iter().chain([rebuilt]) {
+                if let Ok((values, _)) = parse_point(&forged, &expected(case)) {
+                    let mut points = vec![vec![0.01, 0.002]; case.labels.len()];
+                    points[POINT] = values;
+                    let sweep = adhesion::scenes::find("fig4.9b").unwrap().sweep().unwrap();
+                    let _ = sweep.assemble(&case.values, &points, &adhesion::job::Job::quiet());
+                    ASSEMBLED.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                }
+            }
+        }
         "profile CSV" => {
             std::fs::write(&path, bytes).unwrap();
             let _ = adhesion::scenes::fig6::load_profile(&path);
@@ -270,9 +369,16 @@ fn panics(kind: &str, bytes: &[u8], dir: &Path) -> bool {
 fn fuzz(iterations: usize) -> Vec<(&'static str, usize, usize)> {
     let dir = tempfile::tempdir().unwrap();
     let mut out = Vec::new();
-    let only = std::env::var("ADHESION_FUZZ_ONLY").unwrap_or_default();
+    // ADHESION_FUZZ_PARSERS="point file,merge" limits a run to some parsers,
+    // ADHESION_FUZZ_ONLY=afm to those whose names contain it.
+    let only = std::env::var("ADHESION_FUZZ_PARSERS").ok();
+    let part = std::env::var("ADHESION_FUZZ_ONLY").unwrap_or_default();
     for (k, (kind, seed)) in seeds().into_iter().enumerate() {
-        if !kind.contains(only.as_str()) {
+        if !kind.contains(part.as_str())
+            || only
+                .as_deref()
+                .is_some_and(|o| !o.split(',').any(|p| p.trim() == kind))
+        {
             continue;
         }
         let mut rng = Rng(SEED + k as u64);
@@ -313,6 +419,10 @@ fn parsers_survive_a_million_mutated_inputs() {
     for (kind, n, crashes) in &results {
         println!("{kind}: {n} executions, {crashes} panics");
     }
+    println!(
+        "merge: {} mutated point files passed the checks and were assembled",
+        ASSEMBLED.load(std::sync::atomic::Ordering::Relaxed)
+    );
     assert!(results.iter().all(|r| r.2 == 0));
 }
 

@@ -22,6 +22,7 @@ mod reference_ch1;
 mod registry;
 mod reproduction;
 mod shards;
+mod silent;
 mod snapshots;
 mod surface;
 mod tui;

@@ -109,7 +109,8 @@ impl RingGrid {
                 "ring_width",
                 h,
                 format!(
-                    "gives {n_fine} rings in the contact zone, more than {max_rings}: choose a wider ring"
+                    "gives {} rings in the contact zone, more than {max_rings}: choose a wider ring",
+                    crate::params::fmt_sig(n_fine as f64)
                 ),
             ));
         }

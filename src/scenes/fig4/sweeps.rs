@@ -116,6 +116,10 @@ impl Scene for Fig4_9b {
 impl Sweep for Fig4_9b {
     type Context = ();
 
+    fn point_len(_p: &Self::Params, _id: usize) -> usize {
+        2
+    }
+
     fn context(_p: &Self::Params, _job: &Job) -> Result<()> {
         Ok(())
     }
@@ -344,6 +348,10 @@ impl Scene for Fig4_10 {
 /// result is (P_adh/(2E*R²), H/(2E*R³)).
 impl Sweep for Fig4_10 {
     type Context = ();
+
+    fn point_len(_p: &Self::Params, _id: usize) -> usize {
+        2
+    }
 
     fn context(_p: &Self::Params, _job: &Job) -> Result<()> {
         Ok(())
