@@ -1108,7 +1108,8 @@ fn residual_panel(curve: &Curve, report: &FitReport) -> Result<crate::figure::Pa
         .filter(|&k| match report.segment {
             SegmentChoice::Both => true,
             SegmentChoice::Approach => k <= turn,
-            SegmentChoice::Retract => k >= turn,
+            // The retract and the approach's out-of-contact rows before the contact, as fitted.
+            SegmentChoice::Retract => k >= turn || curve.lines[k] < used.0,
         })
         .collect();
     let pts: Vec<(f64, f64)> = rows

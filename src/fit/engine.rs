@@ -873,10 +873,12 @@ fn unresolvable(reason: String) -> Error {
     Error::Unresolvable { model: "fit", reason }
 }
 
+/// Fewest rows on either side of the contact point for it to be determined.
+pub const EDGE_ROWS: usize = 10;
+
 /// Warnings on a fit whose parameters the data may not determine: correlations above 0.99,
-/// standard errors above half the value, the contact point at the edge of the data (outside
-/// the depths, or with fewer than 3 % of the rows on one side), residuals far above the
-/// baseline noise (rms over 3 σ).
+/// standard errors above half the value, the contact point at the edge of the data (fewer
+/// than [`EDGE_ROWS`] rows on one side), residuals far above the baseline noise (rms over 3 σ).
 pub fn warnings(fit: &EngineFit, data: &FitData) -> Vec<String> {
     let names = fit.model.parameter_names();
     let np = names.len();
@@ -936,8 +938,8 @@ pub fn warnings(fit: &EngineFit, data: &FitData) -> Vec<String> {
     }
     let n = data.depth.len();
     let below = data.depth.iter().filter(|d| **d < fit.contact_point).count();
-    let edge = (n as f64 * 0.03).ceil() as usize;
-    if below < edge.max(1) || n - below < edge.max(1) {
+    let edge = EDGE_ROWS.min(n / 4).max(1);
+    if below < edge || n - below < edge {
         out.push(format!(
             "the contact point lies at the edge of the data ({below} of {n} rows before it): it is not determined"
         ));

@@ -150,3 +150,28 @@ fn numeric(s: &str) -> Option<u128> {
         n.saturating_mul(10).saturating_add(u128::from(c - b'0'))
     }))
 }
+
+/// Every file entry of a zip (folders skipped) parsed as one curve, in name order, each curve's
+/// index its place; `parse` gets the entry's bytes, the archive's path, a message prefix naming
+/// the entry, and the read options.
+pub(crate) fn curves_of_entries(
+    zip: &mut Zip,
+    path: &std::path::Path,
+    opts: &super::ReadOptions,
+    parse: impl Fn(&[u8], &std::path::Path, &str, &super::ReadOptions) -> crate::Result<super::ForceCurve>,
+) -> crate::Result<Vec<super::ForceCurve>> {
+    let names: Vec<String> = zip
+        .names()
+        .iter()
+        .filter(|n| !n.ends_with('/'))
+        .cloned()
+        .collect();
+    let mut curves = Vec::with_capacity(names.len());
+    for (i, name) in names.iter().enumerate() {
+        let bytes = zip.read(name)?;
+        let mut c = parse(&bytes, path, &format!("{name}: "), opts)?;
+        c.index = i;
+        curves.push(c);
+    }
+    Ok(curves)
+}

@@ -23,19 +23,7 @@ pub(crate) fn read_txt(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<
 
 /// Read a zip of Chiaro text exports, one curve per entry in name order.
 pub(crate) fn read_zip(zip: &mut Zip, path: &Path, opts: &ReadOptions) -> Result<ForceFile> {
-    let names: Vec<String> = zip
-        .names()
-        .iter()
-        .filter(|n| !n.ends_with('/'))
-        .cloned()
-        .collect();
-    let mut curves = Vec::with_capacity(names.len());
-    for (i, name) in names.iter().enumerate() {
-        let bytes = zip.read(name)?;
-        let mut c = parse(&bytes, path, &format!("{name}: "), opts)?;
-        c.index = i;
-        curves.push(c);
-    }
+    let curves = super::archive::curves_of_entries(zip, path, opts, parse)?;
     Ok(ForceFile {
         format: "Optics11 Chiaro text exports (.zip of .txt)".into(),
         curves,

@@ -22,19 +22,7 @@ pub(crate) fn read_csv(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<
 
 /// Read a zip of AFM Workshop CSVs (a force map), one curve per entry in name order.
 pub(crate) fn read_zip(zip: &mut Zip, path: &Path, opts: &ReadOptions) -> Result<ForceFile> {
-    let names: Vec<String> = zip
-        .names()
-        .iter()
-        .filter(|n| !n.ends_with('/'))
-        .cloned()
-        .collect();
-    let mut curves = Vec::with_capacity(names.len());
-    for (i, name) in names.iter().enumerate() {
-        let bytes = zip.read(name)?;
-        let mut c = parse(&bytes, path, &format!("{name}: "), opts)?;
-        c.index = i;
-        curves.push(c);
-    }
+    let mut curves = super::archive::curves_of_entries(zip, path, opts, parse)?;
     // The grid from the distinct positions (afmformats' `load_map`): shape = number of distinct
     // values, centre = their mean, size = their range × (1 + 1/(n − 1)) (pixel borders included).
     let mut axes = Vec::new();

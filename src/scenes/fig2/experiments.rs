@@ -333,7 +333,8 @@ impl Scene for Fig2_8Fit {
     const TITLE: &'static str = "Fit of a measured force-indentation cycle (your data)";
     const CAPTION: &'static str = "A measured cycle (CSV: depth and force columns with units; positive depth is \
         indentation) fitted for the work of adhesion and the plane-strain modulus by Levenberg-Marquardt on the \
-        contact relation (2.31b)-(2.32b), appendix A.4; the in-contact part is found automatically. Drawn against \
+        contact relation (2.31b)-(2.32b), appendix A.4, with the contact point and the force baseline free; \
+        the in-contact part is found automatically and the retract is fitted. Drawn against \
         the machine-stiffness model and JKR at the fitted parameters, with their predicted jumps.";
     const RESULTS: &'static [(&'static str, &'static str)] = &[
         ("work_of_adhesion_J_per_m2", "fitted w"),
@@ -344,7 +345,17 @@ impl Scene for Fig2_8Fit {
         ),
         ("plane_strain_modulus_std_error_Pa", "its standard error"),
         ("rms_residual_N", "root-mean-square force residual"),
-        ("points_used_count", "in-contact points used"),
+        ("points_used_count", "rows fitted (in and out of contact)"),
+        (
+            "contact_point_m",
+            "fitted contact point, in the data's depth origin",
+        ),
+        ("contact_point_std_error_m", "its standard error"),
+        ("baseline_N", "fitted force baseline"),
+        (
+            "measured_pull_off_force_N",
+            "measured pull-off: the retract's force minimum",
+        ),
         ("jkr_pull_off_force_N", "JKR pull-off -5 pi w R/6 at the fit"),
         (
             "pull_in_force_N",
