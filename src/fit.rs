@@ -43,7 +43,8 @@ pub use predictions::{Predictions, ph_panel, predictions};
 pub struct FitArgs {
     /// Fit a measured force curve with --headless: a depth/force CSV, or an instrument file
     /// (JPK .jpk-force, .jpk-force-map, .jpk-qi-data/-series, Asylum .ibw, NT-MDT text, AFM
-    /// Workshop CSV, afmformats .tab), the format read from the content. A file of many curves
+    /// Workshop CSV or map zip, Optics11 Chiaro text, afmformats .tab or .h5), the format read
+    /// from the content. A file of many curves
     /// (a force map) is fitted curve by curve into maps.
     #[arg(long, value_name = "FILE")]
     pub fit: Option<PathBuf>,
@@ -57,8 +58,9 @@ pub struct FitArgs {
     /// Deflection sensitivity (InvOLS) in m/V, for instrument files that lack it (for --fit).
     #[arg(long, value_name = "M_PER_V", requires = "fit")]
     pub sensitivity: Option<f64>,
-    /// Model (for --fit): hertz, dmt, jkr, or machine-stiffness (needs a spring constant: the
-    /// file's or --spring-constant). Default: machine-stiffness with a spring constant, else jkr.
+    /// Model (for --fit): hertz, dmt, jkr, maugis-dugdale, or machine-stiffness (needs a spring
+    /// constant: the file's or --spring-constant). Default: machine-stiffness with a spring
+    /// constant, else jkr.
     #[arg(long, value_enum, requires = "fit")]
     pub model: Option<FitModel>,
     /// Segment fitted (for --fit): approach, retract or both. Default: approach for hertz, retract
@@ -581,6 +583,8 @@ pub struct FitReport {
     pub points_in_contact: usize,
     /// First and last file line of the in-contact rows fitted.
     pub lines_used: (usize, usize),
+    /// The rows in contact as the data show them (0-based, end exclusive), of the whole cycle.
+    pub contact_rows: (usize, usize),
     /// How the in-contact rows were found.
     pub contact_detection: ContactDetection,
     /// Why the fitted values may not mean what they seem (also printed on stderr), e.g. a
@@ -696,6 +700,17 @@ pub fn turning_row(curve: &Curve) -> usize {
         .0
 }
 
+/// The rows a fit of `segment` takes, of a curve of `n` rows turning at row `turn` whose contact
+/// starts at row `contact_start`: every row, the approach up to the turn, or the retract from
+/// the turn with the approach's out-of-contact rows before the contact (for the baseline).
+fn fitted_rows(n: usize, segment: SegmentChoice, turn: usize, contact_start: usize) -> Vec<usize> {
+    match segment {
+        SegmentChoice::Both => (0..n).collect(),
+        SegmentChoice::Approach => (0..=turn).collect(),
+        SegmentChoice::Retract => (0..contact_start.min(turn)).chain(turn..n).collect(),
+    }
+}
+
 /// Fit w and ℰ to the in-contact rows of a curve (appendix A.4), with the contact point and
 /// the baseline free; see [`fit_with`].
 ///
@@ -785,13 +800,7 @@ pub fn fit_with(curve: &Curve, path: &Path, settings: &FitSettings) -> Result<Fi
     )?;
     let turn = turning_row(curve);
     // Rows fitted: (row, in contact).
-    let rows: Vec<usize> = match segment {
-        SegmentChoice::Both => (0..curve.depth.len()).collect(),
-        SegmentChoice::Approach => (0..=turn).collect(),
-        SegmentChoice::Retract => (0..range.start.min(turn))
-            .chain(turn..curve.depth.len())
-            .collect(),
-    };
+    let rows = fitted_rows(curve.depth.len(), segment, turn, range.start);
     let depth: Vec<f64> = rows.iter().map(|&k| curve.depth[k]).collect();
     let force: Vec<f64> = rows.iter().map(|&k| curve.force[k]).collect();
     let in_contact: Vec<bool> = rows.iter().map(|k| range.contains(k)).collect();
@@ -933,6 +942,7 @@ pub fn fit_with(curve: &Curve, path: &Path, settings: &FitSettings) -> Result<Fi
         points_used: rows.len(),
         points_in_contact: used_contact.len(),
         lines_used,
+        contact_rows: (range.start, range.end),
         contact_detection,
         warnings,
         iterations: fit.iterations,
@@ -971,26 +981,22 @@ pub fn fit_figure(curve: &Curve, report: &FitReport) -> Result<Figure> {
             }
             panel
         }
-        w => {
+        _ => {
+            // The model in the figure's frame: depth from the contact point, force less F₀.
             let fit = engine::EngineFit {
-                model: report.model.contact_model(),
-                work_of_adhesion: w.map_or(0.0, |w| w.value),
-                modulus: e,
                 contact_point: 0.0,
                 baseline: 0.0,
-                interaction_range: report.interaction_range_m.map(|z| z.value),
                 deepest: h_max,
-                std_errors: Vec::new(),
-                correlation: Vec::new(),
-                rms_residual: 0.0,
-                iterations: 0,
+                ..fitted_model(curve, report)
             };
             let n = 300;
-            let pts = (0..=n)
-                .map(|i| {
-                    let d = h_max.max(0.0) * 1.05 * i as f64 / n as f64;
-                    (d * 1e9, fit.force_at(radius, d, true) * 1e9)
-                })
+            let depths: Vec<(f64, bool)> = (0..=n)
+                .map(|i| (h_max.max(0.0) * 1.05 * i as f64 / n as f64, true))
+                .collect();
+            let pts = depths
+                .iter()
+                .zip(fit.forces_at(radius, &depths))
+                .map(|(&(d, _), p)| (d * 1e9, p * 1e9))
                 .collect();
             let name = match report.model {
                 FitModel::Hertz => "Hertz",
@@ -1086,10 +1092,10 @@ fn record_results(fig: &mut Figure, report: &FitReport) {
     fig.result("points_used_count", report.points_used as f64);
 }
 
-/// Panel (b) of [`fit_figure`]: the force residual (model − measured) of every fitted row
-/// against its indentation.
-fn residual_panel(curve: &Curve, report: &FitReport) -> Result<crate::figure::Panel> {
-    let fit = engine::EngineFit {
+/// The fitted model of a report in the data's depth origin, as [`engine::fit`] returned it (less
+/// its statistics).
+fn fitted_model(curve: &Curve, report: &FitReport) -> engine::EngineFit {
+    engine::EngineFit {
         model: report.model.contact_model(),
         work_of_adhesion: report.work_of_adhesion_j_per_m2.map_or(0.0, |w| w.value),
         modulus: report.plane_strain_modulus_pa.value,
@@ -1101,25 +1107,25 @@ fn residual_panel(curve: &Curve, report: &FitReport) -> Result<crate::figure::Pa
         correlation: Vec::new(),
         rms_residual: 0.0,
         iterations: 0,
-    };
-    let used = report.lines_used;
-    let turn = turning_row(curve);
-    let rows: Vec<usize> = (0..curve.depth.len())
-        .filter(|&k| match report.segment {
-            SegmentChoice::Both => true,
-            SegmentChoice::Approach => k <= turn,
-            // The retract and the approach's out-of-contact rows before the contact, as fitted.
-            SegmentChoice::Retract => k >= turn || curve.lines[k] < used.0,
-        })
+    }
+}
+
+/// Panel (b) of [`fit_figure`]: the force residual (model − measured) of every fitted row
+/// against its indentation.
+fn residual_panel(curve: &Curve, report: &FitReport) -> Result<crate::figure::Panel> {
+    let fit = fitted_model(curve, report);
+    let (c0, c1) = report.contact_rows;
+    let rows = fitted_rows(curve.depth.len(), report.segment, turning_row(curve), c0);
+    let at: Vec<(f64, bool)> = rows
+        .iter()
+        .map(|&k| (curve.depth[k], (c0..c1).contains(&k)))
         .collect();
+    let model = fit.forces_at(report.tip_radius_m, &at);
     let pts: Vec<(f64, f64)> = rows
         .iter()
-        .map(|&k| {
-            let contact = curve.lines[k] >= used.0 && curve.lines[k] <= used.1;
-            let d = curve.depth[k];
-            let r = fit.force_at(report.tip_radius_m, d, contact) - curve.force[k];
-            ((d - fit.contact_point) * 1e9, r * 1e9)
-        })
+        .zip(&at)
+        .zip(model)
+        .map(|((&k, &(d, _)), p)| ((d - fit.contact_point) * 1e9, (p - curve.force[k]) * 1e9))
         .collect();
     let mut panel = crate::figure::Panel::new(
         Axis::linear("Indentation depth h = d − d_c", "nm"),
@@ -1237,7 +1243,8 @@ pub fn command(args: &FitArgs, out: &Path) -> Result<Vec<PathBuf>> {
             serde_json::to_string_pretty(&report).expect("the report has finite numbers and string keys");
         fit_files(out, "fit", &fig, json)?
     } else {
-        let file = crate::readers::read_force_file(
+        let file = crate::readers::parse_force_bytes(
+            &bytes,
             path,
             &crate::readers::ReadOptions {
                 spring_constant: args.spring_constant,
@@ -1309,7 +1316,8 @@ pub fn command(args: &FitArgs, out: &Path) -> Result<Vec<PathBuf>> {
                 }
             }
             let title = format!("Fits of a force map ({}, {} curves)", file.format, curves.len());
-            let fig = map::map_figure(&curves, &fits, &title)?;
+            let lay = map::layout(&curves);
+            let fig = map::map_figure(&lay, &fits, &title)?;
             let ok: Vec<&instrument::CurveFit> = fits.iter().filter_map(|f| f.as_ref().ok()).collect();
             let model = ok
                 .first()
@@ -1324,7 +1332,7 @@ pub fn command(args: &FitArgs, out: &Path) -> Result<Vec<PathBuf>> {
                 curves: curves.len(),
                 fitted: ok.len(),
                 failed,
-                layout: map::layout(&curves),
+                layout: lay.clone(),
                 fits: ok,
             })
             .expect("the report has finite numbers and string keys");
@@ -1336,7 +1344,7 @@ pub fn command(args: &FitArgs, out: &Path) -> Result<Vec<PathBuf>> {
                 ),
                 (
                     out.join("fit-map.csv"),
-                    map::table_csv(&curves, &fits).into_bytes(),
+                    map::table_csv(&curves, &lay, &fits).into_bytes(),
                 ),
             ];
             files.push((out.join("fit-map.json"), json.into_bytes()));

@@ -30,7 +30,7 @@
 //! Values the file lacks or that the user overrides come from [`ReadOptions`]: how each format
 //! uses them is in [`ReadOptions`]' documentation.
 //!
-//! Input is bounded: a file must be regular and at most [`MAX_FILE_BYTES`]; sizes, counts and
+//! Input is bounded: a file must be regular and within the input limit of [`crate::input`]; sizes, counts and
 //! offsets claimed by headers are checked against the bytes actually present before anything is
 //! allocated from them; a zip entry decompresses to at most 64 times the archive's size (at least
 //! 16 MiB, at most 4 GiB), and so do all entries of one archive together.
@@ -174,17 +174,14 @@ pub struct ReadOptions {
     pub sensitivity: Option<f64>,
 }
 
-/// Largest file [`read_force_file`] reads [bytes] (2 GiB).
-pub const MAX_FILE_BYTES: u64 = 2 << 30;
-
 /// Read a force-distance file of any supported format (see the module documentation), the
 /// format recognised from the content.
 ///
 /// Errors are [`crate::Error::DataFile`], one line naming the file and what is wrong: not a
-/// regular file, larger than [`MAX_FILE_BYTES`], not a supported format, truncated or
+/// regular file, larger than the input limit ([`crate::input::limit`]), not a supported format, truncated or
 /// inconsistent content, or a value the file lacks and [`ReadOptions`] does not give.
 pub fn read_force_file(path: &Path, opts: &ReadOptions) -> crate::Result<ForceFile> {
-    let bytes = archive::read_bounded(path)?;
+    let bytes = crate::input::read_input(path, crate::input::limit())?;
     parse_force_bytes(&bytes, path, opts)
 }
 

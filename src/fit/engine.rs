@@ -116,14 +116,23 @@ pub struct EngineFit {
 impl EngineFit {
     /// The model force P(δ) + F₀ at depth `d` (data origin) for a row in contact or not.
     pub fn force_at(&self, radius: f64, d: f64, in_contact: bool) -> f64 {
+        self.forces_at(radius, &[(d, in_contact)])[0]
+    }
+
+    /// The model forces P(δ) + F₀ of rows (depth in the data origin, in contact or not), the
+    /// model (for Maugis-Dugdale its tabulated branch) built once for them all.
+    pub fn forces_at(&self, radius: f64, rows: &[(f64, bool)]) -> Vec<f64> {
         let p = Params {
             w: self.work_of_adhesion,
             e: self.modulus,
             dc: self.contact_point,
             z0: self.interaction_range.unwrap_or(0.0),
         };
-        let reach = self.deepest.max(d) - self.contact_point;
-        self.baseline + Model::new(self.model, radius, &p, reach).force(d, in_contact).0
+        let deepest = rows.iter().fold(self.deepest, |m, r| m.max(r.0));
+        let m = Model::new(self.model, radius, &p, deepest - self.contact_point);
+        rows.iter()
+            .map(|&(d, c)| self.baseline + m.force(d, c).0)
+            .collect()
     }
 }
 

@@ -92,12 +92,12 @@ const QUANTITIES: &[Quantity] = &[
     ("RMS residual", "nN", 1e9, |f| Some(f.fit.rms_residual_n)),
 ];
 
-/// The map figure: one heat-map panel per quantity that the model has.
+/// The map figure over the grid `lay` (of [`layout`]): one heat-map panel per quantity that the
+/// model has.
 ///
 /// # Errors
 /// None at present (kept for the figure builders' common signature).
-pub fn map_figure(curves: &[ForceCurve], fits: &[Result<CurveFit>], title: &str) -> Result<Figure> {
-    let lay = layout(curves);
+pub fn map_figure(lay: &Layout, fits: &[Result<CurveFit>], title: &str) -> Result<Figure> {
     let [nx, ny] = lay.shape;
     let (sx, sy, unit) = match lay.cell_size_m {
         Some([a, b]) => (a * 1e6, b * 1e6, "µm"),
@@ -139,13 +139,14 @@ pub fn map_figure(curves: &[ForceCurve], fits: &[Result<CurveFit>], title: &str)
         .iter()
         .filter(|f| f.as_ref().is_ok_and(|f| !f.fit.warnings.is_empty()))
         .count();
-    fig.result("curves_count", curves.len() as f64);
+    let n = fits.len();
+    fig.result("curves_count", n as f64);
     fig.result("failed_count", failed as f64);
     fig.result("warned_count", warned as f64);
     fig.note(format!(
         "{} curves, {} fitted ({} with warnings), {} failed (empty cells); layout: {}",
-        curves.len(),
-        curves.len() - failed,
+        n,
+        n - failed,
         warned,
         failed,
         lay.source
@@ -155,8 +156,7 @@ pub fn map_figure(curves: &[ForceCurve], fits: &[Result<CurveFit>], title: &str)
 
 /// One CSV row per curve: its place, the fitted values with standard errors, the measured
 /// pull-off, the warnings' count, and the error of a curve that failed.
-pub fn table_csv(curves: &[ForceCurve], fits: &[Result<CurveFit>]) -> String {
-    let lay = layout(curves);
+pub fn table_csv(curves: &[ForceCurve], lay: &Layout, fits: &[Result<CurveFit>]) -> String {
     let mut out = String::from(
         "curve,grid_x,grid_y,position_x_m,position_y_m,plane_strain_modulus_pa,plane_strain_modulus_std_error_pa,work_of_adhesion_j_per_m2,work_of_adhesion_std_error_j_per_m2,contact_point_m,contact_point_std_error_m,baseline_n,measured_pull_off_force_n,rms_residual_n,warnings,error\n",
     );

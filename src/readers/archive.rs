@@ -1,42 +1,8 @@
-//! Bounded input: a regular file of at most [`super::MAX_FILE_BYTES`] read into memory, and zip
-//! archives whose entries are decompressed under a budget.
+//! Zip archives whose entries are decompressed under a budget.
 
 use crate::{Error, Result};
 use std::io::Read;
 use std::path::Path;
-
-/// Read a whole regular file of at most [`super::MAX_FILE_BYTES`].
-pub(crate) fn read_bounded(path: &Path) -> Result<Vec<u8>> {
-    let err = |msg: String| Error::data_file(path, 0, msg);
-    // Checked before opening: opening a FIFO for reading would wait for a writer.
-    let meta = std::fs::metadata(path).map_err(|e| err(format!("cannot read: {e}")))?;
-    if !meta.is_file() {
-        let what = if meta.is_dir() {
-            "a folder"
-        } else {
-            "not a regular file (a FIFO, socket or device)"
-        };
-        return Err(err(format!("{what}: force-distance files are regular files")));
-    }
-    let limit = super::MAX_FILE_BYTES;
-    if meta.len() > limit {
-        return Err(err(format!(
-            "{} bytes, more than the {limit} bytes that are read",
-            meta.len()
-        )));
-    }
-    let file = std::fs::File::open(path).map_err(|e| err(format!("cannot open: {e}")))?;
-    let mut bytes = Vec::with_capacity(meta.len() as usize);
-    file.take(limit + 1)
-        .read_to_end(&mut bytes)
-        .map_err(|e| err(format!("cannot read: {e}")))?;
-    if bytes.len() as u64 > limit {
-        return Err(err(format!(
-            "grew past the {limit} bytes that are read while being read"
-        )));
-    }
-    Ok(bytes)
-}
 
 /// Largest decompressed size of one archive's entries together [bytes].
 const MAX_DECOMPRESSED: u64 = 4 << 30;

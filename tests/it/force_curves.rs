@@ -247,12 +247,12 @@ fn force_map_fits_every_curve_and_names_the_failures() {
     let lay = adhesion::fit::map::layout(&curves);
     assert_eq!(lay.shape, [4, 4]);
     assert_eq!(lay.cells[6], [2, 1]);
-    let fig = adhesion::fit::map::map_figure(&curves, &fits, "map").unwrap();
+    let fig = adhesion::fit::map::map_figure(&lay, &fits, "map").unwrap();
     let field = fig.panels[0].field.as_ref().unwrap();
     assert!(field.at(1, 2).is_nan(), "the failed curve's cell stays empty");
     assert!(rel(field.at(0, 0), 2.0e3) < 0.05, "ℰ in kPa: {}", field.at(0, 0));
     assert_eq!(fig.result_value("failed_count"), Some(1.0));
-    let csv = adhesion::fit::map::table_csv(&curves, &fits);
+    let csv = adhesion::fit::map::table_csv(&curves, &lay, &fits);
     assert_eq!(csv.lines().count(), 17);
     assert!(csv.lines().nth(10).unwrap().contains("curve 9"));
 }
