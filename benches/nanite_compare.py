@@ -28,7 +28,12 @@ PREPROC = ["compute_tip_position", "correct_force_offset", "correct_tip_offset",
 
 
 def indentation(fd):
-    return nanite.Indentation(fd._raw_data, fd.metadata)
+    # Asylum .ibw data come as float32, which nanite's fit hashing refuses: pass float64.
+    raw = fd._raw_data
+    if isinstance(raw, dict):
+        raw = {k: (np.asarray(v, dtype=np.float64) if np.asarray(v).dtype == np.float32 else v)
+               for k, v in raw.items()}
+    return nanite.Indentation(raw, fd.metadata)
 
 
 def fit(fd, radius, nu, repeats):

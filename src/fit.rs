@@ -446,10 +446,12 @@ pub(crate) fn baseline(
     if zero_level && level.abs() > (5.0 * sigma).max(0.02 * p_max) {
         return None;
     }
-    // Rows that spread over more than a twentieth of the force range are no baseline: they
-    // straddle a jump (a file that ends two rows after the pull-off, with its rows duplicated,
-    // gives 10 end rows of which four are at zero and six in contact).
-    if sigma > 0.05 * p_max {
+    // Rows that spread over more than a twentieth of the force range in two clusters are no
+    // baseline: they straddle a jump (a file that ends two rows after the pull-off, with its
+    // rows duplicated, gives 10 end rows of which four are at zero and six in contact). A
+    // noisy baseline spreads as widely, without the gap (a JPK QI curve whose force rises
+    // above the noise by only nine times its σ).
+    if sigma > 0.05 * p_max && straddles_a_jump(&sorted) {
         return None;
     }
     let tol = (6.0 * sigma).max(0.005 * p_max);
@@ -470,6 +472,14 @@ pub(crate) fn baseline(
         }
     }
     Some((len, sigma))
+}
+
+/// Whether sorted forces fall into two clusters of at least three rows each, separated by a gap
+/// wider than half their whole range (white noise in ten rows leaves no such gap).
+fn straddles_a_jump(sorted: &[f64]) -> bool {
+    let n = sorted.len();
+    let range = sorted[n - 1] - sorted[0];
+    n >= 6 && (3..=n - 3).any(|i| sorted[i] - sorted[i - 1] > 0.5 * range)
 }
 
 /// Robust noise level of a segment that is a straight line plus noise: the larger of
@@ -557,6 +567,10 @@ pub struct FitReport {
     pub work_of_adhesion_j_per_m2: Option<Estimate>,
     /// Plane-strain modulus ℰ = E/(1-ν²) [Pa].
     pub plane_strain_modulus_pa: Estimate,
+    /// Hertz and DMT: the plane-strain moduli that fit within the noise with the contact point
+    /// free, the 95 % profile interval over the contact point (wider than ±2 standard errors
+    /// where the linearised error understates the uncertainty).
+    pub plane_strain_modulus_interval_pa: Option<(f64, f64)>,
     /// Young's modulus E = ℰ(1 − ν²) [Pa], when Poisson's ratio ν is given.
     pub youngs_modulus_pa: Option<Estimate>,
     /// Poisson's ratio ν used for [`Self::youngs_modulus_pa`].
@@ -585,6 +599,8 @@ pub struct FitReport {
     pub lines_used: (usize, usize),
     /// The rows in contact as the data show them (0-based, end exclusive), of the whole cycle.
     pub contact_rows: (usize, usize),
+    /// The row where the approach turns into the retract ([`turning_row`]; 0-based).
+    pub turning_row: usize,
     /// How the in-contact rows were found.
     pub contact_detection: ContactDetection,
     /// Why the fitted values may not mean what they seem (also printed on stderr), e.g. a
@@ -687,26 +703,57 @@ pub struct FitSettings {
     pub poisson: Option<f64>,
 }
 
-/// The row where the approach turns into the retract: the deepest row (the first of equals).
-pub fn turning_row(curve: &Curve) -> usize {
-    curve
-        .depth
-        .iter()
-        .enumerate()
-        .fold(
-            (0, f64::NEG_INFINITY),
-            |(k, m), (i, d)| if *d > m { (i, *d) } else { (k, m) },
-        )
-        .0
+/// The row where the approach turns into the retract, for a cycle whose contact starts at row
+/// `contact_start`: the row farthest from the contact point in the plane of indentation and
+/// force, each scaled to its largest value (the rule of nanite's approach/retract split).
+/// Where the stage has reversed but the cantilever lags, the deepest row is a retract row whose
+/// force has already dropped; counting it to the approach bends a Hertz fit of a noisy curve
+/// with few rows in contact (a JPK QI curve of 15 such rows gave half the modulus).
+/// Forces are taken relative to the mean of the rows before the contact; without such rows,
+/// relative to zero. On an ideal cycle (deepest row, largest force) this is the deepest row.
+pub fn turning_row(curve: &Curve, contact_start: usize) -> usize {
+    let (d, f) = (&curve.depth, &curve.force);
+    let n = d.len().min(f.len());
+    if n == 0 {
+        return 0;
+    }
+    let c = contact_start.min(n - 1);
+    let base = if c > 0 {
+        f[..c].iter().sum::<f64>() / c as f64
+    } else {
+        0.0
+    };
+    let spread = if c > 1 {
+        (f[..c].iter().map(|v| (v - base).powi(2)).sum::<f64>() / c as f64).sqrt()
+    } else {
+        0.0
+    };
+    let x_max = d[..n].iter().map(|v| v - d[c]).fold(0.0f64, f64::max);
+    let y_max = f[..n].iter().map(|v| v - base).fold(0.0f64, f64::max);
+    let scaled = |v: f64, m: f64| if m > 0.0 { (v / m).max(0.0) } else { 0.0 };
+    let mut best = (0, f64::NEG_INFINITY);
+    for k in 0..n {
+        let x = scaled(d[k] - d[c], x_max);
+        let mut y = scaled(f[k] - base, y_max);
+        if y * y_max < spread {
+            y = 0.0;
+        }
+        let r = x * x + y * y;
+        if r > best.1 {
+            best = (k, r);
+        }
+    }
+    best.0
 }
 
 /// The rows a fit of `segment` takes, of a curve of `n` rows turning at row `turn` whose contact
-/// starts at row `contact_start`: every row, the approach up to the turn, or the retract from
-/// the turn with the approach's out-of-contact rows before the contact (for the baseline).
+/// starts at row `contact_start`: every row, the approach before the turn (the turning row
+/// counts to the retract, as in nanite's split), or the retract from the turn with the
+/// approach's out-of-contact rows before the contact (for the baseline).
 fn fitted_rows(n: usize, segment: SegmentChoice, turn: usize, contact_start: usize) -> Vec<usize> {
     match segment {
         SegmentChoice::Both => (0..n).collect(),
-        SegmentChoice::Approach => (0..=turn).collect(),
+        SegmentChoice::Approach => (0..turn.max(1)).collect(),
         SegmentChoice::Retract => (0..contact_start.min(turn)).chain(turn..n).collect(),
     }
 }
@@ -790,22 +837,29 @@ pub fn fit_with(curve: &Curve, path: &Path, settings: &FitSettings) -> Result<Fi
         (None, None) => FitModel::Jkr,
     };
     let segment = settings.segment.unwrap_or(model.default_segment());
-    let (range, contact_detection) = detect_contact(curve, path, 10)?;
-    let lines_of = |r: &std::ops::Range<usize>| (curve.lines[r.start], curve.lines[r.end - 1]);
-    check_meaningful_data(
-        &curve.depth[range.clone()],
-        &curve.force[range.clone()],
-        path,
-        lines_of(&range),
-    )?;
-    let turn = turning_row(curve);
+    // Hertz's contact is where its fitted contact point puts it: the detection (which needs the
+    // force 8σ above the baseline) only supplies the noise level and the turning row, so a noisy
+    // curve whose force rises little above its noise is fitted, with the warnings that say how
+    // well (a JPK QI curve of 15 rows in contact and a force 10σ at most).
+    let hertz = !model.contact_model().adhesive();
+    let (range, contact_detection) = detect_contact(curve, path, if hertz { 0 } else { 10 })?;
+    let turn = turning_row(curve, range.start);
     // Rows fitted: (row, in contact).
     let rows = fitted_rows(curve.depth.len(), segment, turn, range.start);
     let depth: Vec<f64> = rows.iter().map(|&k| curve.depth[k]).collect();
     let force: Vec<f64> = rows.iter().map(|&k| curve.force[k]).collect();
     let in_contact: Vec<bool> = rows.iter().map(|k| range.contains(k)).collect();
     let used_contact: Vec<usize> = rows.iter().copied().filter(|k| range.contains(k)).collect();
-    if used_contact.len() < 5 {
+    // The fitted segment's in-contact rows must be able to determine the model (the other
+    // segment may hold what this fit does not use, such as a retract baseline that drifted).
+    if let (Some(&a), Some(&b)) = (used_contact.first(), used_contact.last()) {
+        let (h, p): (Vec<f64>, Vec<f64>) = used_contact
+            .iter()
+            .map(|&k| (curve.depth[k], curve.force[k]))
+            .unzip();
+        check_meaningful_data(&h, &p, path, (curve.lines[a], curve.lines[b]))?;
+    }
+    if !hertz && used_contact.len() < 5 {
         return Err(Error::data_file(
             path,
             curve.lines[range.start],
@@ -819,10 +873,10 @@ pub fn fit_with(curve: &Curve, path: &Path, settings: &FitSettings) -> Result<Fi
             ),
         ));
     }
-    let lines_used = (
-        curve.lines[used_contact[0]],
-        curve.lines[*used_contact.last().expect("five rows")],
-    );
+    let first_line = used_contact
+        .first()
+        .or(rows.first())
+        .map_or(0, |&k| curve.lines[k]);
     let data = engine::FitData {
         depth: &depth,
         force: &force,
@@ -830,9 +884,22 @@ pub fn fit_with(curve: &Curve, path: &Path, settings: &FitSettings) -> Result<Fi
         noise: contact_detection.noise_n,
     };
     let fit = engine::fit(model.contact_model(), radius, &data).map_err(|e| match e {
-        Error::Unresolvable { reason, .. } => Error::data_file(path, lines_used.0, reason),
+        Error::Unresolvable { reason, .. } => Error::data_file(path, first_line, reason),
         other => other,
     })?;
+    // Hertz's rows in contact are those past its fitted contact point.
+    let used_contact: Vec<usize> = if hertz {
+        rows.iter()
+            .copied()
+            .filter(|&k| curve.depth[k] > fit.contact_point)
+            .collect()
+    } else {
+        used_contact
+    };
+    let lines_used = match (used_contact.first(), used_contact.last()) {
+        (Some(&a), Some(&b)) => (curve.lines[a], curve.lines[b]),
+        _ => (first_line, first_line),
+    };
     let warnings = engine::warnings(&fit, &data);
     let adhesive = model.contact_model().adhesive();
     let (w, e) = (fit.work_of_adhesion, fit.modulus);
@@ -924,6 +991,7 @@ pub fn fit_with(curve: &Curve, path: &Path, settings: &FitSettings) -> Result<Fi
         segment,
         work_of_adhesion_j_per_m2: w_est,
         plane_strain_modulus_pa: e_est,
+        plane_strain_modulus_interval_pa: fit.modulus_interval,
         youngs_modulus_pa: young,
         poisson_ratio: settings.poisson,
         contact_point_m: dc_est,
@@ -943,6 +1011,7 @@ pub fn fit_with(curve: &Curve, path: &Path, settings: &FitSettings) -> Result<Fi
         points_in_contact: used_contact.len(),
         lines_used,
         contact_rows: (range.start, range.end),
+        turning_row: turn,
         contact_detection,
         warnings,
         iterations: fit.iterations,
@@ -1107,6 +1176,7 @@ fn fitted_model(curve: &Curve, report: &FitReport) -> engine::EngineFit {
         correlation: Vec::new(),
         rms_residual: 0.0,
         iterations: 0,
+        modulus_interval: None,
     }
 }
 
@@ -1115,7 +1185,7 @@ fn fitted_model(curve: &Curve, report: &FitReport) -> engine::EngineFit {
 fn residual_panel(curve: &Curve, report: &FitReport) -> Result<crate::figure::Panel> {
     let fit = fitted_model(curve, report);
     let (c0, c1) = report.contact_rows;
-    let rows = fitted_rows(curve.depth.len(), report.segment, turning_row(curve), c0);
+    let rows = fitted_rows(curve.depth.len(), report.segment, report.turning_row, c0);
     let at: Vec<(f64, bool)> = rows
         .iter()
         .map(|&k| (curve.depth[k], (c0..c1).contains(&k)))

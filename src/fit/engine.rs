@@ -111,6 +111,9 @@ pub struct EngineFit {
     pub rms_residual: f64,
     /// Levenberg-Marquardt iterations of the kept start.
     pub iterations: usize,
+    /// For Hertz and DMT, the plane-strain moduli ℰ [Pa] that fit the data within the noise
+    /// with the contact point anywhere ([`modulus_profile_interval`]); `None` for the others.
+    pub modulus_interval: Option<(f64, f64)>,
 }
 
 impl EngineFit {
@@ -875,7 +878,63 @@ pub fn fit(model: ContactModel, radius: f64, data: &FitData) -> Result<EngineFit
         correlation,
         rms_residual: rms,
         iterations: sol.iterations,
+        modulus_interval: modulus_profile_interval(model, radius, data, p.e, rms),
     })
+}
+
+/// Δ(cost)/σ² of the 95 % profile interval of one parameter (χ² with one degree of freedom).
+const PROFILE_CHI2_95: f64 = 3.84;
+
+/// The 95 % profile-likelihood interval of the modulus over the contact point, for the models
+/// linear in their other parameters at a fixed contact point (Hertz: P = K·δ^(3/2) + F₀; DMT
+/// with its adhesive force): at each of 256 contact points between the shallowest and the
+/// deepest rows the best (K, F₀) is solved exactly, and the moduli of those whose cost lies
+/// within [`PROFILE_CHI2_95`]·σ² of the minimum, σ² = n·rms²/(n − p), bound the interval (the
+/// fitted modulus `e` inside it). Where the cost has several valleys, or one long and curved
+/// valley, the linearised standard error understates the uncertainty, and this shows it: a noisy
+/// curve whose force rises ten times its noise over its last rows fits within the noise from
+/// ℰ = 50 Pa to 5 kPa. `None` for JKR and Maugis-Dugdale.
+fn modulus_profile_interval(
+    model: ContactModel,
+    radius: f64,
+    data: &FitData,
+    e: f64,
+    rms: f64,
+) -> Option<(f64, f64)> {
+    let n = data.depth.len();
+    let np = model.parameter_names().len();
+    if !matches!(model, ContactModel::Hertz | ContactModel::Dmt) || n <= np {
+        return None;
+    }
+    let (lo, hi) = data
+        .depth
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), d| {
+            (a.min(*d), b.max(*d))
+        });
+    let sigma2 = n as f64 * rms * rms / (n - np) as f64;
+    let limit = n as f64 * rms * rms + PROFILE_CHI2_95 * sigma2;
+    let to_e = 1.0 / (4.0 / 3.0 * radius.sqrt());
+    let steps = 256;
+    let (mut e_lo, mut e_hi) = (e, e);
+    for i in 0..steps {
+        let dc = lo + (hi - lo) * i as f64 / steps as f64;
+        let (k, cost) = match model {
+            ContactModel::Hertz => {
+                let (k, _, c) = hertz_profile(data, dc);
+                (k, c)
+            }
+            _ => match dmt_profile(data, dc) {
+                Some((k, a, _, c)) if a > 0.0 => (k, c),
+                _ => continue,
+            },
+        };
+        if k > 0.0 && cost <= limit {
+            e_lo = e_lo.min(k * to_e);
+            e_hi = e_hi.max(k * to_e);
+        }
+    }
+    Some((e_lo, e_hi))
 }
 
 fn unresolvable(reason: String) -> Error {
@@ -928,6 +987,15 @@ pub fn warnings(fit: &EngineFit, data: &FitData) -> Vec<String> {
                 crate::params::fmt_sig((100.0 * e / v).round())
             ));
         }
+    }
+    if let Some((lo, hi)) = fit.modulus_interval
+        && (hi > 2.0 * fit.modulus || lo < 0.5 * fit.modulus)
+    {
+        out.push(format!(
+            "the modulus is not determined by these data: with the contact point elsewhere, plane-strain moduli from {} to {} Pa fit within the noise (95 % profile)",
+            crate::render::labels::fmt_sig(lo, 2),
+            crate::render::labels::fmt_sig(hi, 2)
+        ));
     }
     if fit.model == ContactModel::MaugisDugdale {
         // Z₀ is the last parameter; its valley in the cost is long and curved where it is

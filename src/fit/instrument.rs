@@ -338,7 +338,7 @@ pub fn synthetic_curve(
     use rand::SeedableRng;
     use rand_distr::{Distribution, Normal};
     let c = super::simulate_cycle(x, s.delta_min, s.delta_max, s.samples)?;
-    let turn = super::turning_row(&c);
+    let turn = super::turning_row(&c, 0);
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(s.seed);
     let normal = Normal::new(0.0, s.noise).map_err(|e| Error::invalid("noise", s.noise, e.to_string()))?;
     let k = x.spring_constant;

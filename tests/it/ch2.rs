@@ -386,7 +386,7 @@ mod fit {
             "{base:#?}"
         );
         assert!(rel(base.plane_strain_modulus_pa.value, 2.0e6) < 0.01, "{base:#?}");
-        let turn = adhesion::fit::turning_row(&curve);
+        let turn = base.turning_row;
         let retract_min = curve.force[turn..].iter().copied().fold(f64::INFINITY, f64::min);
         assert!((base.measured_pull_off_force_n - (retract_min - base.baseline_n.value)).abs() < 1e-15);
         for shift in [150e-9, -80e-9] {

@@ -386,3 +386,74 @@ fn out_of_range_fit_options_are_named() {
         );
     }
 }
+
+/// Hertz fits of the instrument files agree with nanite 4.2.3's on the same approach segment,
+/// R and ν, with the contact point and the baseline free (the reference,
+/// `tests/fixtures/afm/nanite_hertz.json`, is written by `benches/nanite_hertz_table.py
+/// --reference`): within 2 % of E, except where the workbench warns that the data do not
+/// determine the modulus. That is the second curve of the QI file alone: its force rises to ten
+/// times its noise over its last rows, moduli from 25 Pa to 5 kPa fit within the noise as the
+/// contact point moves, and nanite's 2.9 kPa is a local minimum (the least-squares one is
+/// 38 Pa). The first curve of that file, as noisy, is determined to ±20 % and agrees.
+#[test]
+fn hertz_fits_agree_with_nanite() {
+    let root = crate::common::root().join("tests/fixtures/afm");
+    let reference: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(root.join("nanite_hertz.json")).unwrap()).unwrap();
+    let curves = reference["curves"].as_array().unwrap();
+    assert!(curves.len() >= 14, "{}", curves.len());
+    let settings = FitSettings {
+        radius: 5e-6,
+        spring_constant: None,
+        model: Some(FitModel::Hertz),
+        segment: Some(SegmentChoice::Approach),
+        poisson: Some(0.5),
+    };
+    let mut undetermined = Vec::new();
+    for c in curves {
+        let name = c["file"].as_str().unwrap();
+        let index = c["curve"].as_u64().unwrap() as usize;
+        let e_ref = c["youngs_modulus_pa"].as_f64().unwrap();
+        let path = root.join(name);
+        let file = adhesion::readers::read_force_file(&path, &Default::default()).unwrap();
+        let (_, fit) = fit_curve(&file.curves[index], &path, &PrepareOptions::default(), &settings).unwrap();
+        let e = fit.fit.youngs_modulus_pa.unwrap().value;
+        if rel(e, e_ref) > 0.02 {
+            assert!(
+                fit.fit
+                    .warnings
+                    .iter()
+                    .any(|w| w.contains("modulus is not determined")),
+                "{name} #{index}: E = {e} Pa against nanite's {e_ref} Pa, no warning: {:?}",
+                fit.fit.warnings
+            );
+            undetermined.push((name.to_string(), index));
+        }
+    }
+    assert_eq!(
+        undetermined,
+        [("fmt-jpk-fd_2020.02.07-16.29.05.036.jpk-qi-data".to_string(), 1)]
+    );
+}
+
+/// Where the stage has reversed but the cantilever lags, the deepest row is a retract row
+/// whose force has dropped: the turn is the row farthest out in indentation and force together
+/// (nanite's rule), and the approach fit stops before it.
+#[test]
+fn turning_row_is_the_farthest_in_depth_and_force() {
+    let mut c = adhesion::fit::Curve {
+        depth: (0..40).map(|k| -1.0 + 0.05 * k as f64).collect(),
+        force: (0..40)
+            .map(|k| if k < 20 { 0.0 } else { (k - 20) as f64 })
+            .collect(),
+        lines: (1..=40).collect(),
+    };
+    assert_eq!(adhesion::fit::turning_row(&c, 20), 39);
+    // The retract: the first row goes 1 % deeper, its force half the peak.
+    c.depth.push(c.depth[39] + 0.0005);
+    c.force.push(9.5);
+    c.depth.extend((0..20).map(|k| 0.9 - 0.05 * k as f64));
+    c.force.extend((0..20).map(|k| (8.0 - k as f64).max(0.0)));
+    c.lines = (1..=c.depth.len()).collect();
+    assert_eq!(adhesion::fit::turning_row(&c, 20), 39);
+}
