@@ -327,7 +327,12 @@ fn maugis_dugdale_fit_recovers_the_range() {
             .map(|((d, p), c)| (g.force_at(radius, *d, *c) - p).powi(2))
             .sum::<f64>()
     };
-    assert!(sum_sq(&f) <= sum_sq(&truth) * (1.0 + 1e-9), "{f:?}");
+    assert!(
+        sum_sq(&f) <= sum_sq(&truth) * (1.0 + 1e-9),
+        "{} vs {}: {f:?}",
+        sum_sq(&f),
+        sum_sq(&truth)
+    );
     assert!(rel(f.work_of_adhesion, w) < 0.05, "{f:?}");
     assert!(rel(f.modulus, e) < 0.05, "{f:?}");
     assert!((f.contact_point - shift).abs() < 5e-9, "{f:?}");
