@@ -883,6 +883,8 @@ fn fit_to(model: ContactModel, radius: f64, data: &FitData, cost_tol: f64) -> Re
                 .collect::<Vec<_>>()
         )));
     }
+    let dc_se = std_errors[if model == ContactModel::Hertz { 1 } else { 2 }];
+    let modulus_interval = modulus_profile_interval(model, radius, data, (p.e, p.dc, dc_se), rms);
     Ok(EngineFit {
         model,
         work_of_adhesion: p.w,
@@ -895,7 +897,7 @@ fn fit_to(model: ContactModel, radius: f64, data: &FitData, cost_tol: f64) -> Re
         correlation,
         rms_residual: rms,
         iterations: sol.iterations,
-        modulus_interval: modulus_profile_interval(model, radius, data, p.e, rms),
+        modulus_interval,
     })
 }
 
@@ -906,9 +908,10 @@ const PROFILE_CHI2_95: f64 = 3.84;
 /// linear in their other parameters at a fixed contact point (Hertz: P = K·δ^(3/2) + F₀; DMT
 /// with its adhesive force): at contact points that leave 3, 4, ... rows in contact, growing by
 /// 8 % up to every row (about 80 points for 1 000 rows: as fine where few rows indent as where
-/// many do), the best (K, F₀) is solved exactly, and the moduli of those whose cost lies within
+/// many do), and at the fitted contact point ± 0.25, 0.5, ... 4 of its standard errors, the
+/// best (K, F₀) is solved exactly, and the moduli of those whose cost lies within
 /// [`PROFILE_CHI2_95`]·σ² of the fitted cost, σ² = n·rms²/(n − p), bound the interval (the
-/// fitted modulus `e` inside it). Where the cost has several valleys, or one long and curved
+/// fitted modulus inside it). `fitted` is (ℰ, d_c, standard error of d_c). Where the cost has several valleys, or one long and curved
 /// valley, the linearised standard error understates the uncertainty, and this shows it: a noisy
 /// curve whose force rises ten times its noise over its last rows fits within the noise from
 /// ℰ = 25 Pa to 5 kPa. `None` for JKR and Maugis-Dugdale.
@@ -916,9 +919,10 @@ fn modulus_profile_interval(
     model: ContactModel,
     radius: f64,
     data: &FitData,
-    e: f64,
+    fitted: (f64, f64, f64),
     rms: f64,
 ) -> Option<(f64, f64)> {
+    let (e, dc_fit, dc_se) = fitted;
     let n = data.depth.len();
     let np = model.parameter_names().len();
     if !matches!(model, ContactModel::Hertz | ContactModel::Dmt) || n <= np + 3 {
@@ -930,11 +934,19 @@ fn modulus_profile_interval(
     let limit = n as f64 * rms * rms + PROFILE_CHI2_95 * sigma2;
     let to_e = 1.0 / (4.0 / 3.0 * radius.sqrt());
     let (mut e_lo, mut e_hi) = (e, e);
+    let mut points: Vec<f64> = (-16..=16)
+        .filter(|i| *i != 0 && dc_se.is_finite())
+        .map(|i| dc_fit + 0.25 * f64::from(i) * dc_se)
+        .collect();
     let (mut m, mut rows) = (3.0f64, 3usize);
     while rows < n {
         // The contact point at the depth of the (rows + 1)-th deepest row leaves `rows` in
         // contact.
-        let dc = sorted[n - 1 - rows];
+        points.push(sorted[n - 1 - rows]);
+        m *= 1.08;
+        rows = (m as usize).max(rows + 1);
+    }
+    for dc in points {
         let (k, cost) = match model {
             ContactModel::Hertz => {
                 let (k, _, c) = hertz_profile(data, dc);
@@ -949,8 +961,6 @@ fn modulus_profile_interval(
             e_lo = e_lo.min(k * to_e);
             e_hi = e_hi.max(k * to_e);
         }
-        m *= 1.08;
-        rows = (m as usize).max(rows + 1);
     }
     Some((e_lo, e_hi))
 }
