@@ -245,6 +245,12 @@ pub fn check_options(cli: &Cli) -> crate::error::Result<()> {
     used(cli.fit.baseline_tilt, "--baseline-tilt", &["--fit"])?;
     used(s.pixel_size.is_some(), "--pixel-size", &["--analyze-surface"])?;
     used(s.periodic, "--periodic", &["--analyze-surface"])?;
+    used(s.list_channels, "--list-channels", &["--analyze-surface"])?;
+    used(
+        s.channel.is_some(),
+        "--channel",
+        &["--analyze-surface", "--figure"],
+    )?;
     used(s.remove_tilt, "--remove-tilt", &["--analyze-surface"])?;
     used(given("fit_cutoff"), "--fit-cutoff", &["--analyze-surface"])?;
     let generation: [(&str, bool); 12] = [

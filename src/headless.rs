@@ -74,7 +74,15 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
                 )
                 .into());
             }
-            sets.push(format!("surface={}", path.display()));
+            match &cli.surface.channel {
+                Some(c) => sets.push(format!("surface={}#{c}", path.display())),
+                None => sets.push(format!("surface={}", path.display())),
+            }
+        } else if cli.surface.channel.is_some() {
+            return Err(crate::error::Error::Usage(
+                "--channel applies to the map of --surface FILE (or --analyze-surface FILE)".into(),
+            )
+            .into());
         }
         let values = resolve_values(scene, cli.preset.as_deref(), &sets, cli.quick)?;
         if let Some(part) = cli.shard {

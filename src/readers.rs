@@ -38,7 +38,7 @@
 use serde::Serialize;
 use std::path::Path;
 
-mod archive;
+pub(crate) mod archive;
 mod chiaro;
 mod hdf5;
 mod igor;
@@ -48,6 +48,8 @@ mod properties;
 mod tab;
 mod text;
 mod workshop;
+
+pub(crate) use igor::{version as igor_version, wave as igor_wave};
 
 /// The kind of a segment of a force-distance curve.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]

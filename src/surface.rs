@@ -7,12 +7,14 @@
 //! - [`generate`]: FFT filtering of white noise (appendix C.1);
 //! - [`analysis`]: discrete PSD (B.1.8)-(B.1.10), autocorrelation, moments and peaks of a map;
 //! - [`psd_fit`]: least-squares fit of (3.16) to an isotropic PSD;
-//! - [`io`]: text matrix and Gwyddion `.gsf` import/export.
+//! - [`io`]: text matrix and Gwyddion `.gsf` import/export;
+//! - [`formats`]: readers of instrument and exchange files (recognised by content).
 //!
 //! All lengths are SI metres; PSDs follow the convention m0 = σ_rms² of (3.8).
 
 pub mod analysis;
 pub mod command;
+pub mod formats;
 pub mod generate;
 pub mod height_map;
 pub mod io;
@@ -74,9 +76,18 @@ pub struct SurfaceArgs {
     /// Seed of the random generator (same seed, same surface).
     #[arg(long, value_name = "SEED", default_value_t = 1)]
     pub seed: u64,
-    /// Print the statistics of a height map (FILE.csv|txt|gsf) as JSON (with --headless).
+    /// Print the statistics of a height map as JSON (with --headless): text matrix or xyz,
+    /// .gsf, .gwy, .x3p, .sdf, .sur, Asylum .ibw, Nanoscope .di/.spm (format from the content).
     #[arg(long, value_name = "FILE")]
     pub analyze_surface: Option<std::path::PathBuf>,
+    /// Channel of a height-map file holding several (by name; see --list-channels), for
+    /// --analyze-surface and for --surface of a scene (also written FILE#CHANNEL).
+    #[arg(long, value_name = "NAME")]
+    pub channel: Option<String>,
+    /// List the channels of the --analyze-surface FILE (name, grid, size, units) instead of
+    /// analysing it.
+    #[arg(long)]
+    pub list_channels: bool,
     /// Pixel size of a text height map [m] (square pixels).
     #[arg(long, allow_negative_numbers = true, value_name = "M")]
     pub pixel_size: Option<f64>,

@@ -74,54 +74,9 @@ fn cstr(b: &[u8]) -> String {
     super::text::latin1(&b[..end])
 }
 
-/// Read an Igor binary wave of `version` (only 5 is read).
-pub(crate) fn read(
-    bytes: &[u8],
-    (version, le): (i16, bool),
-    path: &Path,
-    opts: &ReadOptions,
-) -> Result<ForceFile> {
-    let err = |msg: String| Error::data_file(path, 0, msg);
-    if version != 5 {
-        return Err(err(format!(
-            "Igor binary wave version {version} is not read (only version 5, as Asylum Research software writes)"
-        )));
-    }
-    if bytes.len() < BIN_HEADER + WAVE_HEADER {
-        return Err(err(format!(
-            "truncated Igor binary wave: {} bytes, the headers alone take {}",
-            bytes.len(),
-            BIN_HEADER + WAVE_HEADER
-        )));
-    }
-    let r = Reader { b: bytes, le };
-    let size = |at: usize, what: &str| -> Result<u64> {
-        let v = r.i32(at);
-        u64::try_from(v).map_err(|_| err(format!("negative {what} size {v} in the Igor header")))
-    };
-    let wfm_size = size(4, "wave")?;
-    let formula = size(8, "formula")?;
-    let note_size = size(12, "note")?;
-    let data_eunits = size(16, "data units")?;
-    let mut dim_eunits = [0u64; 4];
-    let mut dim_labels = [0u64; 4];
-    for d in 0..4 {
-        dim_eunits[d] = size(20 + 4 * d, "dimension units")?;
-        dim_labels[d] = size(36 + 4 * d, "dimension labels")?;
-    }
-    let w = BIN_HEADER;
-    let npnts =
-        u64::try_from(r.i32(w + 12)).map_err(|_| err("negative point count in the Igor header".into()))?;
-    let ty = r.i16(w + 16);
-    let mut dims = [0u64; 4];
-    for (d, dim) in dims.iter_mut().enumerate() {
-        *dim = u64::try_from(r.i32(w + 68 + 4 * d))
-            .map_err(|_| err("negative dimension in the Igor header".into()))?;
-    }
-    let sfa0 = r.f64(w + 84);
-    let sfb0 = r.f64(w + 116);
-    let dim0_unit = cstr(&bytes[w + 152..w + 156]);
-    let (elsize, conv): (u64, Decode) = match ty {
+/// The number type of an Igor wave: bytes per point and decoder.
+fn number_type(ty: i16) -> Option<(u64, Decode)> {
+    Some(match ty {
         2 => (4, |b, le| {
             let x = [b[0], b[1], b[2], b[3]];
             f64::from(if le {
@@ -171,26 +126,111 @@ pub(crate) fn read(
                 u32::from_be_bytes(x)
             })
         }),
-        other => {
-            return Err(err(format!(
-                "Igor number type {other:#x} is not read (complex or text wave?)"
-            )));
-        }
-    };
-    let rows = dims[0];
-    let cols = dims[1].max(1);
-    if dims[2] > 1 || dims[3] > 1 {
-        return Err(err(
-            "Igor wave with more than two dimensions: not a force curve".into()
-        ));
+        _ => return None,
+    })
+}
+
+/// An Igor binary wave (version 5) parsed: its dimensions, scaling, units, note and labels, and
+/// its data (column-major: the first dimension fastest) still as bytes. Every size of the header
+/// is checked against the file.
+pub(crate) struct Wave<'a> {
+    /// Byte order of the file (true: little-endian).
+    pub(crate) le: bool,
+    /// Points in each of the four dimensions (0 for an unused one).
+    pub(crate) dims: [u64; 4],
+    /// Scaling of each dimension: point k is at `sfb + k sfa`.
+    pub(crate) sfa: [f64; 4],
+    /// Offsets of each dimension.
+    pub(crate) sfb: [f64; 4],
+    /// Unit of the data (the extended unit where the file has one).
+    pub(crate) data_unit: String,
+    /// Unit of each dimension (the extended unit where the file has one).
+    pub(crate) dim_units: [String; 4],
+    /// The wave note.
+    pub(crate) note: String,
+    /// Labels of each dimension's indices (the label of the whole dimension first).
+    pub(crate) labels: [Vec<String>; 4],
+    data: &'a [u8],
+    elsize: u64,
+    conv: Decode,
+}
+
+impl Wave<'_> {
+    /// Number of points.
+    pub(crate) fn len(&self) -> usize {
+        (self.data.len() as u64 / self.elsize) as usize
     }
+
+    /// The points `from..from + n` (in storage order) as f64.
+    pub(crate) fn values(&self, from: usize, n: usize) -> Vec<f64> {
+        let e = self.elsize as usize;
+        self.data[from * e..(from + n) * e]
+            .chunks_exact(e)
+            .map(|b| (self.conv)(b, self.le))
+            .collect()
+    }
+}
+
+/// Parse an Igor binary wave of `version` (only 5 is read).
+pub(crate) fn wave<'a>(bytes: &'a [u8], (version, le): (i16, bool), path: &Path) -> Result<Wave<'a>> {
+    let err = |msg: String| Error::data_file(path, 0, msg);
+    if version != 5 {
+        return Err(err(format!(
+            "Igor binary wave version {version} is not read (only version 5, as Asylum Research software writes)"
+        )));
+    }
+    if bytes.len() < BIN_HEADER + WAVE_HEADER {
+        return Err(err(format!(
+            "truncated Igor binary wave: {} bytes, the headers alone take {}",
+            bytes.len(),
+            BIN_HEADER + WAVE_HEADER
+        )));
+    }
+    let r = Reader { b: bytes, le };
+    let size = |at: usize, what: &str| -> Result<u64> {
+        let v = r.i32(at);
+        u64::try_from(v).map_err(|_| err(format!("negative {what} size {v} in the Igor header")))
+    };
+    let wfm_size = size(4, "wave")?;
+    let formula = size(8, "formula")?;
+    let note_size = size(12, "note")?;
+    let data_eunits = size(16, "data units")?;
+    let mut dim_eunits = [0u64; 4];
+    let mut dim_labels = [0u64; 4];
+    for d in 0..4 {
+        dim_eunits[d] = size(20 + 4 * d, "dimension units")?;
+        dim_labels[d] = size(36 + 4 * d, "dimension labels")?;
+    }
+    let w = BIN_HEADER;
+    let npnts =
+        u64::try_from(r.i32(w + 12)).map_err(|_| err("negative point count in the Igor header".into()))?;
+    let ty = r.i16(w + 16);
+    let mut dims = [0u64; 4];
+    for (d, dim) in dims.iter_mut().enumerate() {
+        *dim = u64::try_from(r.i32(w + 68 + 4 * d))
+            .map_err(|_| err("negative dimension in the Igor header".into()))?;
+    }
+    let sfa: [f64; 4] = std::array::from_fn(|d| r.f64(w + 84 + 8 * d));
+    let sfb: [f64; 4] = std::array::from_fn(|d| r.f64(w + 116 + 8 * d));
+    let mut data_unit = cstr(&bytes[w + 148..w + 152]);
+    let mut dim_units: [String; 4] = std::array::from_fn(|d| cstr(&bytes[w + 152 + 4 * d..w + 156 + 4 * d]));
+    let (elsize, conv) = number_type(ty).ok_or_else(|| {
+        err(format!(
+            "Igor number type {ty:#x} is not read (complex or text wave?)"
+        ))
+    })?;
     // Sizes checked against the file before anything is allocated from them.
     let data_bytes = npnts
         .checked_mul(elsize)
         .ok_or_else(|| err("Igor point count overflows".into()))?;
-    if rows.checked_mul(cols) != Some(npnts) {
+    let used = dims
+        .iter()
+        .take_while(|&&d| d > 0)
+        .try_fold(1u64, |a, &d| a.checked_mul(d));
+    if used != Some(npnts) && !(npnts == 0 && dims[0] == 0) {
         return Err(err(format!(
-            "Igor header: {npnts} points but dimensions {rows} × {cols}"
+            "Igor header: {npnts} points but dimensions {} × {} × {} × {}",
+            dims[0], dims[1], dims[2], dims[3]
         )));
     }
     if wfm_size != WAVE_HEADER as u64 + data_bytes {
@@ -217,17 +257,52 @@ pub(crate) fn read(
     let data = take(data_bytes, "data")?;
     take(formula, "formula")?;
     let note = super::text::latin1(take(note_size, "note")?);
-    take(data_eunits, "data units")?;
-    for (d, &n) in dim_eunits.iter().enumerate() {
-        take(n, &format!("dimension {d} units"))?;
+    let eunits = take(data_eunits, "data units")?;
+    if !eunits.is_empty() {
+        data_unit = cstr(eunits);
     }
-    let mut labels = Vec::new();
-    for (d, &n) in dim_labels.iter().enumerate() {
-        let l = take(n, &format!("dimension {d} labels"))?;
-        if d == 1 {
-            labels = l.chunks(32).skip(1).map(cstr).collect();
+    for (d, &n) in dim_eunits.iter().enumerate() {
+        let u = take(n, &format!("dimension {d} units"))?;
+        if !u.is_empty() {
+            dim_units[d] = cstr(u);
         }
     }
+    let mut labels: [Vec<String>; 4] = Default::default();
+    for (d, &n) in dim_labels.iter().enumerate() {
+        let l = take(n, &format!("dimension {d} labels"))?;
+        labels[d] = l.chunks(32).map(cstr).collect();
+    }
+    Ok(Wave {
+        le,
+        dims,
+        sfa,
+        sfb,
+        data_unit,
+        dim_units,
+        note,
+        labels,
+        data,
+        elsize,
+        conv,
+    })
+}
+
+/// Read an Igor binary wave of `version` (only 5 is read) as a force curve.
+pub(crate) fn read(bytes: &[u8], version: (i16, bool), path: &Path, opts: &ReadOptions) -> Result<ForceFile> {
+    let err = |msg: String| Error::data_file(path, 0, msg);
+    let wave = wave(bytes, version, path)?;
+    let dims = wave.dims;
+    let rows = dims[0];
+    let cols = dims[1].max(1);
+    if dims[2] > 1 || dims[3] > 1 {
+        return Err(err(
+            "Igor wave with more than two dimensions: not a force curve".into()
+        ));
+    }
+    let (sfa0, sfb0) = (wave.sfa[0], wave.sfb[0]);
+    let dim0_unit = wave.dim_units[0].clone();
+    let note = wave.note.clone();
+    let mut labels: Vec<String> = wave.labels[1].iter().skip(1).cloned().collect();
     let notes: HashMap<&str, &str> = note
         .split('\r')
         .filter_map(|line| line.split_once(':'))
@@ -242,14 +317,7 @@ pub(crate) fn read(
     let k_file = note_num("SpringConstant")
         .ok_or_else(|| err("the note has no SpringConstant (needed for the force)".into()))?;
     let s_file = note_num("InvOLS");
-    let column = |j: usize| -> Vec<f64> {
-        let e = elsize as usize;
-        let n = rows as usize;
-        data[j * n * e..(j + 1) * n * e]
-            .chunks_exact(e)
-            .map(|b| conv(b, le))
-            .collect()
-    };
+    let column = |j: usize| -> Vec<f64> { wave.values(j * rows as usize, rows as usize) };
     if labels.len() < cols as usize {
         labels.resize(cols as usize, String::new());
     }

@@ -7,7 +7,7 @@ use serde::Serialize;
 
 use super::analysis::{PeakStatistics, peak_statistics, radial_psd_and_moments};
 use super::generate::generate;
-use super::io::{read_height_map, write_height_map};
+use super::io::write_height_map;
 use super::psd_fit::{AbcFit, Cutoff, fit_abc};
 use super::spectrum::{Moments, Spectrum};
 use super::{HeightMap, SurfaceArgs};
@@ -267,7 +267,21 @@ pub fn run(args: &SurfaceArgs, out: &Path) -> Result<String> {
     }
     if let Some(path) = &args.analyze_surface {
         let cutoff = parse_cutoff(&args.fit_cutoff)?;
-        let mut map = read_height_map(path, args.pixel_size)?;
+        if args.list_channels {
+            let (file, _) = super::formats::split_channel(path);
+            return super::formats::list_channels(&file);
+        }
+        let (file, suffix) = super::formats::split_channel(path);
+        let channel = args.channel.as_deref().or(suffix.as_deref());
+        let measured = super::formats::read_measured(&file, channel)?;
+        let text = measured.format == super::formats::Format::Text.name();
+        if args.pixel_size.is_some() && !text {
+            return Err(Error::Usage(format!(
+                "--pixel-size does not apply to a {} map: its header gives the lengths",
+                measured.format
+            )));
+        }
+        let mut map = measured.into_height_map(&file, args.pixel_size, text)?;
         if args.periodic {
             map.periodic = true;
         }

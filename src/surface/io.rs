@@ -19,7 +19,7 @@ use crate::render::write_atomic;
 /// Magic first line of a Gwyddion simple field file.
 const GSF_MAGIC: &str = "Gwyddion Simple Field 1.0\n";
 /// Start of the header comment written by [`to_csv`].
-const CSV_HEADER: &str = "# adhesion height map:";
+const CSV_HEADER: &str = super::formats::CSV_HEADER;
 
 /// File formats of height maps.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -58,172 +58,21 @@ pub fn to_csv(map: &HeightMap) -> String {
     s
 }
 
-/// Parse a text matrix. `pixel_size` [m] (square pixels) overrides the header comment; one of
-/// the two must be present.
+/// Parse a text height map ([`super::formats`]' text reader: a matrix, or xyz points on a
+/// uniform grid). `pixel_size` [m] (square pixels) overrides the header's lengths; one of the two
+/// must be present.
 ///
 /// # Errors
-/// [`Error::DataFile`] naming the line for a ragged row, a non-number, a non-finite height, an
-/// empty file, a missing or non-positive pixel size.
+/// [`Error::DataFile`] naming the line for a ragged row, a non-number; naming the file for an
+/// empty file, a line scan, missing points, a missing or non-positive pixel size.
 pub fn parse_csv(text: &str, path: &Path, pixel_size: Option<f64>) -> Result<HeightMap> {
-    let mut header: Option<Header> = None;
-    let mut z = Vec::new();
-    let mut nx = 0usize;
-    let mut ny = 0usize;
-    let text = crate::params::normalise_line_ends(text);
-    for (ln, line) in text.lines().enumerate() {
-        let ln = ln + 1;
-        let t = line.trim();
-        if let Some(rest) = t.strip_prefix(CSV_HEADER) {
-            header = Some(parse_header(rest, path, ln)?);
-            continue;
-        }
-        if t.is_empty() || t.starts_with('#') {
-            continue;
-        }
-        let mut count = 0;
-        for field in t.split(|c: char| c == ',' || c == ';' || c.is_whitespace()) {
-            if field.is_empty() {
-                continue;
-            }
-            let v: f64 = field
-                .parse()
-                .map_err(|_| Error::data_file(path, ln, format!("`{field}` is not a number")))?;
-            if !v.is_finite() {
-                return Err(Error::data_file(
-                    path,
-                    ln,
-                    format!("height `{field}` is not finite"),
-                ));
-            }
-            z.push(v);
-            count += 1;
-        }
-        if ny == 0 {
-            nx = count;
-        } else if count != nx {
-            return Err(Error::data_file(
-                path,
-                ln,
-                format!("ragged row: {count} values, the first row has {nx}"),
-            ));
-        }
-        ny += 1;
-    }
-    if ny == 0 {
-        return Err(Error::data_file(path, 0, "no height values"));
-    }
-    if nx < 2 || ny < 2 {
-        return Err(Error::data_file(
-            path,
-            0,
-            format!("a height map needs at least 2 x 2 values, found {nx} x {ny}"),
-        ));
-    }
-    // The header's periodicity holds only for the grid it describes.
-    let periodic = header.is_some_and(|h| h.periodic && (h.nx, h.ny) == (nx, ny));
-    let (lx, ly) = match (pixel_size, header) {
-        (Some(p), _) => {
-            if !(p > 0.0 && p.is_finite()) {
-                return Err(Error::data_file(
-                    path,
-                    0,
-                    format!("pixel size {} must be positive and finite", fmt_sig(p)),
-                ));
-            }
-            (p * nx as f64, p * ny as f64)
-        }
-        (
-            None,
-            Some(Header {
-                nx: hx,
-                ny: hy,
-                lx,
-                ly,
-                ..
-            }),
-        ) => {
-            if (hx, hy) != (nx, ny) {
-                return Err(Error::data_file(
-                    path,
-                    0,
-                    format!("header says {hx} x {hy} points, the data has {nx} x {ny}"),
-                ));
-            }
-            (lx, ly)
-        }
-        (None, None) => {
-            return Err(Error::data_file(
-                path,
-                0,
-                "no pixel size: give --pixel-size METRES for a plain text matrix",
-            ));
-        }
+    let (info, z) = super::formats::text_map(text, path)?;
+    let m = super::formats::Measured {
+        format: super::formats::Format::Text.name(),
+        info,
+        z,
     };
-    if let Some(reason) = size_problem(nx, ny, lx, ly) {
-        let field = match pixel_size {
-            Some(p) => format!("pixel size {}", fmt_sig(p)),
-            None => format!("header lx = {}, ly = {}", fmt_sig(lx), fmt_sig(ly)),
-        };
-        return Err(Error::data_file(path, 0, format!("{field}: {reason}")));
-    }
-    let mut map = HeightMap::new(nx, ny, lx, ly, z).map_err(|e| Error::data_file(path, 0, e.to_string()))?;
-    map.periodic = periodic;
-    Ok(map)
-}
-
-/// The header comment of a text map.
-#[derive(Debug, Clone, Copy)]
-struct Header {
-    nx: usize,
-    ny: usize,
-    lx: f64,
-    ly: f64,
-    periodic: bool,
-}
-
-fn parse_header(rest: &str, path: &Path, ln: usize) -> Result<Header> {
-    let mut n = [None; 2];
-    let mut l = [None; 2];
-    let mut periodic = false;
-    for tok in rest.split_whitespace() {
-        if let Some((k, v)) = tok.split_once('=') {
-            let int = || {
-                v.parse::<usize>().map_err(|_| {
-                    Error::data_file(path, ln, format!("header value `{tok}` is not a whole number"))
-                })
-            };
-            let real = || {
-                v.parse::<f64>()
-                    .map_err(|_| Error::data_file(path, ln, format!("header value `{tok}` is not a number")))
-            };
-            match k {
-                "nx" => n[0] = Some(int()?),
-                "ny" => n[1] = Some(int()?),
-                "lx" => l[0] = Some(real()?),
-                "ly" => l[1] = Some(real()?),
-                "periodic" => periodic = int()? != 0,
-                _ => {}
-            }
-        }
-    }
-    match (n, l) {
-        ([Some(nx), Some(ny)], [Some(lx), Some(ly)])
-            if lx > 0.0 && ly > 0.0 && lx.is_finite() && ly.is_finite() =>
-        {
-            Ok(Header {
-                nx,
-                ny,
-                lx,
-                ly,
-                periodic,
-            })
-        }
-        _ => Err(Error::data_file(
-            path,
-            ln,
-            "header needs nx, ny and positive lx, ly",
-        )),
-    }
+    m.into_height_map(path, pixel_size, true)
 }
 
 /// The map in Gwyddion simple field format (little-endian f32 heights after a text header
@@ -247,18 +96,9 @@ pub fn to_gsf(map: &HeightMap) -> Vec<u8> {
     h
 }
 
-/// Metres per unit of a length unit as written in a `.gsf` header (`m` with an SI prefix, or
-/// ångström); `None` for anything else.
+/// Metres per unit of a length unit as written in a header ([`super::formats::metres_per_unit`]).
 pub fn metres_per_unit(unit: &str) -> Option<f64> {
-    Some(match unit {
-        "m" => 1.0,
-        "mm" => 1e-3,
-        "um" | "µm" | "μm" => 1e-6,
-        "nm" => 1e-9,
-        "pm" => 1e-12,
-        "A" | "Å" | "Å" => 1e-10,
-        _ => return None,
-    })
+    super::formats::metres_per_unit(unit)
 }
 
 /// Parse a Gwyddion simple field file. Lengths in XYUnits and heights in ZUnits (metres when
@@ -373,21 +213,31 @@ pub fn parse_gsf(bytes: &[u8], path: &Path) -> Result<HeightMap> {
     Ok(map)
 }
 
-/// Read a height map, the format by extension (`.gsf`, else text). `pixel_size` [m] is needed
-/// for a text matrix without the header comment and overrides it; ignored for `.gsf`.
+/// Read a height map, the format recognised by content ([`super::formats`]: text matrix or xyz,
+/// `.gsf`, `.gwy`, `.x3p`, `.sdf`, `.sur`, `.ibw`, Nanoscope). `pixel_size` [m] is needed for a
+/// text matrix without lengths in its header and overrides them; ignored for the other formats.
+/// `FILE#CHANNEL` (when no file of that whole name exists) reads the channel named CHANNEL; else
+/// the first height channel.
 ///
 /// # Errors
-/// [`Error::DataFile`] as [`parse_csv`] and [`parse_gsf`], or when the file cannot be read.
+/// [`Error::DataFile`] naming the file and what is wrong with it, or when it cannot be read.
 pub fn read_height_map(path: &Path, pixel_size: Option<f64>) -> Result<HeightMap> {
-    let bytes = crate::input::read_input(path, crate::input::limit())?;
-    match MapFormat::of(path) {
-        MapFormat::Gsf => parse_gsf(&bytes, path),
-        MapFormat::Csv => {
-            let text =
-                std::str::from_utf8(&bytes).map_err(|_| Error::data_file(path, 0, "not a text file"))?;
-            parse_csv(text, path, pixel_size)
-        }
-    }
+    let (file, channel) = super::formats::split_channel(path);
+    read_height_map_channel(&file, pixel_size, channel.as_deref())
+}
+
+/// [`read_height_map`] of the channel named `channel` (the first height channel when `None`).
+///
+/// # Errors
+/// As [`read_height_map`]; a channel the file lacks is an error listing those it holds.
+pub fn read_height_map_channel(
+    path: &Path,
+    pixel_size: Option<f64>,
+    channel: Option<&str>,
+) -> Result<HeightMap> {
+    let m = super::formats::read_measured(path, channel)?;
+    let text = m.format == super::formats::Format::Text.name();
+    m.into_height_map(path, pixel_size, text)
 }
 
 /// Write a height map atomically, the format by extension (`.gsf`, else text matrix).

@@ -3,7 +3,9 @@
 //! its checksum forged after the mutation, assembled with the other points of its sweep), and
 //! the instrument force-distance readers (JPK archives, also re-zipped from mutated entries so
 //! that mutations reach the headers and channels past the zip's checksums; Asylum .ibw;
-//! afmformats .h5; AFM Workshop CSV and zip; NT-MDT, Chiaro, afmformats .tab text). Each parser
+//! afmformats .h5; AFM Workshop CSV and zip; NT-MDT, Chiaro, afmformats .tab text), and the
+//! height-map readers (`map …`: text matrix and xyz, .sdf, .x3p re-zipped from mutated entries,
+//! .gwy, .sur, .ibw images, Nanoscope). Each parser
 //! gets valid seeds mutated (bytes flipped, inserted, deleted, duplicated; numbers such as
 //! 1e308, -0, nan spliced in) and must return `Ok` or `Err`, never panic. A short run is in CI;
 //! `ADHESION_FUZZ_ITERATIONS` sets the count of the `#[ignore]`d long run (default one million
@@ -173,7 +175,50 @@ fn seeds() -> Vec<(&'static str, Vec<u8>)> {
         ("merge", point),
     ];
     out.extend(afm_seeds());
+    out.extend(map_seeds());
     out
+}
+
+/// The height-map readers' seeds: small fixtures, and small files built from the headers of
+/// larger ones (a 4 x 4 Digital Surf object, a 4 x 4 Nanoscope image).
+fn map_seeds() -> Vec<(&'static str, Vec<u8>)> {
+    let dir = crate::common::root().join("tests/fixtures/maps");
+    let read = |f: &str| std::fs::read(dir.join(f)).unwrap();
+    let unpacked = |b: Vec<u8>| -> Vec<u8> {
+        let mut z = zip::ZipArchive::new(std::io::Cursor::new(b)).unwrap();
+        let mut out = Vec::new();
+        for i in 0..z.len() {
+            let mut f = z.by_index(i).unwrap();
+            out.extend_from_slice(ENTRY);
+            out.extend_from_slice(f.name().unwrap().as_bytes());
+            out.push(b'\n');
+            std::io::Read::read_to_end(&mut f, &mut out).unwrap();
+        }
+        out
+    };
+    let mut sur = read("sur-3.sur")[..512].to_vec();
+    sur[108..112].copy_from_slice(&4i32.to_le_bytes());
+    sur[112..116].copy_from_slice(&4i32.to_le_bytes());
+    sur[116..120].copy_from_slice(&16u32.to_le_bytes());
+    for k in 0..16i32 {
+        sur.extend((k * 1000 - 7000).to_le_bytes());
+    }
+    let mut di = b"\\*File list\r\n\\Version: 0x09200201\r\n\\*Scanner list\r\n\\@Sens. Zsens: V 34.5 nm/V\r\n\\*Ciao image list\r\n\\Data offset: 512\r\n\\Data length: 32\r\n\\Bytes/pixel: 2\r\n\\Samps/line: 4\r\n\\Number of lines: 4\r\n\\Scan Size: 10 10 ~m\r\n\\@2:Image Data: S [Height] \"Height\"\r\n\\@2:Z scale: V [Sens. Zsens] (0.000375 V/LSB) 24.5 V\r\n\\*File list end\r\n\x1a".to_vec();
+    di.resize(512, 0);
+    for k in 0..16i16 {
+        di.extend((k * 100 - 800).to_le_bytes());
+    }
+    vec![
+        ("map text", read("matrix-6.txt")),
+        ("map xyz", read("xyz-2.txt")),
+        ("map .sdf", read("sdf-1.sdf")),
+        ("map .sdf binary", read("sdf-binary.sdf")),
+        ("map .x3p entries", unpacked(read("x3p-u16.x3p"))),
+        ("map .gwy", read("gwy-1.gwy")),
+        ("map .sur", sur),
+        ("map .ibw", read("10x10-one_channel_without_name.ibw")),
+        ("map .di", di),
+    ]
 }
 
 /// Marker between the entries of a JPK archive unpacked into one seed.
@@ -293,6 +338,23 @@ fn panics(kind: &str, bytes: &[u8], dir: &Path) -> bool {
         };
         return std::panic::catch_unwind(|| {
             let _ = adhesion::readers::parse_force_bytes(&bytes, Path::new(&name), &opts);
+        })
+        .is_err();
+    }
+    if kind.starts_with("map ") {
+        let bytes = if kind.ends_with(" entries") {
+            rezip(bytes)
+        } else {
+            bytes.to_vec()
+        };
+        return std::panic::catch_unwind(|| {
+            let p = Path::new("m");
+            let _ = adhesion::surface::formats::list_bytes(&bytes, p);
+            if let Ok(m) = adhesion::surface::formats::parse_bytes(&bytes, p, None)
+                && let Ok(map) = m.into_height_map(p, Some(1e-8), true)
+            {
+                let _ = adhesion::surface::command::report(&map, adhesion::surface::Cutoff::None);
+            }
         })
         .is_err();
     }
@@ -424,6 +486,20 @@ fn parsers_survive_a_million_mutated_inputs() {
         ASSEMBLED.load(std::sync::atomic::Ordering::Relaxed)
     );
     assert!(results.iter().all(|r| r.2 == 0));
+}
+
+#[test]
+fn height_map_seeds_read_unmutated() {
+    for (kind, seed) in map_seeds() {
+        let bytes = if kind.ends_with(" entries") {
+            rezip(&seed)
+        } else {
+            seed
+        };
+        let m = adhesion::surface::formats::parse_bytes(&bytes, Path::new("m"), None)
+            .unwrap_or_else(|e| panic!("{kind}: {e}"));
+        assert!(m.info.nx >= 4 && m.info.ny >= 3, "{kind}");
+    }
 }
 
 #[test]

@@ -17,6 +17,7 @@ mod force_curves;
 mod fuzz;
 mod hardening;
 mod layering;
+mod maps;
 mod readers;
 mod reference_ch1;
 mod registry;
