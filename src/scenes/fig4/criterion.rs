@@ -1049,7 +1049,7 @@ mod tests {
 
     #[test]
     fn branches_start_at_the_double_root_and_satisfy_4_23() {
-        let lj = LennardJones::new(&LennardJonesParams::default()).unwrap();
+        let lj = LennardJones::new(&crate::models::lennard_jones::LennardJonesParams::default()).unwrap();
         let c = InstabilityCriterion::new(&lj, TractionLaw::AsPrinted).unwrap();
         let (pin, poff) = criterion_branches(&c, 10.0, 20).unwrap();
         assert_eq!(pin.len(), 20);
