@@ -624,7 +624,12 @@ macro_rules! scene_params {
     ) => {
         $crate::scene_params!(@entry $metas $name
             [$($fields)* #[doc = $doc] #[serde(flatten)] pub $field: $group,]
-            [$($defaults)* $field: $group { $($($key: $value,)*)? ..<$group as Default>::default() },]
+            [$($defaults)* $field: {
+                // A group of one parameter given its default has nothing left to update.
+                #[allow(clippy::needless_update)]
+                let group = $group { $($($key: $value,)*)? ..<$group as Default>::default() };
+                group
+            },]
             [$($specs)* {
                 #[allow(unused_mut)]
                 let mut group = <$group as $crate::params::Params>::specs();
