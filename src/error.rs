@@ -67,7 +67,7 @@ pub enum Error {
         message: String,
     },
     /// A bracketing root finder was given an interval without a sign change.
-    #[error("no sign change on [{}, {}]", crate::params::fmt_sig(*lo), crate::params::fmt_sig(*hi))]
+    #[error("no sign change on [{}, {}]", crate::text::fmt_sig(*lo), crate::text::fmt_sig(*hi))]
     NoBracket {
         /// Lower end.
         lo: f64,
@@ -136,8 +136,8 @@ impl Error {
     /// Shorthand for [`Error::InvalidParameter`].
     pub fn invalid(name: impl Into<String>, value: impl ToString, reason: impl Into<String>) -> Self {
         Error::InvalidParameter {
-            name: crate::params::escape_for_message(&name.into(), 80),
-            value: crate::params::echo_value(&value.to_string()),
+            name: crate::text::escape_for_message(&name.into(), 80),
+            value: crate::text::echo_value(&value.to_string()),
             reason: reason.into(),
         }
     }

@@ -64,6 +64,7 @@ pub mod render;
 pub mod reproduction;
 pub mod scenes;
 pub mod surface;
+pub mod text;
 pub mod tui;
 
 pub use error::{Error, Result};

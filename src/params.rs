@@ -11,6 +11,8 @@ use serde::Serialize;
 use serde::de::DeserializeOwned;
 
 use crate::error::{Error, Result, did_you_mean};
+/// The message formatting the parameters' errors use, where it has always been reachable.
+pub use crate::text::{compact_numbers, echo_value, escape_for_message, fmt_sig, fmt_value};
 
 /// The type of a parameter as the user edits it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -284,124 +286,6 @@ fn parse_float(t: &str) -> Option<f64> {
         "-inf" | "-infinity" => Some(f64::NEG_INFINITY),
         _ => lower.parse().ok(),
     }
-}
-
-/// Format a number for messages and the form: shortest text that round-trips.
-pub fn fmt_value(x: f64) -> String {
-    if x.is_nan() {
-        return "NaN".into();
-    }
-    format!("{x}")
-}
-
-/// Text from the user as a message shows it: control characters escaped (`\n`, `\r`, `\t`,
-/// `\0`, `\u{1b}`), and cut after `max_chars` characters with a note of the full length, so
-/// that an echoed value never breaks the one-line message or floods the terminal.
-pub fn escape_for_message(text: &str, max_chars: usize) -> String {
-    let mut out = String::new();
-    for (n, c) in text.chars().enumerate() {
-        if n == max_chars {
-            out.push_str(&format!("… ({} characters)", text.chars().count()));
-            break;
-        }
-        match c {
-            '\n' => out.push_str("\\n"),
-            '\r' => out.push_str("\\r"),
-            '\t' => out.push_str("\\t"),
-            '\0' => out.push_str("\\0"),
-            c if c.is_control() || c == '\u{feff}' => out.push_str(&format!("\\u{{{:x}}}", c as u32)),
-            c => out.push(c),
-        }
-    }
-    out
-}
-
-/// A value echoed in a message: a float as [`fmt_sig`] (not the hundreds of digits of a huge
-/// one), anything else as [`escape_for_message`] (at most 80 characters).
-pub fn echo_value(text: &str) -> String {
-    let t = text.trim();
-    if (t.len() > 12 || t.contains(['.', 'e', 'E']))
-        && let Ok(x) = t.parse::<f64>()
-    {
-        return fmt_sig(x);
-    }
-    escape_for_message(text, 80)
-}
-
-/// A number for messages with at most 6 significant digits: plain for moderate magnitudes,
-/// scientific otherwise (`1.23457e-9`), `NaN`, `inf` and `-inf` as such.
-pub fn fmt_sig(x: f64) -> String {
-    fn trim(m: &str) -> &str {
-        if m.contains('.') {
-            m.trim_end_matches('0').trim_end_matches('.')
-        } else {
-            m
-        }
-    }
-    if !x.is_finite() {
-        return fmt_value(x);
-    }
-    if x == 0.0 {
-        return "0".into();
-    }
-    let a = x.abs();
-    if (1e-3..1e6).contains(&a) {
-        let decimals = (5 - a.log10().floor() as i32).max(0) as usize;
-        // A carry on rounding (999999.7 -> 1000000) only adds a trailing zero.
-        return trim(&format!("{x:.decimals$}")).to_string();
-    }
-    let t = format!("{x:.5e}");
-    match t.split_once('e') {
-        Some((m, e)) => format!("{}e{e}", trim(m)),
-        None => t,
-    }
-}
-
-/// A message with every long number in it (more than 10 digits, like the hundreds of digits
-/// of `{}` on 1e300) rewritten by [`fmt_sig`]; identifiers such as `fig3.8` and short numbers
-/// stay as they are.
-pub fn compact_numbers(text: &str) -> String {
-    let b = text.as_bytes();
-    let mut out = String::with_capacity(text.len());
-    let mut i = 0;
-    while i < b.len() {
-        let starts = b[i].is_ascii_digit() || (b[i] == b'-' && b.get(i + 1).is_some_and(u8::is_ascii_digit));
-        let after_word = i > 0 && (b[i - 1].is_ascii_alphanumeric() || b[i - 1] == b'_' || b[i - 1] == b'.');
-        if !starts || after_word {
-            let c = text[i..].chars().next().unwrap_or(' ');
-            out.push(c);
-            i += c.len_utf8();
-            continue;
-        }
-        let mut j = i + usize::from(b[i] == b'-');
-        let mut digits = 0;
-        let mut seen_dot = false;
-        while j < b.len() && (b[j].is_ascii_digit() || (b[j] == b'.' && !seen_dot)) {
-            seen_dot |= b[j] == b'.';
-            digits += usize::from(b[j].is_ascii_digit());
-            j += 1;
-        }
-        if j < b.len() && (b[j] == b'e' || b[j] == b'E') {
-            let mut k = j + 1;
-            if k < b.len() && (b[k] == b'-' || b[k] == b'+') {
-                k += 1;
-            }
-            if k < b.len() && b[k].is_ascii_digit() {
-                while k < b.len() && b[k].is_ascii_digit() {
-                    k += 1;
-                }
-                j = k;
-            }
-        }
-        let token = text[i..j].trim_end_matches('.');
-        let end = i + token.len();
-        match token.parse::<f64>() {
-            Ok(x) if digits > 10 => out.push_str(&fmt_sig(x)),
-            _ => out.push_str(token),
-        }
-        i = end;
-    }
-    out
 }
 
 /// Text from a file as every reader here takes it: a UTF-8 byte-order mark skipped, CRLF and
@@ -688,22 +572,170 @@ impl ParamType for Vec<f64> {
 
 /// Declare a scene's parameter struct, its defaults and its specs in one place.
 ///
+/// Each entry is a parameter of the scene's own (`name: type = default, unit = …, range = …;`)
+/// or a [`param_group!`] shared with other scenes (`group field: Group;`). A group's parameters
+/// keep their flat names in `--set`, presets, `--describe`, the form and the JSON (the group
+/// is a `#[serde(flatten)]` field); the scene reaches them as `p.field.name`. A scene that
+/// needs other defaults gives them in braces after the group (`group tip: ElasticTip
+/// { radius: 5.0e-6 };`): the declaration (unit, range) stays the group's. A scene whose help
+/// line says more than the group's (a note on the scene's own figure) gives it after the
+/// defaults (`help { youngs_modulus: "…" }`); such lines are listed, each with its reason, in
+/// the registry test that keeps one unit, range and help per parameter name. A single parameter
+/// of a group, where the scene does not take the whole group, is `from Group: name: type;`
+/// (`from Group: name: type = default;` with the scene's default).
+///
 /// ```
+/// adhesion::param_group! {
+///     /// An elastic sphere.
+///     pub struct Sphere {
+///         /// Sphere radius R.
+///         radius: f64 = 1.0e-6, unit = "m", range = adhesion::params::Range::positive();
+///     }
+/// }
 /// adhesion::scene_params! {
 ///     /// Parameters of an example scene.
 ///     pub struct ExampleParams {
-///         /// Sphere radius R.
-///         radius: f64 = 1.0e-6, unit = "m", range = adhesion::params::Range::positive();
+///         /// The sphere.
+///         group sphere: Sphere { radius: 2.0e-6 };
 ///         /// Number of points on each curve.
 ///         points: usize = 200, unit = "", range = adhesion::params::Range::between(10.0, 1e5);
 ///     }
 /// }
 /// use adhesion::params::Params;
 /// assert_eq!(ExampleParams::default().points, 200);
+/// assert_eq!(ExampleParams::default().sphere.radius, 2.0e-6);
+/// assert_eq!(ExampleParams::specs()[0].name, "radius");
 /// assert_eq!(ExampleParams::specs()[0].unit, "m");
 /// ```
 #[macro_export]
 macro_rules! scene_params {
+    (
+        $(#[$meta:meta])*
+        pub struct $name:ident { $($body:tt)* }
+    ) => {
+        $crate::scene_params!(@entry [$(#[$meta])*] $name [] [] [] [] $($body)*);
+    };
+    // A shared group, flattened into the scene's parameters, with the scene's own defaults.
+    (@entry $metas:tt $name:ident [$($fields:tt)*] [$($defaults:tt)*] [$($specs:tt)*] [$($groups:tt)*]
+        #[doc = $doc:literal]
+        group $field:ident : $group:ident $({ $($key:ident : $value:expr),* $(,)? })?
+            $(help { $($help_key:ident : $help:literal),* $(,)? })? ;
+        $($rest:tt)*
+    ) => {
+        $crate::scene_params!(@entry $metas $name
+            [$($fields)* #[doc = $doc] #[serde(flatten)] pub $field: $group,]
+            [$($defaults)* $field: {
+                // A group of one parameter given its default has nothing left to update.
+                #[allow(clippy::needless_update)]
+                let group = $group { $($($key: $value,)*)? ..<$group as Default>::default() };
+                group
+            },]
+            [$($specs)* {
+                #[allow(unused_mut)]
+                let mut group = <$group as $crate::params::Params>::specs();
+                $($(
+                    let _: fn(&$group) = |g| { let _ = &g.$help_key; };
+                    for s in group.iter_mut().filter(|s| s.name == stringify!($help_key)) {
+                        s.help = $help;
+                    }
+                )*)?
+                group
+            }]
+            [$($groups)* $field]
+            $($rest)*
+        );
+    };
+    // One parameter of a group, declared there, where the scene does not take the whole
+    // group (its other parameters do not apply, or stand elsewhere in the scene's order).
+    (@entry $metas:tt $name:ident [$($fields:tt)*] [$($defaults:tt)*] [$($specs:tt)*] [$($groups:tt)*]
+        from $group:ident : $field:ident : $ty:ty $(= $default:expr)? $(, help = $help:literal)? ;
+        $($rest:tt)*
+    ) => {
+        $crate::scene_params!(@entry $metas $name
+            [$($fields)*
+                #[doc = concat!("[`", stringify!($group), "::", stringify!($field), "`], declared there.")]
+                pub $field: $ty,
+            ]
+            [$($defaults)* $field: $crate::scene_params!(@or [$($default)?] [<$group as Default>::default().$field]),]
+            [$($specs)* {
+                #[allow(unused_mut)]
+                let mut spec = <$group as $crate::params::Params>::specs()
+                    .into_iter()
+                    .find(|s| s.name == stringify!($field))
+                    .expect("a group declares a spec per field");
+                $(spec.help = $help;)?
+                vec![spec]
+            }]
+            [$($groups)*]
+            $($rest)*
+        );
+    };
+    // A parameter of the scene's own.
+    (@entry $metas:tt $name:ident [$($fields:tt)*] [$($defaults:tt)*] [$($specs:tt)*] [$($groups:tt)*]
+        #[doc = $doc:literal]
+        $field:ident : $ty:ty = $default:expr, unit = $unit:literal, range = $range:expr;
+        $($rest:tt)*
+    ) => {
+        $crate::scene_params!(@entry $metas $name
+            [$($fields)* #[doc = $doc] #[doc = concat!("\n\nUnit: `", $unit, "`.")] pub $field: $ty,]
+            [$($defaults)* $field: $default,]
+            [$($specs)* {
+                vec![$crate::params::ParamSpec {
+                    name: stringify!($field),
+                    kind: <$ty as $crate::params::ParamType>::KIND,
+                    unit: $unit,
+                    help: $doc.trim_ascii(),
+                    range: $range,
+                }]
+            }]
+            [$($groups)*]
+            $($rest)*
+        );
+    };
+    // Without groups: unknown and missing keys are caught by serde as well.
+    (@entry [$(#[$meta:meta])*] $name:ident [$($fields:tt)*] [$($defaults:tt)*] [$($specs:tt)*] []) => {
+        $(#[$meta])*
+        #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+        #[serde(deny_unknown_fields, default)]
+        pub struct $name { $($fields)* }
+        $crate::scene_params!(@impls $name [$($defaults)*] [$($specs)*]);
+    };
+    // With groups (serde cannot deny unknown keys beside a flattened field; the keys are
+    // checked against the specs before they reach serde, `ParamValues::apply_table`).
+    (@entry [$(#[$meta:meta])*] $name:ident [$($fields:tt)*] [$($defaults:tt)*] [$($specs:tt)*] [$($groups:tt)+]) => {
+        $(#[$meta])*
+        #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+        pub struct $name { $($fields)* }
+        $crate::scene_params!(@impls $name [$($defaults)*] [$($specs)*]);
+    };
+    (@or [$value:expr] [$fallback:expr]) => { $value };
+    (@or [] [$fallback:expr]) => { $fallback };
+    (@impls $name:ident [$($defaults:tt)*] [$($specs:tt)*]) => {
+        impl Default for $name {
+            fn default() -> Self {
+                Self { $($defaults)* }
+            }
+        }
+
+        impl $crate::params::Params for $name {
+            fn specs() -> Vec<$crate::params::ParamSpec> {
+                let mut specs = Vec::new();
+                $(specs.extend($specs);)*
+                specs
+            }
+        }
+    };
+}
+
+/// Declare a parameter group: physical parameters that several scenes share (an interaction,
+/// an elastic tip, a loading path, a discretisation), with their names, units, defaults,
+/// ranges and help, once. A scene takes the group with `group field: Group;` in
+/// [`scene_params!`]; the group's parameters keep their flat names.
+///
+/// Every key must be present when a group is read (no serde defaults: a missing key would
+/// silently take the group's default instead of the scene's).
+#[macro_export]
+macro_rules! param_group {
     (
         $(#[$meta:meta])*
         pub struct $name:ident {
@@ -715,7 +747,6 @@ macro_rules! scene_params {
     ) => {
         $(#[$meta])*
         #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
-        #[serde(deny_unknown_fields, default)]
         pub struct $name {
             $(
                 #[doc = $doc]
@@ -799,31 +830,6 @@ macro_rules! param_choice {
 
 #[cfg(test)]
 mod tests {
-    #[test]
-    fn message_numbers_have_at_most_six_significant_digits() {
-        use super::fmt_sig;
-        assert_eq!(fmt_sig(4.710_337_979_759_895e24), "4.71034e24");
-        assert_eq!(fmt_sig(1.465_612_345), "1.46561");
-        assert_eq!(fmt_sig(-1e-9), "-1e-9");
-        assert_eq!(fmt_sig(0.25), "0.25");
-        assert_eq!(fmt_sig(123_456.78), "123457");
-        assert_eq!(fmt_sig(f64::INFINITY), "inf");
-        assert_eq!(fmt_sig(f64::NAN), "NaN");
-        assert_eq!(fmt_sig(0.0), "0");
-        assert_eq!(fmt_sig(f64::MAX), "1.79769e308");
-        assert_eq!(super::echo_value(&format!("{}", 1e300)), "1e300");
-        assert_eq!(super::echo_value("1.4656123456789012"), "1.46561");
-        assert_eq!(
-            super::escape_for_message("a\r\nb\0\u{1b}[2J", 80),
-            "a\\r\\nb\\0\\u{1b}[2J"
-        );
-        let long = "x".repeat(5_000_000);
-        assert_eq!(
-            super::escape_for_message(&long, 10),
-            "xxxxxxxxxx… (5000000 characters)"
-        );
-    }
-
     use super::*;
 
     crate::scene_params! {

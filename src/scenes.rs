@@ -25,6 +25,7 @@ pub mod fig4;
 pub mod fig5;
 pub mod fig6;
 pub mod figc;
+pub mod groups;
 pub mod sweep;
 
 /// A figure of the dissertation, computed.
@@ -345,7 +346,7 @@ pub fn attribute_failure(
             Error::InvalidParameter { name, value, reason } => Error::InvalidParameter {
                 name,
                 value,
-                reason: crate::params::compact_numbers(&reason),
+                reason: crate::text::compact_numbers(&reason),
             },
             e => e,
         };
@@ -353,7 +354,7 @@ pub fn attribute_failure(
     Error::AtParameters {
         scene,
         at: changed_parameters(values, defaults),
-        cause: crate::params::compact_numbers(&message),
+        cause: crate::text::compact_numbers(&message),
     }
 }
 
@@ -407,8 +408,8 @@ fn changed_parameters(values: &ParamValues, defaults: &ParamValues) -> String {
         .filter(|((_, v), d)| v != d)
         .map(|((s, v), d)| {
             let text = |v: &toml::Value| match v {
-                toml::Value::Float(x) => crate::params::fmt_sig(*x),
-                other => crate::params::escape_for_message(&crate::params::value_text(other), 40),
+                toml::Value::Float(x) => crate::text::fmt_sig(*x),
+                other => crate::text::escape_for_message(&crate::params::value_text(other), 40),
             };
             (
                 distance(v, d),

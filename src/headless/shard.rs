@@ -211,19 +211,19 @@ pub fn reseal(text: &str) -> Option<String> {
 /// value that is not a number, or not finite (NaN where `nan_allowed`).
 pub fn parse_point(text: &str, expected: &Expected<'_>) -> Result<(Vec<f64>, f64), String> {
     let f: PointFile =
-        serde_json::from_str(text).map_err(|e| crate::params::escape_for_message(&e.to_string(), 200))?;
+        serde_json::from_str(text).map_err(|e| crate::text::escape_for_message(&e.to_string(), 200))?;
     if f.scene != expected.scene || f.point != expected.point {
         return Err(format!(
             "it holds point {} of {}",
             f.point,
-            crate::params::escape_for_message(&f.scene, 40)
+            crate::text::escape_for_message(&f.scene, 40)
         ));
     }
     if f.params != expected.params_hash {
         return Err(format!(
             "it was computed with another parameter set (hash {}, this sweep's is {}): copied from \
              another sweep's folder?",
-            crate::params::escape_for_message(&f.params, 40),
+            crate::text::escape_for_message(&f.params, 40),
             expected.params_hash
         ));
     }
@@ -233,8 +233,8 @@ pub fn parse_point(text: &str, expected: &Expected<'_>) -> Result<(Vec<f64>, f64
     if !(f.seconds.is_finite() && (0.0..=MAX_POINT_SECONDS).contains(&f.seconds)) {
         return Err(format!(
             "its computing time {} s is not in [0, {}]",
-            crate::params::fmt_sig(f.seconds),
-            crate::params::fmt_sig(MAX_POINT_SECONDS)
+            crate::text::fmt_sig(f.seconds),
+            crate::text::fmt_sig(MAX_POINT_SECONDS)
         ));
     }
     if f.values.len() != expected.len {
@@ -252,7 +252,7 @@ pub fn parse_point(text: &str, expected: &Expected<'_>) -> Result<(Vec<f64>, f64
             let x = decode(t).ok_or_else(|| {
                 format!(
                     "value {k} `{}` is not a number",
-                    crate::params::escape_for_message(t, 40)
+                    crate::text::escape_for_message(t, 40)
                 )
             })?;
             if x.is_finite() || (x.is_nan() && expected.nan_allowed) {

@@ -479,7 +479,7 @@ impl MachineStiffness {
                 delta_min,
                 format!(
                     "must lie below the pull-off stage displacement {}",
-                    crate::params::fmt_sig(pull_off.before.delta)
+                    crate::text::fmt_sig(pull_off.before.delta)
                 ),
             ));
         }

@@ -588,9 +588,9 @@ impl<'p> WavyPeeling<'p> {
                 format!(
                     "the peeled film would touch the {} substrate of aspect ratio A = {}: the comparability condition (Sec. 6.2.1) needs {}° <= θ <= {}°",
                     profile.name(),
-                    crate::params::fmt_sig(aspect_ratio),
-                    crate::params::fmt_sig(lo.to_degrees()),
-                    crate::params::fmt_sig(hi.to_degrees())
+                    crate::text::fmt_sig(aspect_ratio),
+                    crate::text::fmt_sig(lo.to_degrees()),
+                    crate::text::fmt_sig(hi.to_degrees())
                 ),
             ));
         }

@@ -133,7 +133,7 @@ fn branch_figure(id: &str, title: &str, spec: &BranchSpec, job: &Job) -> Result<
             delta_min,
             format!(
                 "must lie below the pull-off stage displacement {}",
-                crate::params::fmt_sig(pull_off.before.delta)
+                crate::text::fmt_sig(pull_off.before.delta)
             ),
         ));
     }

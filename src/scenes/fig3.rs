@@ -835,7 +835,7 @@ impl Fig3_8Params {
                 &self.surface,
                 format!(
                     "its spectral moment {name} = {} is not positive: the map is flat or near-flat",
-                    crate::params::fmt_sig(v)
+                    crate::text::fmt_sig(v)
                 ),
             ));
         }
@@ -1036,7 +1036,7 @@ impl Sweep for Fig3_8 {
     fn points(p: &Self::Params) -> Vec<String> {
         crate::numerics::curve::linspace(p.sigma_min, p.sigma_max, p.grid_points)
             .iter()
-            .map(|s| format!("σ_rms = {} nm", crate::params::fmt_sig(s * 1e9)))
+            .map(|s| format!("σ_rms = {} nm", crate::text::fmt_sig(s * 1e9)))
             .collect()
     }
 

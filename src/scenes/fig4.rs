@@ -25,10 +25,13 @@ use crate::job::Job;
 use crate::models::axisymmetric::cycle::{CycleOptions, TipCycle, TipState, run_cycle};
 use crate::models::axisymmetric::tip::{Tip, TipParams};
 use crate::models::body_force_fe::tip::FeTip;
-use crate::models::lennard_jones::{LennardJones, LennardJonesParams};
+use crate::models::lennard_jones::LennardJones;
 use crate::models::maugis_dugdale::MaugisDugdale;
 use crate::models::wavy_jkr::{WavyJkr, WavyJkrParams};
 use crate::params::Range;
+use crate::scenes::groups::{
+    ContactCriterion, DepthPath, ElasticTip, FeMesh, Interaction, SurfaceModel, Waviness,
+};
 
 /// The scenes of this chapter, in figure order.
 pub const SCENES: &[&dyn SceneDyn] = &[
@@ -58,38 +61,22 @@ crate::scene_params! {
     /// not printed; −15 ζ0 (h/R ≈ −1.8e-3) presses the contact to about 1.8 times its
     /// pull-in radius.
     pub struct Fig4_5Params {
-        /// Radius of curvature R of the tip [m].
-        radius: f64 = 5.0e-6, unit = "m", range = Range::between(1.0e-8, 1.0e-3);
-        /// Young's modulus E of the tip [Pa].
-        youngs_modulus: f64 = 4.4e6, unit = "Pa", range = Range::between(1.0e3, 1.0e12);
-        /// Poisson's ratio ν of the tip.
-        poisson_ratio: f64 = 0.25, unit = "", range = Range::between(0.0, 0.49);
-        /// C6 of the potential (4.1).
-        c6: f64 = 3.0, unit = "", range = Range::between(0.1, 100.0);
-        /// C12 of the potential (4.1).
-        c12: f64 = 1.0, unit = "", range = Range::between(0.01, 100.0);
-        /// Characteristic distance σ of the potential (4.1) [m].
-        sigma: f64 = 1.0e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
-        /// Hamaker constant A_H [J].
-        hamaker: f64 = 2.0e-21, unit = "J", range = Range::between(1.0e-23, 1.0e-17);
-        /// Deepest depth of the cycle in units of ζ0 (negative: pressed).
-        h_min_over_zeta0: f64 = -15.0, unit = "", range = Range::between(-200.0, 0.0);
-        /// Start (and end) of the cycle in units of ζ0; beyond the pull-off separation.
-        h_start_over_zeta0: f64 = 12.0, unit = "", range = Range::between(1.0, 200.0);
-        /// Depth step in units of ζ0.
-        step_over_zeta0: f64 = 0.2, unit = "", range = Range::between(0.02, 1.0);
-        /// Ring width (surface model) or width of the surface elements (finite elements) in units of b = ζ0²E*/w (0.25 and below: the contact edge does not hop from ring to ring).
-        ring_width: f64 = 0.25, unit = "", range = Range::between(0.02, 2.0);
-        /// Gauss points per interval of the interaction energy (per chord interval in r near the substrate for finite elements).
-        quadrature_points: usize = 4, unit = "", range = Range::between(1.0, 16.0);
-        /// Contact threshold of the gap (section 4.2.2: σ) [m].
-        contact_gap: f64 = 1.0e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
+        /// The tip (R = 5 µm, E = 4.4 MPa, ν = 0.25).
+        group tip: ElasticTip;
+        /// The interaction (C6 = 3, C12 = 1, σ = 1 nm, A_H = 2e-21 J).
+        group lj: Interaction;
+        /// The cycle.
+        group path: DepthPath;
+        /// The discretisation of the surface model.
+        group surface: SurfaceModel help {
+            ring_width: "Ring width (surface model) or width of the surface elements (finite elements) in units of b = ζ0²E*/w (0.25 and below: the contact edge does not hop from ring to ring).",
+        };
+        /// The contact threshold.
+        group contact: ContactCriterion;
         /// Model of the tip: surface (the axisymmetric surface model, a few seconds) or fe (the dissertation's finite-element model with the body force (4.15): 22 282 unknowns at the defaults, about 50 s per cycle on 2 cores).
         model: TipModel = TipModel::Surface, unit = "", range = Range::any();
-        /// Growth of the finite-element size with the distance from the contact zone (model = fe).
-        fe_grading: f64 = 0.15, unit = "", range = Range::between(0.05, 1.0);
-        /// Radius and height of the finite-element tip in units of R (model = fe).
-        fe_size_over_radius: f64 = 20.0, unit = "", range = Range::between(2.0, 1000.0);
+        /// The mesh of the finite-element model.
+        group mesh: FeMesh;
     }
 }
 
@@ -97,38 +84,22 @@ crate::scene_params! {
 ///
 /// # Errors
 /// [`Error::InvalidParameter`] naming the interaction parameter.
-fn material(
-    c6: f64,
-    c12: f64,
-    sigma: f64,
-    hamaker: f64,
-    youngs_modulus: f64,
-    poisson_ratio: f64,
-) -> Result<(LennardJones, f64)> {
-    let lj = LennardJones::new(&LennardJonesParams {
-        c6,
-        c12,
-        sigma,
-        hamaker,
-    })?;
-    Ok((lj, youngs_modulus / (1.0 - poisson_ratio * poisson_ratio)))
+fn material(lj: &Interaction, tip: &ElasticTip) -> Result<(LennardJones, f64)> {
+    Ok((lj.lennard_jones()?, tip.plane_strain_modulus()))
 }
 
-/// The surface model of a smooth or wavy tip built from scene parameters, with the fine zone
-/// that covers the deepest depth ([`TipParams::fine_radius_for_depth`]).
+/// The surface model of a smooth or wavy tip (R = `radius` [m], E* = `modulus` [Pa], the
+/// waviness `(amplitude, wavelength)` [m] of (4.10)) discretised by `surface`, with the fine
+/// zone that covers the deepest depth `h_min` [m] ([`TipParams::fine_radius_for_depth`]).
 ///
 /// # Errors
 /// [`Error::InvalidParameter`] naming the parameter.
-#[allow(clippy::too_many_arguments)]
 fn tip_for(
     lj: &LennardJones,
-    radius: f64,
-    modulus: f64,
-    amplitude: f64,
-    wavelength: f64,
+    (radius, modulus): (f64, f64),
+    (amplitude, wavelength): (f64, f64),
     h_min: f64,
-    ring_width: f64,
-    quadrature_points: usize,
+    surface: &SurfaceModel,
 ) -> Result<Tip> {
     let p = lj.params();
     let mut params = TipParams {
@@ -140,21 +111,14 @@ fn tip_for(
         hamaker: p.hamaker,
         amplitude,
         wavelength,
-        ring_width,
+        ring_width: surface.ring_width,
         fine_radius: 0.0,
         growth: 1.1,
-        quadrature_points,
+        quadrature_points: surface.quadrature_points,
         reach: 30.0,
     };
     params.fine_radius = params.fine_radius_for_depth(h_min)?;
     Tip::new(&params)
-}
-
-/// The quick form of the finite-element mesh of a scene: a coarse bulk (grading at least
-/// 0.4) in a tip of at most 4 R.
-fn fe_quick(grading: &mut f64, size_over_radius: &mut f64) {
-    *grading = grading.max(0.4);
-    *size_over_radius = size_over_radius.min(4.0);
 }
 
 /// The tip of a chapter 4 scene in the model its `model` parameter names.
@@ -165,58 +129,43 @@ enum SceneTip {
     Fe(Box<FeTip>),
 }
 
-/// What a scene needs of its tip, beyond the surface model's parameters, to build either model.
-#[derive(Debug, Clone, Copy)]
+/// The model a scene's `model` parameter names, with the mesh of the finite-element one.
+#[derive(Debug, Clone)]
 struct ModelChoice {
     model: TipModel,
-    youngs_modulus: f64,
-    poisson_ratio: f64,
-    fe_grading: f64,
-    fe_size_over_radius: f64,
+    mesh: FeMesh,
 }
 
 impl SceneTip {
-    /// The tip of a scene: the surface model of [`tip_for`], or the finite-element model with
-    /// the same fine zone, surface element width and Gauss points near the substrate.
+    /// The tip of a scene (`tip`, with the waviness `(amplitude, wavelength)` [m] of (4.10)):
+    /// the surface model of [`tip_for`], or the finite-element model with the same fine zone,
+    /// surface element width and Gauss points near the substrate.
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] naming the parameter.
-    #[allow(clippy::too_many_arguments)]
     fn new(
-        choice: ModelChoice,
+        choice: &ModelChoice,
         lj: &LennardJones,
-        radius: f64,
-        amplitude: f64,
-        wavelength: f64,
+        tip: &ElasticTip,
+        waviness: (f64, f64),
         h_min: f64,
-        ring_width: f64,
-        quadrature_points: usize,
+        surface: &SurfaceModel,
     ) -> Result<Self> {
-        let nu = choice.poisson_ratio;
-        let modulus = choice.youngs_modulus / (1.0 - nu * nu);
-        let surface = tip_for(
-            lj,
-            radius,
-            modulus,
-            amplitude,
-            wavelength,
-            h_min,
-            ring_width,
-            quadrature_points,
-        )?;
+        let modulus = tip.plane_strain_modulus();
+        let surface_tip = tip_for(lj, (tip.radius, modulus), waviness, h_min, surface)?;
         Ok(match choice.model {
-            TipModel::Surface => Self::Surface(Box::new(surface)),
+            TipModel::Surface => Self::Surface(Box::new(surface_tip)),
             TipModel::Fe => Self::Fe(Box::new(fe::fe_wavy_tip(
                 lj,
-                radius,
-                choice.youngs_modulus,
-                nu,
-                (amplitude, wavelength),
-                surface.params().fine_radius,
-                ring_width,
-                choice.fe_grading,
-                choice.fe_size_over_radius,
-                quadrature_points,
+                tip,
+                waviness,
+                &fe::FeDiscretisation {
+                    fine_radius: surface_tip.params().fine_radius,
+                    element_width: surface.ring_width,
+                    grading: choice.mesh.fe_grading,
+                    size_over_radius: choice.mesh.fe_size_over_radius,
+                    quadrature_points: surface.quadrature_points,
+                },
             )?)),
         })
     }
@@ -388,16 +337,16 @@ impl Scene for Fig4_5 {
     ];
 
     fn quick(p: &mut Self::Params) {
-        p.h_min_over_zeta0 = p.h_min_over_zeta0.max(-3.0);
-        p.step_over_zeta0 = p.step_over_zeta0.max(0.25);
-        fe_quick(&mut p.fe_grading, &mut p.fe_size_over_radius);
+        p.path.h_min_over_zeta0 = p.path.h_min_over_zeta0.max(-3.0);
+        p.path.step_over_zeta0 = p.path.step_over_zeta0.max(0.25);
+        p.mesh.quick();
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
-        if p.h_min_over_zeta0 >= p.h_start_over_zeta0 {
+        if p.path.h_min_over_zeta0 >= p.path.h_start_over_zeta0 {
             return Err(Error::invalid(
                 "h_min_over_zeta0",
-                p.h_min_over_zeta0,
+                p.path.h_min_over_zeta0,
                 "must be below h_start_over_zeta0",
             ));
         }
@@ -405,31 +354,21 @@ impl Scene for Fig4_5 {
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        let (lj, modulus) = material(p.c6, p.c12, p.sigma, p.hamaker, p.youngs_modulus, p.poisson_ratio)?;
+        let (lj, modulus) = material(&p.lj, &p.tip)?;
         let zeta0 = lj.zeta0();
         let w = lj.work_of_adhesion();
-        let tip = SceneTip::new(
-            ModelChoice {
-                model: p.model,
-                youngs_modulus: p.youngs_modulus,
-                poisson_ratio: p.poisson_ratio,
-                fe_grading: p.fe_grading,
-                fe_size_over_radius: p.fe_size_over_radius,
-            },
-            &lj,
-            p.radius,
-            0.0,
-            1.0,
-            p.h_min_over_zeta0 * zeta0,
-            p.ring_width,
-            p.quadrature_points,
-        )?;
+        let choice = ModelChoice {
+            model: p.model,
+            mesh: p.mesh.clone(),
+        };
+        let h_min = p.path.h_min_over_zeta0 * zeta0;
+        let tip = SceneTip::new(&choice, &lj, &p.tip, (0.0, 1.0), h_min, &p.surface)?;
         let opts = CycleOptions {
-            h_start: p.h_start_over_zeta0 * zeta0,
-            h_min: p.h_min_over_zeta0 * zeta0,
-            step: p.step_over_zeta0 * zeta0,
+            h_start: p.path.h_start_over_zeta0 * zeta0,
+            h_min,
+            step: p.path.step_over_zeta0 * zeta0,
             refine_to: 1e-3 * zeta0,
-            contact_gap: p.contact_gap,
+            contact_gap: p.contact.contact_gap,
             keep_profiles: false,
             unload_to: None,
         };
@@ -438,15 +377,15 @@ impl Scene for Fig4_5 {
             job.progress(0.98 * f, "cycle");
             job.check()
         })?;
-        let (chi, ell) = (lj.chi(modulus), lj.ell(p.radius, modulus));
+        let (chi, ell) = (lj.chi(modulus), lj.ell(p.tip.radius, modulus));
         let md = MaugisDugdale::new(chi, ell)?;
-        let scale = (p.radius, 2.0 * modulus * p.radius * p.radius);
+        let scale = (p.tip.radius, 2.0 * modulus * p.tip.radius * p.tip.radius);
         let a_max = cycle
             .loading
             .iter()
             .map(|s| s.contact.radius())
             .fold(0.0, f64::max)
-            / p.radius;
+            / p.tip.radius;
 
         let title = match tip {
             SceneTip::Surface(_) => Self::TITLE,
@@ -459,7 +398,7 @@ impl Scene for Fig4_5 {
         )
         .titled(
             "(a)",
-            format!("μ_T = {:.3}", lj.tabor_parameter(p.radius, modulus)),
+            format!("μ_T = {:.3}", lj.tabor_parameter(p.tip.radius, modulus)),
         );
         let md_loss = draw_md(
             &mut ph,
@@ -490,7 +429,7 @@ impl Scene for Fig4_5 {
             let pts: Vec<(f64, f64)> = states
                 .iter()
                 .filter(|s| s.contact.radius() > 0.0)
-                .map(|s| (s.contact.radius() / p.radius, s.force / scale.1))
+                .map(|s| (s.contact.radius() / p.tip.radius, s.force / scale.1))
                 .collect();
             let model = match tip {
                 SceneTip::Surface(_) => "surface model",
@@ -506,12 +445,12 @@ impl Scene for Fig4_5 {
         let md_cycle = md.cycle()?;
         let pull_in = cycle.jumps.first();
         let pull_off = cycle.jumps.iter().rfind(|j| !j.loading);
-        fig.result("tabor_parameter_norm", lj.tabor_parameter(p.radius, modulus));
+        fig.result("tabor_parameter_norm", lj.tabor_parameter(p.tip.radius, modulus));
         fig.result("ell_norm", ell);
         fig.result("chi_norm", chi);
         fig.result(
             "adhesive_force_norm",
-            -cycle.adhesive_force() / (PI * w * p.radius),
+            -cycle.adhesive_force() / (PI * w * p.tip.radius),
         );
         // The most tensile force on the MD path an experiment follows (its stable states),
         // as P_adh of the model: not the force at the displacement-controlled fold.
@@ -523,18 +462,18 @@ impl Scene for Fig4_5 {
             .min(md_cycle.pull_off_from.p);
         fig.result(
             "md_adhesive_force_norm",
-            -md_adhesive * scale.1 / (PI * w * p.radius),
+            -md_adhesive * scale.1 / (PI * w * p.tip.radius),
         );
-        fig.result("hysteresis_norm", cycle.hysteresis() / (scale.1 * p.radius));
+        fig.result("hysteresis_norm", cycle.hysteresis() / (scale.1 * p.tip.radius));
         fig.result("md_loss_norm", md_loss);
         // Without instabilities (small μ_T) there is no pull-in or pull-off depth: 0, and a note.
         fig.result(
             "pull_in_depth_norm",
-            pull_in.map_or(0.0, |j| j.before.depth / p.radius),
+            pull_in.map_or(0.0, |j| j.before.depth / p.tip.radius),
         );
         fig.result(
             "pull_off_depth_norm",
-            pull_off.map_or(0.0, |j| j.before.depth / p.radius),
+            pull_off.map_or(0.0, |j| j.before.depth / p.tip.radius),
         );
         if cycle.jumps.is_empty() {
             fig.note("No instability on this cycle: the pull-in and pull-off depths are reported as 0.");
@@ -552,7 +491,7 @@ impl Scene for Fig4_5 {
         );
         fig.note(format!(
             "{}; {} states, jumps located to 1e-3 ζ0; every state certified stable: {}.",
-            tip.describe(p.ring_width, p.quadrature_points),
+            tip.describe(p.surface.ring_width, p.surface.quadrature_points),
             cycle.stats.states,
             cycle.stats.all_stable
         ));
@@ -564,44 +503,27 @@ impl Scene for Fig4_5 {
 crate::scene_params! {
     /// Parameters of scene fig4.7 (section 4.5.1, the caption of Fig. 4.7).
     pub struct Fig4_7Params {
-        /// Radius of curvature R of the tip [m].
-        radius: f64 = 10.0e-6, unit = "m", range = Range::between(1.0e-8, 1.0e-3);
-        /// Young's modulus E of the tip [Pa].
-        youngs_modulus: f64 = 2.2e6, unit = "Pa", range = Range::between(1.0e3, 1.0e12);
-        /// Poisson's ratio ν of the tip.
-        poisson_ratio: f64 = 0.25, unit = "", range = Range::between(0.0, 0.49);
-        /// C6 of the potential (4.1).
-        c6: f64 = 3.0, unit = "", range = Range::between(0.1, 100.0);
-        /// C12 of the potential (4.1).
-        c12: f64 = 1.0, unit = "", range = Range::between(0.01, 100.0);
-        /// Characteristic distance σ of the potential (4.1) [m].
-        sigma: f64 = 1.0e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
-        /// Hamaker constant A_H [J].
-        hamaker: f64 = 1.0e-21, unit = "J", range = Range::between(1.0e-23, 1.0e-17);
-        /// Amplitude A of the waviness (4.10) [m].
-        amplitude: f64 = 1.25e-9, unit = "m", range = Range::between(0.0, 1.0e-6);
-        /// Wavelength λ of the waviness (4.10) [m].
-        wavelength: f64 = 1.25e-7, unit = "m", range = Range::between(1.0e-9, 1.0e-4);
+        /// The tip (R = 10 µm, E = 2.2 MPa, ν = 0.25).
+        group tip: ElasticTip { radius: 10.0e-6, youngs_modulus: 2.2e6 };
+        /// The interaction (C6 = 3, C12 = 1, σ = 1 nm, A_H = 1e-21 J).
+        group lj: Interaction { hamaker: 1.0e-21 };
+        /// The waviness (4.10) (A = 1.25 nm, λ = 0.125 µm).
+        group wavy: Waviness;
         /// Maximum depth of the shallow cycle |h_min,1|/R.
         depth_1_over_radius: f64 = 1.5e-4, unit = "", range = Range::between(1.0e-6, 1.0e-2);
         /// Maximum depth of the deep cycle |h_min,2|/R.
         depth_2_over_radius: f64 = 7.0e-4, unit = "", range = Range::between(1.0e-6, 1.0e-2);
-        /// Start (and end) of the cycles in units of ζ0; beyond every pull-off.
-        h_start_over_zeta0: f64 = 25.0, unit = "", range = Range::between(1.0, 200.0);
-        /// Depth step in units of ζ0.
-        step_over_zeta0: f64 = 0.25, unit = "", range = Range::between(0.02, 1.0);
-        /// Ring width (surface model) or width of the surface elements (finite elements) in units of b = ζ0²E*/w.
-        ring_width: f64 = 0.25, unit = "", range = Range::between(0.02, 2.0);
-        /// Gauss points per interval of the interaction energy (per chord interval in r near the substrate for finite elements).
-        quadrature_points: usize = 4, unit = "", range = Range::between(1.0, 16.0);
-        /// Contact threshold of the gap (section 4.2.2: σ) [m].
-        contact_gap: f64 = 1.0e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
+        from DepthPath: h_start_over_zeta0: f64 = 25.0,
+            help = "Start (and end) of the cycles in units of ζ0; beyond every pull-off.";
+        from DepthPath: step_over_zeta0: f64 = 0.25;
+        /// The discretisation of the surface model.
+        group surface: SurfaceModel;
+        /// The contact threshold.
+        group contact: ContactCriterion;
         /// Model of the tip: surface (the axisymmetric surface model, seconds) or fe (the dissertation's finite-element model with the body force (4.15): about 25 000 unknowns at the defaults and several minutes per figure on 2 cores).
         model: TipModel = TipModel::Surface, unit = "", range = Range::any();
-        /// Growth of the finite-element size with the distance from the contact zone (model = fe).
-        fe_grading: f64 = 0.15, unit = "", range = Range::between(0.05, 1.0);
-        /// Radius and height of the finite-element tip in units of R (model = fe).
-        fe_size_over_radius: f64 = 20.0, unit = "", range = Range::between(2.0, 1000.0);
+        /// The mesh of the finite-element model.
+        group mesh: FeMesh;
     }
 }
 
@@ -610,10 +532,7 @@ impl Fig4_7Params {
     fn model_choice(&self) -> ModelChoice {
         ModelChoice {
             model: self.model,
-            youngs_modulus: self.youngs_modulus,
-            poisson_ratio: self.poisson_ratio,
-            fe_grading: self.fe_grading,
-            fe_size_over_radius: self.fe_size_over_radius,
+            mesh: self.mesh.clone(),
         }
     }
 }
@@ -692,7 +611,7 @@ impl Scene for Fig4_7 {
         p.depth_2_over_radius = p.depth_2_over_radius.min(1.5e-4);
         p.step_over_zeta0 = p.step_over_zeta0.max(0.5);
         p.h_start_over_zeta0 = p.h_start_over_zeta0.min(20.0);
-        fe_quick(&mut p.fe_grading, &mut p.fe_size_over_radius);
+        p.mesh.quick();
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
@@ -707,25 +626,26 @@ impl Scene for Fig4_7 {
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        let (lj, modulus) = material(p.c6, p.c12, p.sigma, p.hamaker, p.youngs_modulus, p.poisson_ratio)?;
+        let (lj, modulus) = material(&p.lj, &p.tip)?;
         let zeta0 = lj.zeta0();
-        let depths = [p.depth_1_over_radius * p.radius, p.depth_2_over_radius * p.radius];
+        let depths = [
+            p.depth_1_over_radius * p.tip.radius,
+            p.depth_2_over_radius * p.tip.radius,
+        ];
         let tip = SceneTip::new(
-            p.model_choice(),
+            &p.model_choice(),
             &lj,
-            p.radius,
-            p.amplitude,
-            p.wavelength,
+            &p.tip,
+            (p.wavy.amplitude, p.wavy.wavelength),
             -depths[1],
-            p.ring_width,
-            p.quadrature_points,
+            &p.surface,
         )?;
         let opts = |h: f64, keep: bool| CycleOptions {
             h_start: p.h_start_over_zeta0 * zeta0,
             h_min: -h,
             step: p.step_over_zeta0 * zeta0,
             refine_to: 1e-3 * zeta0,
-            contact_gap: p.contact_gap,
+            contact_gap: p.contact.contact_gap,
             keep_profiles: keep,
             unload_to: None,
         };
@@ -754,12 +674,12 @@ impl Scene for Fig4_7 {
             },
         );
         let (shallow, deep) = (shallow?, deep?);
-        let scale = (p.radius, 2.0 * modulus * p.radius * p.radius);
-        let ell = lj.ell(p.radius, modulus);
+        let scale = (p.tip.radius, 2.0 * modulus * p.tip.radius * p.tip.radius);
+        let ell = lj.ell(p.tip.radius, modulus);
         let theory = WavyJkr::new(&WavyJkrParams {
             ell,
-            amplitude_bar: p.amplitude / p.radius,
-            wavelength_bar: p.wavelength / p.radius,
+            amplitude_bar: p.wavy.amplitude / p.tip.radius,
+            wavelength_bar: p.wavy.wavelength / p.tip.radius,
         })?;
 
         let mut fig = Figure::new(Self::ID, Self::TITLE);
@@ -783,7 +703,10 @@ impl Scene for Fig4_7 {
             draw_cycle(&mut a, cycle, &format!("|h_min|/R = {depth}"), color, scale);
         }
         let pt = |s: &TipState| (s.depth / scale.0, s.force / scale.1);
-        for (label, s) in ["A", "B", "C", "D"].iter().zip(marked_states(&deep, p.radius)) {
+        for (label, s) in ["A", "B", "C", "D"]
+            .iter()
+            .zip(marked_states(&deep, p.tip.radius))
+        {
             if let Some(s) = s {
                 let (x, y) = pt(&s);
                 a.mark(
@@ -802,7 +725,7 @@ impl Scene for Fig4_7 {
             .iter()
             .map(|s| s.contact.radius())
             .fold(0.0, f64::max)
-            / p.radius;
+            / p.tip.radius;
         let curve = theory.curve(1.2 * a_max.max(1e-6), 64)?;
         // (4.26) counts h̄ positive into contact; here h < 0 is pressed.
         let mut run: Vec<(f64, f64)> = Vec::new();
@@ -830,7 +753,7 @@ impl Scene for Fig4_7 {
 
         let theory_1 = theory.cycle(p.depth_1_over_radius)?;
         let theory_2 = theory.cycle(p.depth_2_over_radius)?;
-        let e_scale = scale.1 * p.radius;
+        let e_scale = scale.1 * p.tip.radius;
         fig.result("adhesive_force_1_norm", -shallow.adhesive_force() / scale.1);
         fig.result("adhesive_force_2_norm", -deep.adhesive_force() / scale.1);
         fig.result("hysteresis_1_norm", shallow.hysteresis() / e_scale);
@@ -844,15 +767,20 @@ impl Scene for Fig4_7 {
         fig.result("ell_norm", ell);
         fig.result(
             "asperity_radius_ratio_norm",
-            p.wavelength * p.wavelength / (4.0 * PI * PI * p.amplitude.max(f64::MIN_POSITIVE) * p.radius),
+            p.wavy.wavelength * p.wavy.wavelength
+                / (4.0 * PI * PI * p.wavy.amplitude.max(f64::MIN_POSITIVE) * p.tip.radius),
         );
         fig.result(
             "all_states_stable_count",
             f64::from(u8::from(shallow.stats.all_stable && deep.stats.all_stable)),
         );
         let discretisation = match &tip {
-            SceneTip::Surface(t) => format!("Surface model: {} rings of {:.2} b", t.len(), p.ring_width),
-            SceneTip::Fe(_) => tip.describe(p.ring_width, p.quadrature_points),
+            SceneTip::Surface(t) => format!(
+                "Surface model: {} rings of {:.2} b",
+                t.len(),
+                p.surface.ring_width
+            ),
+            SceneTip::Fe(_) => tip.describe(p.surface.ring_width, p.surface.quadrature_points),
         };
         fig.note(format!(
             "{discretisation}; the tip's adhesive force and loss are below those of (4.26) \
@@ -896,41 +824,39 @@ impl Scene for Fig4_8 {
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        let (lj, _) = material(p.c6, p.c12, p.sigma, p.hamaker, p.youngs_modulus, p.poisson_ratio)?;
+        let (lj, _) = material(&p.lj, &p.tip)?;
         let zeta0 = lj.zeta0();
-        let depth = p.depth_2_over_radius * p.radius;
+        let depth = p.depth_2_over_radius * p.tip.radius;
         let tip = SceneTip::new(
-            p.model_choice(),
+            &p.model_choice(),
             &lj,
-            p.radius,
-            p.amplitude,
-            p.wavelength,
+            &p.tip,
+            (p.wavy.amplitude, p.wavy.wavelength),
             -depth,
-            p.ring_width,
-            p.quadrature_points,
+            &p.surface,
         )?;
         let opts = CycleOptions {
             h_start: p.h_start_over_zeta0 * zeta0,
             h_min: -depth,
             step: p.step_over_zeta0 * zeta0,
             refine_to: 1e-3 * zeta0,
-            contact_gap: p.contact_gap,
+            contact_gap: p.contact.contact_gap,
             keep_profiles: true,
             // D lies at h/R = 6e-5 on unloading: the rest of the cycle (the pull-off and its
             // recessions) is not drawn here.
-            unload_to: Some(1.5e-4 * p.radius),
+            unload_to: Some(1.5e-4 * p.tip.radius),
         };
         let deep = tip.cycle(&opts, |f| {
             job.progress(0.99 * f, "deep cycle");
             job.check()
         })?;
-        let states = marked_states(&deep, p.radius);
+        let states = marked_states(&deep, p.tip.radius);
         let r_max = 1.3
             * deep
                 .loading
                 .iter()
                 .map(|s| s.contact.radius())
-                .fold(p.wavelength, f64::max);
+                .fold(p.wavy.wavelength, f64::max);
         let profile = |s: &TipState| -> Vec<(f64, f64)> {
             let (radii, gaps) = tip.profile(s.depth, &s.displacement);
             radii
@@ -960,7 +886,7 @@ impl Scene for Fig4_8 {
                         format!(
                             "{} (h/R = {:.2e}, a = {:.0} nm)",
                             labels[n],
-                            s.depth / p.radius,
+                            s.depth / p.tip.radius,
                             s.contact.radius() * 1e9
                         ),
                         Style::Stable,
@@ -973,7 +899,10 @@ impl Scene for Fig4_8 {
                 Series::new(
                     "contact threshold σ",
                     Style::Reference,
-                    vec![(0.0, p.contact_gap * 1e9), (r_max * 1e9, p.contact_gap * 1e9)],
+                    vec![
+                        (0.0, p.contact.contact_gap * 1e9),
+                        (r_max * 1e9, p.contact.contact_gap * 1e9),
+                    ],
                 )
                 .with_color(7),
             );
@@ -985,11 +914,11 @@ impl Scene for Fig4_8 {
         }
         fig.result(
             "depth_ab_norm",
-            states[0].as_ref().map_or(0.0, |s| s.depth / p.radius),
+            states[0].as_ref().map_or(0.0, |s| s.depth / p.tip.radius),
         );
         fig.result(
             "depth_cd_norm",
-            states[2].as_ref().map_or(0.0, |s| s.depth / p.radius),
+            states[2].as_ref().map_or(0.0, |s| s.depth / p.tip.radius),
         );
         job.progress(1.0, "done");
         Ok(fig)

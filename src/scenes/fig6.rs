@@ -406,7 +406,7 @@ fn map_point(p: &PeelMapParams, profile: &Profile, i: usize, job: &Job) -> Resul
 fn map_points(p: &PeelMapParams) -> Vec<String> {
     linspace(0.0, p.aspect_ratio_max, p.aspect_ratio_points)
         .iter()
-        .map(|a| format!("A = {}", crate::params::fmt_sig(*a)))
+        .map(|a| format!("A = {}", crate::text::fmt_sig(*a)))
         .collect()
 }
 

@@ -371,7 +371,7 @@ crate::scene_params! {
         /// Scan size (Fig. 3.7c: 2 µm).
         length: f64 = 2.0e-6, unit = "m", range = Range::positive();
         /// Grid points per side (Fig. 3.7c: 256).
-        grid: usize = 256, unit = "", range = Range::between(8.0, 8192.0);
+        grid: usize = 256, unit = "", range = Range::between(8.0, 4096.0);
         /// Seed of the generated surface (a choice of ours).
         seed: usize = 1, unit = "", range = Range::non_negative();
         /// q0 in the fit: fixed (as the dissertation), free, or none (plain k-correlation).

@@ -125,3 +125,280 @@ fn cancelled_jobs_stop_with_the_cancelled_error() {
         }
     }
 }
+
+/// Parameter names that scenes declare differently (unit, range, help or choices), each with
+/// the scenes that differ from the others (empty: every scene its own) and why. Any other name
+/// must mean one thing with one range everywhere: the shared ones are declared once, in
+/// `scenes::groups`.
+const DECLARED_DIFFERENCES: &[(&str, &[&str], &str)] = &[
+    // Counts and seeds whose meaning is the scene's own.
+    (
+        "points",
+        &[],
+        "a count of the scene's own samples (per curve, per branch, of α)",
+    ),
+    (
+        "seed",
+        &[],
+        "the help says what the seed draws in the scene (one surface, the first of several)",
+    ),
+    ("samples", &[], "the help says how the scene uses the samples"),
+    (
+        "oversample",
+        &["fig5.7"],
+        "fig5.7 names its binned path, which fig5.8-5.9 always use",
+    ),
+    (
+        "springs",
+        &[],
+        "the help says the array's shape (N = M, or M = 1)",
+    ),
+    ("steps", &[], "the help says what is stepped in the scene"),
+    ("grid", &[], "the help cites the figure the scene reproduces"),
+    (
+        "grid_points",
+        &[],
+        "two different grids: fig3.5-accuracy's comparison and fig3.8's contour",
+    ),
+    // One symbol, different quantities.
+    (
+        "radius",
+        &["fig1.1"],
+        "fig1.1's sphere of the classical theories takes any size (non-dimensional curves)",
+    ),
+    (
+        "modulus",
+        &[],
+        "E* of the substrate (fig1.1) or of the asperities (fig3.8)",
+    ),
+    ("work_of_adhesion", &[], "the help says whose work of adhesion"),
+    ("max_depth_norm", &[], "normalised by h0 (fig1.1) or ĥ (fig2.8)"),
+    (
+        "alpha",
+        &[],
+        "the stiffness ratio of a spherical (2.35a) or a conical tip (2.45a)",
+    ),
+    ("alpha_min", &[], "the help says which set of α"),
+    (
+        "alpha_max",
+        &[],
+        "the stiffness ratio α of chapter 2, or the roughness α of (4.27) in fig4.10",
+    ),
+    ("tip_radius", &[], "an AFM tip (fig2.8-fit) or a bead (fig3.8)"),
+    (
+        "correlation_length",
+        &[],
+        "L_c in metres (chapter 3), normalised (chapter 5) or in periods (appendix C)",
+    ),
+    (
+        "correlation_lengths",
+        &[],
+        "normalised (chapter 5) or in periods (appendix C)",
+    ),
+    (
+        "rms",
+        &[],
+        "fig3.7d's σ_rms is in metres, the appendix's maps in their own units; the help cites the caption",
+    ),
+    (
+        "exponent",
+        &["fig3.7d"],
+        "the PSD (3.17) is drawn for any n > 0; fig3.8's loss integral needs n > 1",
+    ),
+    ("cutoff", &[], "the help says whether q0 is also the fit's"),
+    (
+        "surface",
+        &[],
+        "a map to analyse (fig3.7d) or one replacing the PSD (fig3.8)",
+    ),
+    ("remove_tilt", &[], "the help names the map of the scene"),
+    (
+        "sigma_min",
+        &[],
+        "σ_rms of fig3.8's contour or σ of fig4.9b's potential",
+    ),
+    (
+        "sigma_max",
+        &[],
+        "σ_rms of fig3.8's contour or σ of fig4.9b's potential",
+    ),
+    (
+        "model",
+        &[],
+        "different sets of models: chapter 2's fits, chapter 4's tips (with their cost per scene)",
+    ),
+    (
+        "roughness",
+        &[],
+        "one roughness (fig5.10-5.11) or a list, one per curve (fig5.7) or panel (fig5.9)",
+    ),
+    (
+        "stiffness_exponent",
+        &[],
+        "the help says whether k_e/k_cr = 2⁻ⁿ is shown",
+    ),
+    ("wall_clock", &[], "the help names the cost axis of the scene"),
+    (
+        "profile_file",
+        &["fig6.3-limits"],
+        "fig6.3-limits' profile replaces only its zigzag",
+    ),
+    (
+        "aspect_ratio_max",
+        &["fig6.3-limits"],
+        "fig6.3-limits goes to the steep limit, A up to 1e9",
+    ),
+    // Chapter 4: help lines that say what the scene does with a shared parameter (the unit and
+    // range are the group's, `scenes::groups`).
+    (
+        "youngs_modulus",
+        &["fig4.9a", "fig4.9b", "fig4.10", "fig4.11", "fig4.12"],
+        "the roughness scenes cite ERRATA on Fig. 4.9's modulus",
+    ),
+    ("c12", &["fig4.4"], "fig4.4 is adhesionless: C6 = 0"),
+    (
+        "h_min_over_zeta0",
+        &["fig4.3", "fig4.5-accuracy"],
+        "fig4.3 stops a little past the pull-in; fig4.5-accuracy stays shallow for its finest grid",
+    ),
+    (
+        "h_start_over_zeta0",
+        &[
+            "fig4.5-accuracy",
+            "fig4.5-models",
+            "fig4.7",
+            "fig4.8",
+            "fig4.9a",
+            "fig4.9b",
+            "fig4.10",
+            "fig4.11",
+            "fig4.12",
+        ],
+        "one cycle or several, and the pull-off they pass",
+    ),
+    (
+        "step_over_zeta0",
+        &["fig4.5-accuracy", "fig4.6"],
+        "fig4.5-accuracy's default of its sweeps; fig4.6 only loads",
+    ),
+    (
+        "ring_width",
+        &[
+            "fig4.3",
+            "fig4.5",
+            "fig4.5-accuracy",
+            "fig4.9a",
+            "fig4.9b",
+            "fig4.10",
+            "fig4.11",
+            "fig4.12",
+        ],
+        "the surface model alone, its widest ring (fig4.3) or the default of a sweep",
+    ),
+    (
+        "quadrature_points",
+        &[
+            "fig4.3",
+            "fig4.5-accuracy",
+            "fig4.9a",
+            "fig4.9b",
+            "fig4.10",
+            "fig4.11",
+            "fig4.12",
+        ],
+        "the surface model alone, or the default of a sweep",
+    ),
+    (
+        "refine_over_zeta0",
+        &["fig4.3"],
+        "fig4.3 reads the gap before a jump at this tolerance",
+    ),
+    (
+        "grading",
+        &["fig4.4"],
+        "fig4.4 cites its measured excess stiffness over Hertz",
+    ),
+    (
+        "size_over_radius",
+        &["fig4.4", "fig4.6"],
+        "fig4.4's Hertz check needs a tip 128 R wide (default), up to 1000 R, where the adhesive finite-element scenes were tested to 100 R; fig4.6 has the finite elements alone",
+    ),
+    (
+        "width",
+        &[],
+        "both models (fig4.5-models) or the finite elements alone (fig4.6)",
+    ),
+    ("amplitude_1", &[], "the help names the scene's configuration"),
+    ("amplitude_2", &[], "the help names the scene's configuration"),
+    ("amplitude_3", &[], "the help names the scene's configuration"),
+];
+
+/// One scene's declaration of a parameter as the user sees it.
+fn declaration(spec: &adhesion::params::ParamSpec) -> String {
+    format!(
+        "[{}] {} {} {}",
+        spec.unit,
+        spec.range.describe(),
+        spec.kind.expected(),
+        spec.help
+    )
+}
+
+#[test]
+fn a_parameter_name_has_one_unit_range_and_help_across_the_scenes() {
+    use std::collections::BTreeMap;
+    let mut by_name: BTreeMap<&str, Vec<(&str, String)>> = BTreeMap::new();
+    for s in scenes::all() {
+        for spec in s.specs() {
+            by_name
+                .entry(spec.name)
+                .or_default()
+                .push((s.info().id, declaration(&spec)));
+        }
+    }
+    let mut drift = Vec::new();
+    for (name, declared) in &by_name {
+        let excepted = DECLARED_DIFFERENCES.iter().find(|(n, _, _)| n == name);
+        let kept: Vec<&(&str, String)> = declared
+            .iter()
+            .filter(|(id, _)| excepted.is_none_or(|(_, ids, _)| !ids.is_empty() && !ids.contains(id)))
+            .collect();
+        let mut forms: Vec<&String> = kept.iter().map(|(_, d)| d).collect();
+        forms.sort_unstable();
+        forms.dedup();
+        if forms.len() > 1 {
+            drift.push(format!(
+                "{name}: {}",
+                kept.iter()
+                    .map(|(id, d)| format!("{id} {d}"))
+                    .collect::<Vec<_>>()
+                    .join(" | ")
+            ));
+        }
+    }
+    assert!(
+        drift.is_empty(),
+        "names declared differently without a reason in DECLARED_DIFFERENCES:\n{}",
+        drift.join("\n")
+    );
+    // The list stays honest: every name and scene in it exists, and every entry still differs.
+    for (name, ids, why) in DECLARED_DIFFERENCES {
+        assert!(!why.is_empty(), "{name}: no reason");
+        let declared = by_name
+            .get(name)
+            .unwrap_or_else(|| panic!("DECLARED_DIFFERENCES names `{name}`, which no scene has"));
+        for id in *ids {
+            assert!(
+                declared.iter().any(|(s, _)| s == id),
+                "DECLARED_DIFFERENCES: scene {id} has no `{name}`"
+            );
+        }
+        let mut forms: Vec<&String> = declared.iter().map(|(_, d)| d).collect();
+        forms.sort_unstable();
+        forms.dedup();
+        assert!(
+            forms.len() > 1,
+            "DECLARED_DIFFERENCES: `{name}` is declared alike everywhere now; remove its entry"
+        );
+    }
+}

@@ -110,7 +110,7 @@ impl RingGrid {
                 h,
                 format!(
                     "gives {} rings in the contact zone, more than {max_rings}: choose a wider ring",
-                    crate::params::fmt_sig(n_fine as f64)
+                    crate::text::fmt_sig(n_fine as f64)
                 ),
             ));
         }

@@ -22,35 +22,27 @@ use crate::models::axisymmetric::cycle::{CycleOptions, run_cycle};
 use crate::models::lennard_jones::LennardJones;
 use crate::params::Range;
 use crate::scenes::Scene;
+use crate::scenes::groups::{ContactCriterion, DepthPath, ElasticTip, Interaction, SurfaceModel};
 
 crate::scene_params! {
     /// Parameters of scene fig4.5-accuracy: the smooth tip of Fig. 4.5 (its caption) cycled to
     /// a moderate depth over a sweep of the discretisation.
     pub struct Fig4_5AccuracyParams {
-        /// Radius of curvature R of the tip [m].
-        radius: f64 = 5.0e-6, unit = "m", range = Range::between(1.0e-8, 1.0e-3);
-        /// Young's modulus E of the tip [Pa].
-        youngs_modulus: f64 = 4.4e6, unit = "Pa", range = Range::between(1.0e3, 1.0e12);
-        /// Poisson's ratio ν of the tip.
-        poisson_ratio: f64 = 0.25, unit = "", range = Range::between(0.0, 0.49);
-        /// C6 of the potential (4.1).
-        c6: f64 = 3.0, unit = "", range = Range::between(0.1, 100.0);
-        /// C12 of the potential (4.1).
-        c12: f64 = 1.0, unit = "", range = Range::between(0.01, 100.0);
-        /// Characteristic distance σ of the potential (4.1) [m].
-        sigma: f64 = 1.0e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
-        /// Hamaker constant A_H [J].
-        hamaker: f64 = 2.0e-21, unit = "J", range = Range::between(1.0e-23, 1.0e-17);
-        /// Deepest depth of the cycles in units of ζ0 (negative: pressed; moderate to keep the finest grid affordable).
-        h_min_over_zeta0: f64 = -3.0, unit = "", range = Range::between(-200.0, 0.0);
-        /// Start (and end) of the cycles in units of ζ0; beyond the pull-off separation.
-        h_start_over_zeta0: f64 = 12.0, unit = "", range = Range::between(1.0, 200.0);
-        /// Default depth step in units of ζ0 (the ring-width and Gauss-point sweeps run at it).
-        step_over_zeta0: f64 = 0.2, unit = "", range = Range::between(0.02, 1.0);
-        /// Default ring width in units of b = ζ0²E*/w (the step sweep runs at it).
-        ring_width: f64 = 0.25, unit = "", range = Range::between(0.02, 2.0);
-        /// Default Gauss points per interval of the interaction energy.
-        quadrature_points: usize = 4, unit = "", range = Range::between(1.0, 16.0);
+        /// The tip (R = 5 µm, E = 4.4 MPa, ν = 0.25).
+        group tip: ElasticTip;
+        /// The interaction (C6 = 3, C12 = 1, σ = 1 nm, A_H = 2e-21 J).
+        group lj: Interaction;
+        /// The cycles.
+        group path: DepthPath { h_min_over_zeta0: -3.0 } help {
+            h_min_over_zeta0: "Deepest depth of the cycles in units of ζ0 (negative: pressed; moderate to keep the finest grid affordable).",
+            h_start_over_zeta0: "Start (and end) of the cycles in units of ζ0; beyond the pull-off separation.",
+            step_over_zeta0: "Default depth step in units of ζ0 (the ring-width and Gauss-point sweeps run at it).",
+        };
+        /// The default discretisation of the surface model.
+        group surface: SurfaceModel help {
+            ring_width: "Default ring width in units of b = ζ0²E*/w (the step sweep runs at it).",
+            quadrature_points: "Default Gauss points per interval of the interaction energy.",
+        };
         /// Ring widths of the sweep in units of b (the finest is the reference).
         ring_widths: Vec<f64> = vec![2.0, 1.0, 0.5, 0.35, 0.25, 0.18, 0.125], unit = "", range = Range::between(0.02, 2.0);
         /// Depth steps of the sweep in units of ζ0 (the finest is the reference of the step sweep).
@@ -59,8 +51,8 @@ crate::scene_params! {
         quadrature_sweep: Vec<f64> = vec![1.0, 2.0], unit = "", range = Range::between(1.0, 16.0);
         /// Jumps are located to this depth tolerance, in units of ζ0.
         refine_over_zeta0: f64 = 1.0e-3, unit = "", range = Range::between(1.0e-6, 0.1);
-        /// Contact threshold of the gap (section 4.2.2: σ) [m].
-        contact_gap: f64 = 1.0e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
+        /// The contact threshold.
+        group contact: ContactCriterion;
         /// Cost axis: measured run time (true) or the deterministic count of Newton iterations (false, for reproducible snapshots).
         wall_clock: bool = true, unit = "", range = Range::any();
     }
@@ -134,7 +126,7 @@ impl Sweep {
     /// and Gauss points, the steps at the default width, and the other Gauss-point counts over
     /// the widths from the coarsest down to the default.
     fn new(p: &Fig4_5AccuracyParams) -> Self {
-        let mut counts = vec![p.quadrature_points];
+        let mut counts = vec![p.surface.quadrature_points];
         for &n in &p.quadrature_sweep {
             // Whole numbers (validated).
             let n = n as usize;
@@ -145,12 +137,12 @@ impl Sweep {
         Self {
             runs: Vec::new(),
             default: Grid {
-                width: p.ring_width,
-                step: p.step_over_zeta0,
-                points: p.quadrature_points,
+                width: p.surface.ring_width,
+                step: p.path.step_over_zeta0,
+                points: p.surface.quadrature_points,
             },
-            widths: with_default(&p.ring_widths, p.ring_width),
-            steps: with_default(&p.steps, p.step_over_zeta0),
+            widths: with_default(&p.ring_widths, p.surface.ring_width),
+            steps: with_default(&p.steps, p.path.step_over_zeta0),
             counts,
             wall_clock: p.wall_clock,
         }
@@ -269,14 +261,18 @@ fn floored(e: f64) -> f64 {
 fn run_grid(p: &Fig4_5AccuracyParams, lj: &LennardJones, modulus: f64, grid: Grid, job: &Job) -> Result<Run> {
     let t0 = Instant::now();
     let zeta0 = lj.zeta0();
-    let h_min = p.h_min_over_zeta0 * zeta0;
-    let tip = tip_for(lj, p.radius, modulus, 0.0, 1.0, h_min, grid.width, grid.points)?;
+    let h_min = p.path.h_min_over_zeta0 * zeta0;
+    let surface = SurfaceModel {
+        ring_width: grid.width,
+        quadrature_points: grid.points,
+    };
+    let tip = tip_for(lj, (p.tip.radius, modulus), (0.0, 1.0), h_min, &surface)?;
     let opts = CycleOptions {
-        h_start: p.h_start_over_zeta0 * zeta0,
+        h_start: p.path.h_start_over_zeta0 * zeta0,
         h_min,
         step: grid.step * zeta0,
         refine_to: p.refine_over_zeta0 * zeta0,
-        contact_gap: p.contact_gap,
+        contact_gap: p.contact.contact_gap,
         keep_profiles: false,
         unload_to: None,
     };
@@ -286,8 +282,8 @@ fn run_grid(p: &Fig4_5AccuracyParams, lj: &LennardJones, modulus: f64, grid: Gri
     })?;
     Ok(Run {
         grid,
-        adhesive_force: -cycle.adhesive_force() / (PI * lj.work_of_adhesion() * p.radius),
-        hysteresis: cycle.hysteresis() / (2.0 * modulus * p.radius.powi(3)),
+        adhesive_force: -cycle.adhesive_force() / (PI * lj.work_of_adhesion() * p.tip.radius),
+        hysteresis: cycle.hysteresis() / (2.0 * modulus * p.tip.radius.powi(3)),
         spurious: cycle.jumps.len().saturating_sub(2),
         seconds: t0.elapsed().as_secs_f64(),
         newton_iterations: cycle.stats.newton_iterations,
@@ -543,8 +539,8 @@ impl Scene for Fig4_5Accuracy {
     ];
 
     fn quick(p: &mut Self::Params) {
-        p.h_min_over_zeta0 = p.h_min_over_zeta0.max(-1.0);
-        p.ring_width = p.ring_width.max(0.5);
+        p.path.h_min_over_zeta0 = p.path.h_min_over_zeta0.max(-1.0);
+        p.surface.ring_width = p.surface.ring_width.max(0.5);
         p.ring_widths = vec![1.0, 0.35];
         p.steps = vec![0.5];
         p.quadrature_sweep.truncate(1);
@@ -552,10 +548,10 @@ impl Scene for Fig4_5Accuracy {
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
-        if p.h_min_over_zeta0 >= p.h_start_over_zeta0 {
+        if p.path.h_min_over_zeta0 >= p.path.h_start_over_zeta0 {
             return Err(Error::invalid(
                 "h_min_over_zeta0",
-                p.h_min_over_zeta0,
+                p.path.h_min_over_zeta0,
                 "must be below h_start_over_zeta0",
             ));
         }
@@ -570,7 +566,7 @@ impl Scene for Fig4_5Accuracy {
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        let (lj, modulus) = material(p.c6, p.c12, p.sigma, p.hamaker, p.youngs_modulus, p.poisson_ratio)?;
+        let (lj, modulus) = material(&p.lj, &p.tip)?;
         let mut sweep = Sweep::new(p);
         let grids = sweep.grids();
         job.progress(0.0, "cycles");

@@ -21,9 +21,10 @@ use crate::figure::{Axis, Figure, Legend, Marker, MarkerShape, Panel, Series, St
 use crate::job::Job;
 use crate::models::axisymmetric::cycle::{CycleOptions, TipCycle, TipState, run_cycle};
 use crate::models::axisymmetric::tip::{Tip, TipParams};
-use crate::models::lennard_jones::{InstabilityCriterion, LennardJones, LennardJonesParams, TractionLaw};
+use crate::models::lennard_jones::{InstabilityCriterion, LennardJones, TractionLaw};
 use crate::params::Range;
 use crate::scenes::Scene;
+use crate::scenes::groups::{ContactCriterion, DepthPath, ElasticTip, Interaction, SurfaceModel};
 
 /// The cycles start at h = (START_PER_TABOR μ_T + START_OFFSET) ζ0: beyond the JKR pull-off
 /// separation of a displacement-controlled tip, (3/4)π^(2/3) μ_T ζ0 = 1.61 μ_T ζ0, and beyond
@@ -47,30 +48,22 @@ crate::scene_params! {
         error_tabor_parameter: f64 = 5.0, unit = "", range = Range::between(0.3, 8.0);
         /// Largest μ_T of the (4.23) curves.
         curve_tabor_max: f64 = 10.0, unit = "", range = Range::between(0.3, 100.0);
-        /// Radius of curvature R of the tip [m].
-        radius: f64 = 5.0e-6, unit = "m", range = Range::between(1.0e-8, 1.0e-3);
-        /// C6 of the potential (4.1).
-        c6: f64 = 3.0, unit = "", range = Range::between(0.1, 100.0);
-        /// C12 of the potential (4.1).
-        c12: f64 = 1.0, unit = "", range = Range::between(0.01, 100.0);
-        /// Characteristic distance σ of the potential (4.1) [m].
-        sigma: f64 = 1.0e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
-        /// Hamaker constant A_H [J].
-        hamaker: f64 = 2.0e-21, unit = "J", range = Range::between(1.0e-23, 1.0e-17);
-        /// Deepest depth of the cycles in units of ζ0 (shallow: a little past the pull-in).
-        h_min_over_zeta0: f64 = -2.0, unit = "", range = Range::between(-50.0, 0.0);
-        /// Depth step in units of ζ0.
-        step_over_zeta0: f64 = 0.2, unit = "", range = Range::between(0.02, 1.0);
+        from ElasticTip: radius: f64;
+        /// The interaction (C6 = 3, C12 = 1, σ = 1 nm, A_H = 2e-21 J).
+        group lj: Interaction;
+        from DepthPath: h_min_over_zeta0: f64 = -2.0,
+            help = "Deepest depth of the cycles in units of ζ0 (shallow: a little past the pull-in).";
+        from DepthPath: step_over_zeta0: f64;
         /// Jumps are located to this depth tolerance, in units of ζ0 (the gap before a jump is read there).
-        refine_over_zeta0: f64 = 1.0e-4, unit = "", range = Range::between(1.0e-7, 0.1);
-        /// Widest ring in units of b = ζ0²E*/w (0.25: the contact edge does not hop from ring to ring).
-        ring_width: f64 = 0.25, unit = "", range = Range::between(0.02, 2.0);
+        refine_over_zeta0: f64 = 1.0e-4, unit = "", range = Range::between(1.0e-6, 0.1);
+        from SurfaceModel: ring_width: f64,
+            help = "Widest ring in units of b = ζ0²E*/w (0.25: the contact edge does not hop from ring to ring).";
         /// Least number of rings across √(2Rζ0), the width of the interaction zone of a stiff tip.
         rings_per_zone: usize = 20, unit = "", range = Range::between(2.0, 200.0);
-        /// Gauss points per interval of the interaction energy.
-        quadrature_points: usize = 4, unit = "", range = Range::between(1.0, 16.0);
-        /// Contact threshold of the gap (section 4.2.2: σ) [m].
-        contact_gap: f64 = 1.0e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
+        from SurfaceModel: quadrature_points: usize,
+            help = "Gauss points per interval of the interaction energy.";
+        /// The contact threshold.
+        group contact: ContactCriterion;
         /// Cycles that bisect μ_T between the largest value without a jump and the smallest with one.
         onset_bisections: usize = 4, unit = "", range = Range::between(0.0, 20.0);
         /// Points of each (4.23) curve.
@@ -83,12 +76,7 @@ crate::scene_params! {
 /// # Errors
 /// [`Error::InvalidParameter`] naming the interaction parameter.
 fn interaction(p: &Fig4_3Params) -> Result<LennardJones> {
-    LennardJones::new(&LennardJonesParams {
-        c6: p.c6,
-        c12: p.c12,
-        sigma: p.sigma,
-        hamaker: p.hamaker,
-    })
+    p.lj.lennard_jones()
 }
 
 /// The smooth tip of Tabor parameter `mu` (E* from (1.8)) on its grid.
@@ -169,7 +157,7 @@ fn cycle_of(
         h_min: p.h_min_over_zeta0 * zeta0,
         step: p.step_over_zeta0 * zeta0,
         refine_to: p.refine_over_zeta0 * zeta0,
-        contact_gap: p.contact_gap,
+        contact_gap: p.contact.contact_gap,
         keep_profiles: false,
         unload_to: None,
     };
@@ -1061,7 +1049,7 @@ mod tests {
 
     #[test]
     fn branches_start_at_the_double_root_and_satisfy_4_23() {
-        let lj = LennardJones::new(&LennardJonesParams::default()).unwrap();
+        let lj = LennardJones::new(&crate::models::lennard_jones::LennardJonesParams::default()).unwrap();
         let c = InstabilityCriterion::new(&lj, TractionLaw::AsPrinted).unwrap();
         let (pin, poff) = criterion_branches(&c, 10.0, 20).unwrap();
         assert_eq!(pin.len(), 20);

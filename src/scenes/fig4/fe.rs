@@ -17,68 +17,56 @@ use crate::models::body_force_fe::tip::{FeGeometry, FeTip, FeTipParams};
 use crate::models::lennard_jones::LennardJones;
 use crate::params::Range;
 use crate::scenes::Scene;
+use crate::scenes::groups::{ContactCriterion, DepthPath, ElasticTip, Interaction, SurfaceModel};
 
-/// The finite-element tip of a smooth tip in a scene: its material, interaction and mesh.
-#[allow(clippy::too_many_arguments)]
-fn fe_tip(
-    lj: &LennardJones,
-    radius: f64,
-    youngs_modulus: f64,
-    poisson_ratio: f64,
-    fine_radius: f64,
-    element_width: f64,
-    grading: f64,
-    size_over_radius: f64,
-) -> Result<FeTip> {
-    fe_wavy_tip(
-        lj,
-        radius,
-        youngs_modulus,
-        poisson_ratio,
-        (0.0, 1.0),
-        fine_radius,
-        element_width,
-        grading,
-        size_over_radius,
-        4,
-    )
+/// The mesh of a scene's finite-element tip: the fine zone near the substrate, its surface
+/// elements, the bulk and the modelled size of the tip.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct FeDiscretisation {
+    /// Radius of the fine zone [m].
+    pub(super) fine_radius: f64,
+    /// Width of the surface elements of the fine zone in units of b = ζ0²E*/w.
+    pub(super) element_width: f64,
+    /// Growth of the element size with the distance from the fine zone.
+    pub(super) grading: f64,
+    /// Radius and height of the modelled tip in units of R.
+    pub(super) size_over_radius: f64,
+    /// Gauss points in r per chord interval near the substrate.
+    pub(super) quadrature_points: usize,
 }
 
-/// The finite-element tip of a scene with the waviness `(amplitude, wavelength)` [m] of (4.10)
-/// and `quadrature_points` Gauss points in r near the substrate.
-#[allow(clippy::too_many_arguments)]
+/// The finite-element tip of a smooth tip in a scene: its material, interaction and mesh.
+fn fe_tip(lj: &LennardJones, tip: &ElasticTip, mesh: &FeDiscretisation) -> Result<FeTip> {
+    fe_wavy_tip(lj, tip, (0.0, 1.0), mesh)
+}
+
+/// The finite-element tip of a scene with the waviness `(amplitude, wavelength)` [m] of (4.10).
 pub(super) fn fe_wavy_tip(
     lj: &LennardJones,
-    radius: f64,
-    youngs_modulus: f64,
-    poisson_ratio: f64,
+    tip: &ElasticTip,
     (amplitude, wavelength): (f64, f64),
-    fine_radius: f64,
-    element_width: f64,
-    grading: f64,
-    size_over_radius: f64,
-    quadrature_points: usize,
+    mesh: &FeDiscretisation,
 ) -> Result<FeTip> {
     let p = lj.params();
     FeTip::new(&FeTipParams {
-        radius,
-        youngs_modulus,
-        poisson_ratio,
+        radius: tip.radius,
+        youngs_modulus: tip.youngs_modulus,
+        poisson_ratio: tip.poisson_ratio,
         c6: p.c6,
         c12: p.c12,
         sigma: p.sigma,
         hamaker: p.hamaker,
         amplitude,
         wavelength,
-        element_width,
-        fine_radius,
+        element_width: mesh.element_width,
+        fine_radius: mesh.fine_radius,
         first_layer: 0.1,
         layer_growth: 1.3,
-        grading,
-        r0: size_over_radius * radius,
-        h0: size_over_radius * radius,
-        quadrature_points,
-        far_quadrature_points: FAR_POINTS.min(quadrature_points),
+        grading: mesh.grading,
+        r0: mesh.size_over_radius * tip.radius,
+        h0: mesh.size_over_radius * tip.radius,
+        quadrature_points: mesh.quadrature_points,
+        far_quadrature_points: FAR_POINTS.min(mesh.quadrature_points),
         geometry: FeGeometry::HalfSpace,
     })
 }
@@ -87,18 +75,11 @@ crate::scene_params! {
     /// Parameters of scene fig4.4 (section 4.4, the caption of Fig. 4.4: adhesionless contact,
     /// C6 = 0).
     pub struct Fig4_4Params {
-        /// Radius of curvature R of the tip [m].
-        radius: f64 = 10.0e-6, unit = "m", range = Range::between(1.0e-7, 1.0e-3);
-        /// Young's modulus E of the tip [Pa].
-        youngs_modulus: f64 = 1.1e6, unit = "Pa", range = Range::between(1.0e4, 1.0e11);
-        /// Poisson's ratio ν of the tip.
-        poisson_ratio: f64 = 0.25, unit = "", range = Range::between(0.0, 0.49);
-        /// C12 of the potential (4.1) (C6 = 0: no attraction).
-        c12: f64 = 1.0, unit = "", range = Range::between(0.01, 100.0);
-        /// Characteristic distance σ of the potential (4.1) [m].
-        sigma: f64 = 1.0e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
-        /// Hamaker constant A_H [J].
-        hamaker: f64 = 2.0e-21, unit = "J", range = Range::between(1.0e-23, 1.0e-17);
+        /// The tip (R = 10 µm, E = 1.1 MPa, ν = 0.25).
+        group tip: ElasticTip { radius: 10.0e-6, youngs_modulus: 1.1e6 };
+        from Interaction: c12: f64, help = "C12 of the potential (4.1) (C6 = 0: no attraction).";
+        from Interaction: sigma: f64;
+        from Interaction: hamaker: f64;
         /// Deepest penetration in units of σ.
         depth_over_sigma: f64 = 300.0, unit = "", range = Range::between(20.0, 2000.0);
         /// Depth step in units of σ (the states do not depend on it: one equilibrium per depth).
@@ -172,30 +153,34 @@ impl Scene for Fig4_4 {
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        let (lj, modulus) = material(0.0, p.c12, p.sigma, p.hamaker, p.youngs_modulus, p.poisson_ratio)?;
+        let interaction = Interaction {
+            c6: 0.0,
+            c12: p.c12,
+            sigma: p.sigma,
+            hamaker: p.hamaker,
+        };
+        let (lj, modulus) = material(&interaction, &p.tip)?;
         let s = p.sigma;
-        let fine = 1.3 * (p.radius * p.depth_over_sigma * s).sqrt() + 20.0 * p.element_width;
+        let fine = 1.3 * (p.tip.radius * p.depth_over_sigma * s).sqrt() + 20.0 * p.element_width;
         // The element width in the model's radial unit b.
-        let probe = fe_tip(
-            &lj,
-            p.radius,
-            p.youngs_modulus,
-            p.poisson_ratio,
-            fine,
-            1.0,
-            1.0,
-            4.0,
-        )?;
+        let mesh = FeDiscretisation {
+            fine_radius: fine,
+            element_width: 1.0,
+            grading: 1.0,
+            size_over_radius: 4.0,
+            quadrature_points: 4,
+        };
+        let probe = fe_tip(&lj, &p.tip, &mesh)?;
         let b = probe.scales().radial;
         let tip = fe_tip(
             &lj,
-            p.radius,
-            p.youngs_modulus,
-            p.poisson_ratio,
-            fine,
-            p.element_width / b,
-            p.grading,
-            p.size_over_radius,
+            &p.tip,
+            &FeDiscretisation {
+                element_width: p.element_width / b,
+                grading: p.grading,
+                size_over_radius: p.size_over_radius,
+                ..mesh
+            },
         )?;
         let l = tip.length_unit();
         let opts = CycleOptions {
@@ -215,7 +200,7 @@ impl Scene for Fig4_4 {
             job.check()
         })?;
         let run_time = start.elapsed().as_secs_f64();
-        let k = 4.0 / 3.0 * modulus * p.radius.sqrt();
+        let k = 4.0 / 3.0 * modulus * p.tip.radius.sqrt();
         let deepest = cycle.loading.last().ok_or_else(|| Error::Unresolvable {
             model: "fig4.4",
             reason: "the loading path is empty".into(),
@@ -230,7 +215,7 @@ impl Scene for Fig4_4 {
         for st in &deep {
             let d = wall - st.depth;
             dev_p = dev_p.max((st.force - k * d.powf(1.5)).abs() / st.force);
-            let a_h = (p.radius * d).sqrt();
+            let a_h = (p.tip.radius * d).sqrt();
             dev_a = dev_a.max((st.contact.radius() - a_h).abs() / a_h);
         }
 
@@ -270,7 +255,7 @@ impl Scene for Fig4_4 {
         let hertz_a: Vec<(f64, f64)> = (0..=200)
             .map(|i| {
                 let a = a_max * i as f64 / 200.0;
-                (a * 1e6, k * (a * a / p.radius).powf(1.5) * 1e6)
+                (a * 1e6, k * (a * a / p.tip.radius).powf(1.5) * 1e6)
             })
             .collect();
         pa.add(Series::new("Hertz, a² = R d", Style::Reference, hertz_a).with_color(7));
@@ -322,26 +307,14 @@ impl Scene for Fig4_4 {
 crate::scene_params! {
     /// Parameters of scene fig4.5-models (Fig. 4.5's smooth tip in both models).
     pub struct Fig4_5ModelsParams {
-        /// Radius of curvature R of the tip [m].
-        radius: f64 = 5.0e-6, unit = "m", range = Range::between(1.0e-7, 1.0e-3);
-        /// Young's modulus E of the tip [Pa].
-        youngs_modulus: f64 = 4.4e6, unit = "Pa", range = Range::between(1.0e4, 1.0e11);
-        /// Poisson's ratio ν of the tip.
-        poisson_ratio: f64 = 0.25, unit = "", range = Range::between(0.0, 0.49);
-        /// C6 of the potential (4.1).
-        c6: f64 = 3.0, unit = "", range = Range::between(0.1, 100.0);
-        /// C12 of the potential (4.1).
-        c12: f64 = 1.0, unit = "", range = Range::between(0.01, 100.0);
-        /// Characteristic distance σ of the potential (4.1) [m].
-        sigma: f64 = 1.0e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
-        /// Hamaker constant A_H [J].
-        hamaker: f64 = 2.0e-21, unit = "J", range = Range::between(1.0e-23, 1.0e-17);
-        /// Deepest depth of the cycle in units of ζ0 (negative: pressed).
-        h_min_over_zeta0: f64 = -15.0, unit = "", range = Range::between(-100.0, 0.0);
-        /// Start (and end) of the cycle in units of ζ0.
-        h_start_over_zeta0: f64 = 12.0, unit = "", range = Range::between(1.0, 100.0);
-        /// Depth step in units of ζ0.
-        step_over_zeta0: f64 = 0.2, unit = "", range = Range::between(1.0e-2, 2.0);
+        /// The tip (R = 5 µm, E = 4.4 MPa, ν = 0.25).
+        group tip: ElasticTip;
+        /// The interaction (C6 = 3, C12 = 1, σ = 1 nm, A_H = 2e-21 J).
+        group lj: Interaction;
+        /// The cycle.
+        group path: DepthPath help {
+            h_start_over_zeta0: "Start (and end) of the cycle in units of ζ0.",
+        };
         /// Ring width of the surface model and element width of the finite-element model over the contact zone, in units of b = ζ0²E*/w.
         width: f64 = 0.25, unit = "", range = Range::between(0.05, 2.0);
         /// Growth of the element size with the distance from the contact zone.
@@ -354,8 +327,8 @@ crate::scene_params! {
         convergence_sizes: Vec<f64> = vec![5.0, 10.0, 20.0, 40.0], unit = "", range = Range::between(2.0, 100.0);
         /// Run the convergence studies of panel (b): 1 yes, 0 no.
         convergence_study: usize = 1, unit = "", range = Range::between(0.0, 1.0);
-        /// Contact threshold of the gap (section 4.2.2: σ) [m].
-        contact_gap: f64 = 1.0e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
+        /// The contact threshold.
+        group contact: ContactCriterion;
     }
 }
 
@@ -425,19 +398,19 @@ impl Scene for Fig4_5Models {
     ];
 
     fn quick(p: &mut Self::Params) {
-        p.h_min_over_zeta0 = p.h_min_over_zeta0.max(0.0);
-        p.h_start_over_zeta0 = p.h_start_over_zeta0.min(9.0);
-        p.step_over_zeta0 = p.step_over_zeta0.max(0.5);
+        p.path.h_min_over_zeta0 = p.path.h_min_over_zeta0.max(0.0);
+        p.path.h_start_over_zeta0 = p.path.h_start_over_zeta0.min(9.0);
+        p.path.step_over_zeta0 = p.path.step_over_zeta0.max(0.5);
         p.grading = p.grading.max(0.5);
         p.size_over_radius = p.size_over_radius.min(4.0);
         p.convergence_study = 0;
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
-        if p.h_min_over_zeta0 >= p.h_start_over_zeta0 {
+        if p.path.h_min_over_zeta0 >= p.path.h_start_over_zeta0 {
             return Err(Error::invalid(
                 "h_min_over_zeta0",
-                p.h_min_over_zeta0,
+                p.path.h_min_over_zeta0,
                 "must be below h_start_over_zeta0",
             ));
         }
@@ -445,29 +418,34 @@ impl Scene for Fig4_5Models {
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        let (lj, modulus) = material(p.c6, p.c12, p.sigma, p.hamaker, p.youngs_modulus, p.poisson_ratio)?;
+        let (lj, modulus) = material(&p.lj, &p.tip)?;
         let (zeta0, w) = (lj.zeta0(), lj.work_of_adhesion());
-        let h_min = p.h_min_over_zeta0 * zeta0;
-        let surface = tip_for(&lj, p.radius, modulus, 0.0, 1.0, h_min, p.width, 4)?;
+        let h_min = p.path.h_min_over_zeta0 * zeta0;
+        let discretisation = SurfaceModel {
+            ring_width: p.width,
+            quadrature_points: 4,
+        };
+        let surface = tip_for(&lj, (p.tip.radius, modulus), (0.0, 1.0), h_min, &discretisation)?;
         let fine = surface.params().fine_radius;
         let fe_at = |grading: f64, size: f64| {
             fe_tip(
                 &lj,
-                p.radius,
-                p.youngs_modulus,
-                p.poisson_ratio,
-                fine,
-                p.width,
-                grading,
-                size,
+                &p.tip,
+                &FeDiscretisation {
+                    fine_radius: fine,
+                    element_width: p.width,
+                    grading,
+                    size_over_radius: size,
+                    quadrature_points: 4,
+                },
             )
         };
         let opts = |h_min: f64| CycleOptions {
-            h_start: p.h_start_over_zeta0 * zeta0,
+            h_start: p.path.h_start_over_zeta0 * zeta0,
             h_min,
-            step: p.step_over_zeta0 * zeta0,
+            step: p.path.step_over_zeta0 * zeta0,
             refine_to: 1e-3 * zeta0,
-            contact_gap: p.contact_gap,
+            contact_gap: p.contact.contact_gap,
             keep_profiles: false,
             unload_to: None,
         };
@@ -542,8 +520,8 @@ impl Scene for Fig4_5Models {
             Some(c.adhesive_force())
         };
 
-        let force_scale = std::f64::consts::PI * w * p.radius;
-        let scale = (p.radius, 2.0 * modulus * p.radius * p.radius);
+        let force_scale = std::f64::consts::PI * w * p.tip.radius;
+        let scale = (p.tip.radius, 2.0 * modulus * p.tip.radius * p.tip.radius);
         let mut fig = Figure::new(Self::ID, Self::TITLE);
         let mut ph = Panel::new(
             Axis::linear("Indentation depth h/R", ""),
@@ -614,7 +592,7 @@ impl Scene for Fig4_5Models {
         }
         let (fa, fh, fi, fo) = summary(&fe.cycle);
         let (sa, sh, si, so) = summary(&bem.cycle);
-        let loss_scale = scale.1 * p.radius;
+        let loss_scale = scale.1 * p.tip.radius;
         fig.result("fe_adhesive_force_norm", -fa / force_scale);
         fig.result("surface_adhesive_force_norm", -sa / force_scale);
         fig.result("fe_hysteresis_norm", fh / loss_scale);
@@ -656,24 +634,13 @@ impl Scene for Fig4_5Models {
 crate::scene_params! {
     /// Parameters of scene fig4.6 (Fig. 4.5's smooth tip, the fields after the pull-in).
     pub struct Fig4_6Params {
-        /// Radius of curvature R of the tip [m].
-        radius: f64 = 5.0e-6, unit = "m", range = Range::between(1.0e-7, 1.0e-3);
-        /// Young's modulus E of the tip [Pa].
-        youngs_modulus: f64 = 4.4e6, unit = "Pa", range = Range::between(1.0e4, 1.0e11);
-        /// Poisson's ratio ν of the tip.
-        poisson_ratio: f64 = 0.25, unit = "", range = Range::between(0.0, 0.49);
-        /// C6 of the potential (4.1).
-        c6: f64 = 3.0, unit = "", range = Range::between(0.1, 100.0);
-        /// C12 of the potential (4.1).
-        c12: f64 = 1.0, unit = "", range = Range::between(0.01, 100.0);
-        /// Characteristic distance σ of the potential (4.1) [m].
-        sigma: f64 = 1.0e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
-        /// Hamaker constant A_H [J].
-        hamaker: f64 = 2.0e-21, unit = "J", range = Range::between(1.0e-23, 1.0e-17);
+        /// The tip (R = 5 µm, E = 4.4 MPa, ν = 0.25).
+        group tip: ElasticTip;
+        /// The interaction (C6 = 3, C12 = 1, σ = 1 nm, A_H = 2e-21 J).
+        group lj: Interaction;
         /// Depth of the state shown, in units of ζ0 (after the pull-in, which happens near +4 ζ0 at the defaults).
         depth_over_zeta0: f64 = 0.0, unit = "", range = Range::between(-20.0, 20.0);
-        /// Depth step of the loading in units of ζ0.
-        step_over_zeta0: f64 = 0.25, unit = "", range = Range::between(1.0e-2, 2.0);
+        from DepthPath: step_over_zeta0: f64 = 0.25, help = "Depth step of the loading in units of ζ0.";
         /// Element width over the contact zone in units of b = ζ0²E*/w.
         width: f64 = 0.25, unit = "", range = Range::between(0.05, 2.0);
         /// Growth of the element size with the distance from the contact zone.
@@ -724,19 +691,30 @@ impl Scene for Fig4_6 {
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        let (lj, modulus) = material(p.c6, p.c12, p.sigma, p.hamaker, p.youngs_modulus, p.poisson_ratio)?;
+        let (lj, modulus) = material(&p.lj, &p.tip)?;
         let zeta0 = lj.zeta0();
         let h = p.depth_over_zeta0 * zeta0;
-        let surface = tip_for(&lj, p.radius, modulus, 0.0, 1.0, h.min(0.0), p.width, 4)?;
+        let discretisation = SurfaceModel {
+            ring_width: p.width,
+            quadrature_points: 4,
+        };
+        let surface = tip_for(
+            &lj,
+            (p.tip.radius, modulus),
+            (0.0, 1.0),
+            h.min(0.0),
+            &discretisation,
+        )?;
         let tip = fe_tip(
             &lj,
-            p.radius,
-            p.youngs_modulus,
-            p.poisson_ratio,
-            surface.params().fine_radius,
-            p.width,
-            p.grading,
-            p.size_over_radius,
+            &p.tip,
+            &FeDiscretisation {
+                fine_radius: surface.params().fine_radius,
+                element_width: p.width,
+                grading: p.grading,
+                size_over_radius: p.size_over_radius,
+                quadrature_points: 4,
+            },
         )?;
         let start = (h + 2.0 * zeta0).max(8.0 * zeta0);
         let opts = CycleOptions {
@@ -744,7 +722,7 @@ impl Scene for Fig4_6 {
             h_min: h,
             step: p.step_over_zeta0 * zeta0,
             refine_to: 1e-2 * zeta0,
-            contact_gap: p.sigma,
+            contact_gap: p.lj.sigma,
             keep_profiles: true,
             unload_to: Some(h + 0.5 * p.step_over_zeta0 * zeta0),
         };

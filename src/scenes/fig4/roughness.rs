@@ -19,6 +19,7 @@ use crate::models::axisymmetric::tip::Tip;
 use crate::models::lennard_jones::LennardJones;
 use crate::params::Range;
 use crate::scenes::Scene;
+use crate::scenes::groups::{ContactCriterion, DepthPath, ElasticTip, Interaction, SurfaceModel, Waviness};
 
 /// The parameters shared by the roughness scenes (those of Fig. 4.7a with σ = 1.5 nm and
 /// |h_min|/R = 6e-4), with the scene's own amplitudes and extra fields appended.
@@ -27,30 +28,24 @@ macro_rules! rough_tip_params {
         crate::scene_params! {
             $(#[$meta])*
             pub struct $name {
-                /// Radius of curvature R of the tip [m].
-                radius: f64 = 10.0e-6, unit = "m", range = Range::between(1.0e-8, 1.0e-3);
-                /// Young's modulus E of the tip [Pa] (see ERRATA on Fig. 4.9).
-                youngs_modulus: f64 = $e, unit = "Pa", range = Range::between(1.0e3, 1.0e12);
-                /// Poisson's ratio ν of the tip.
-                poisson_ratio: f64 = 0.25, unit = "", range = Range::between(0.0, 0.49);
-                /// C6 of the potential (4.1).
-                c6: f64 = 3.0, unit = "", range = Range::between(0.1, 100.0);
-                /// C12 of the potential (4.1).
-                c12: f64 = 1.0, unit = "", range = Range::between(0.01, 100.0);
-                /// Hamaker constant A_H [J].
-                hamaker: f64 = 1.0e-21, unit = "J", range = Range::between(1.0e-23, 1.0e-17);
-                /// Wavelength λ of the waviness (4.10) [m].
-                wavelength: f64 = 1.25e-7, unit = "m", range = Range::between(1.0e-9, 1.0e-4);
+                /// The tip (R = 10 µm, ν = 0.25).
+                group tip: ElasticTip { radius: 10.0e-6, youngs_modulus: $e } help {
+                    youngs_modulus: "Young's modulus E of the tip [Pa] (see ERRATA on Fig. 4.9).",
+                };
+                from Interaction: c6: f64;
+                from Interaction: c12: f64;
+                from Interaction: hamaker: f64 = 1.0e-21;
+                from Waviness: wavelength: f64;
                 /// Maximum depth of the cycles |h_min|/R.
                 depth_over_radius: f64 = 6.0e-4, unit = "", range = Range::between(1.0e-6, 1.0e-2);
-                /// Start (and end) of the cycles in units of ζ0; beyond every pull-off.
-                h_start_over_zeta0: f64 = 25.0, unit = "", range = Range::between(1.0, 200.0);
-                /// Depth step in units of ζ0.
-                step_over_zeta0: f64 = 0.25, unit = "", range = Range::between(0.02, 1.0);
-                /// Ring width in units of b = ζ0²E*/w.
-                ring_width: f64 = 0.25, unit = "", range = Range::between(0.02, 2.0);
-                /// Gauss points per interval of the interaction energy.
-                quadrature_points: usize = 4, unit = "", range = Range::between(1.0, 16.0);
+                from DepthPath: h_start_over_zeta0: f64 = 25.0,
+                    help = "Start (and end) of the cycles in units of ζ0; beyond every pull-off.";
+                from DepthPath: step_over_zeta0: f64 = 0.25;
+                /// The discretisation of the surface model.
+                group surface: SurfaceModel help {
+                    ring_width: "Ring width in units of b = ζ0²E*/w.",
+                    quadrature_points: "Gauss points per interval of the interaction energy.",
+                };
                 $($extra)*
             }
         }
@@ -64,24 +59,26 @@ macro_rules! rough_tip_params {
                 sigma: f64,
                 contact_gap: f64,
             ) -> crate::error::Result<crate::scenes::fig4::roughness::Setup> {
-                let (lj, modulus) = crate::scenes::fig4::material(
-                    self.c6,
-                    self.c12,
+                let interaction = crate::scenes::groups::Interaction {
+                    c6: self.c6,
+                    c12: self.c12,
                     sigma,
-                    self.hamaker,
+                    hamaker: self.hamaker,
+                };
+                let tip = crate::scenes::groups::ElasticTip {
                     youngs_modulus,
-                    self.poisson_ratio,
-                )?;
+                    ..self.tip.clone()
+                };
+                let (lj, modulus) = crate::scenes::fig4::material(&interaction, &tip)?;
                 Ok(crate::scenes::fig4::roughness::Setup {
                     lj,
                     modulus,
-                    radius: self.radius,
+                    radius: self.tip.radius,
                     wavelength: self.wavelength,
-                    depth: self.depth_over_radius * self.radius,
+                    depth: self.depth_over_radius * self.tip.radius,
                     h_start_over_zeta0: self.h_start_over_zeta0,
                     step_over_zeta0: self.step_over_zeta0,
-                    ring_width: self.ring_width,
-                    quadrature_points: self.quadrature_points,
+                    surface: self.surface.clone(),
                     contact_gap,
                 })
             }
@@ -95,10 +92,9 @@ rough_tip_params! {
     /// Parameters of scene fig4.9a (section 4.5.2, the caption of Fig. 4.9: those of Fig. 4.7a
     /// with σ = 1.5 nm, |h_min|/R = 6e-4, A = 0, 0.9375 and 2.5 nm).
     Fig4_9aParams, youngs_modulus = 2.2e6, {
-        /// Characteristic distance σ of the potential (4.1) [m].
-        sigma: f64 = 1.5e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
-        /// Contact threshold of the gap (section 4.2.2: σ) [m].
-        contact_gap: f64 = 1.5e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
+        from Interaction: sigma: f64 = 1.5e-9;
+        /// The contact threshold (σ).
+        group contact: ContactCriterion { contact_gap: 1.5e-9 };
         /// Amplitude of the first cycle [m] (A/λ = 0).
         amplitude_1: f64 = 0.0, unit = "m", range = Range::between(0.0, 1.0e-6);
         /// Amplitude of the second cycle [m] (A/λ = 0.0075).
@@ -106,7 +102,7 @@ rough_tip_params! {
         /// Amplitude of the third cycle [m] (A/λ = 0.02).
         amplitude_3: f64 = 2.5e-9, unit = "m", range = Range::between(0.0, 1.0e-6);
         /// Young's modulus of panel (b) [Pa] (ERRATA's reading of Fig. 4.9).
-        youngs_modulus_b: f64 = 1.1e6, unit = "Pa", range = Range::between(1.0e3, 1.0e12);
+        youngs_modulus_b: f64 = 1.1e6, unit = "Pa", range = Range::between(1.0e4, 1.0e11);
     }
 }
 
@@ -114,10 +110,9 @@ rough_tip_params! {
     /// Parameters of scene fig4.11 (the caption of Fig. 4.11: those of Fig. 4.7a with
     /// σ = 1.5 nm and A = 0, 1.25, 2.5, 3.75 nm; the depth of Fig. 4.9a).
     Fig4_11Params, youngs_modulus = 2.2e6, {
-        /// Characteristic distance σ of the potential (4.1) [m].
-        sigma: f64 = 1.5e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
-        /// Contact threshold of the gap (section 4.2.2: σ) [m].
-        contact_gap: f64 = 1.5e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
+        from Interaction: sigma: f64 = 1.5e-9;
+        /// The contact threshold (σ).
+        group contact: ContactCriterion { contact_gap: 1.5e-9 };
         /// Amplitude of configuration (a) [m].
         amplitude_1: f64 = 0.0, unit = "m", range = Range::between(0.0, 1.0e-6);
         /// Amplitude of configuration (b) [m].
@@ -135,10 +130,9 @@ rough_tip_params! {
     /// Parameters of scene fig4.12 (the caption of Fig. 4.12: those of Fig. 4.9a with
     /// A = 1.25 nm and 3.125 nm, at ERRATA's E = 1.1 MPa for Fig. 4.9).
     Fig4_12Params, youngs_modulus = 1.1e6, {
-        /// Characteristic distance σ of the potential (4.1) [m].
-        sigma: f64 = 1.5e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
-        /// Contact threshold of the gap (section 4.2.2: σ) [m].
-        contact_gap: f64 = 1.5e-9, unit = "m", range = Range::between(1.0e-11, 1.0e-7);
+        from Interaction: sigma: f64 = 1.5e-9;
+        /// The contact threshold (σ).
+        group contact: ContactCriterion { contact_gap: 1.5e-9 };
         /// Amplitude of the small-roughness tip, configurations (a)-(c) [m].
         amplitude_1: f64 = 1.25e-9, unit = "m", range = Range::between(0.0, 1.0e-6);
         /// Amplitude of the large-roughness tip, configurations (d)-(f) [m].
@@ -157,8 +151,7 @@ pub(super) struct Setup {
     pub(super) depth: f64,
     pub(super) h_start_over_zeta0: f64,
     pub(super) step_over_zeta0: f64,
-    pub(super) ring_width: f64,
-    pub(super) quadrature_points: usize,
+    pub(super) surface: SurfaceModel,
     pub(super) contact_gap: f64,
 }
 
@@ -175,13 +168,10 @@ impl Setup {
     pub(super) fn tip(&self, amplitude: f64) -> Result<Tip> {
         tip_for(
             &self.lj,
-            self.radius,
-            self.modulus,
-            amplitude,
-            self.wavelength,
+            (self.radius, self.modulus),
+            (amplitude, self.wavelength),
             -self.depth,
-            self.ring_width,
-            self.quadrature_points,
+            &self.surface,
         )
     }
 
@@ -332,22 +322,23 @@ impl Scene for Fig4_9a {
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
-        p.setup(p.youngs_modulus, p.sigma, p.contact_gap)?;
-        p.setup(p.youngs_modulus_b, p.sigma, p.contact_gap).map(|_| ())
+        p.setup(p.tip.youngs_modulus, p.sigma, p.contact.contact_gap)?;
+        p.setup(p.youngs_modulus_b, p.sigma, p.contact.contact_gap)
+            .map(|_| ())
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
         let amplitudes = [p.amplitude_1, p.amplitude_2, p.amplitude_3];
         let setups = [
-            p.setup(p.youngs_modulus, p.sigma, p.contact_gap)?,
-            p.setup(p.youngs_modulus_b, p.sigma, p.contact_gap)?,
+            p.setup(p.tip.youngs_modulus, p.sigma, p.contact.contact_gap)?,
+            p.setup(p.youngs_modulus_b, p.sigma, p.contact.contact_gap)?,
         ];
         let mut fig = Figure::new(Self::ID, Self::TITLE);
         let printed = [(1.54e-5, 2.93e-9), (3.06e-5, 12.43e-9), (1.93e-5, 7.7e-9)];
         // The softer tip's cycles cost more (at the defaults, half the modulus takes about five
         // times as long): the panels' parts of the progress go as E^-2.
         let parts = job.parts(
-            &[p.youngs_modulus.powi(-2), p.youngs_modulus_b.powi(-2)],
+            &[p.tip.youngs_modulus.powi(-2), p.youngs_modulus_b.powi(-2)],
             0.0,
             0.99,
         );
@@ -364,7 +355,7 @@ impl Scene for Fig4_9a {
                 if k == 0 { "panel (a)" } else { "panel (b)" },
             )?;
             let (label, e) = if k == 0 {
-                ("(a)", p.youngs_modulus)
+                ("(a)", p.tip.youngs_modulus)
             } else {
                 ("(b)", p.youngs_modulus_b)
             };
@@ -456,12 +447,13 @@ impl Scene for Fig4_11 {
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
-        p.setup(p.youngs_modulus, p.sigma, p.contact_gap).map(|_| ())
+        p.setup(p.tip.youngs_modulus, p.sigma, p.contact.contact_gap)
+            .map(|_| ())
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
         let amplitudes = [p.amplitude_1, p.amplitude_2, p.amplitude_3, p.amplitude_4];
-        let setup = p.setup(p.youngs_modulus, p.sigma, p.contact_gap)?;
+        let setup = p.setup(p.tip.youngs_modulus, p.sigma, p.contact.contact_gap)?;
         let cycles = setup.cycles(setup.tips(&amplitudes)?, true, &job.part(0.0, 0.98), "cycles")?;
         let states: Vec<&TipState> = cycles
             .iter()
@@ -487,7 +479,7 @@ impl Scene for Fig4_11 {
                 state,
                 half,
                 p.map_points,
-                p.contact_gap,
+                p.contact.contact_gap,
                 3.0 * p.sigma * 1e9,
             ));
             fig.panels.push(panel);
@@ -593,12 +585,13 @@ impl Scene for Fig4_12 {
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
-        p.setup(p.youngs_modulus, p.sigma, p.contact_gap).map(|_| ())
+        p.setup(p.tip.youngs_modulus, p.sigma, p.contact.contact_gap)
+            .map(|_| ())
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
         let amplitudes = [p.amplitude_1, p.amplitude_2];
-        let setup = p.setup(p.youngs_modulus, p.sigma, p.contact_gap)?;
+        let setup = p.setup(p.tip.youngs_modulus, p.sigma, p.contact.contact_gap)?;
         let cycles = setup.cycles(setup.tips(&amplitudes)?, true, &job.part(0.0, 0.98), "cycles")?;
         let mut fig = Figure::new(Self::ID, Self::TITLE);
         let labels = [["(a)", "(b)", "(c)"], ["(d)", "(e)", "(f)"]];
@@ -647,7 +640,7 @@ impl Scene for Fig4_12 {
                     s,
                     half,
                     p.map_points,
-                    p.contact_gap,
+                    p.contact.contact_gap,
                     3.0 * p.sigma * 1e9,
                 ));
                 fig.panels.push(panel);

@@ -8,9 +8,11 @@ use super::roughness::{Setup, rough_tip_params};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Field, Figure, Marker, MarkerShape, Panel, Series, Style};
 use crate::job::Job;
-use crate::params::{Range, fmt_sig};
+use crate::params::Range;
 use crate::scenes::Scene;
+use crate::scenes::groups::{DepthPath, ElasticTip, Interaction, SurfaceModel, Waviness};
 use crate::scenes::sweep::Sweep;
+use crate::text::fmt_sig;
 
 /// The relative cost of a cycle at the ring-width scale b (b ∝ σ⁴, (4.6)-(4.7b)), against the
 /// smallest `b_min` of the sweep: rings ∝ 1/b and a dense solve ∝ rings³, over a floor for
@@ -103,7 +105,8 @@ impl Scene for Fig4_9b {
                 "must not be below sigma_min",
             ));
         }
-        p.setup(p.youngs_modulus, p.sigma_min, p.sigma_min).map(|_| ())
+        p.setup(p.tip.youngs_modulus, p.sigma_min, p.sigma_min)
+            .map(|_| ())
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
@@ -149,7 +152,7 @@ impl Sweep for Fig4_9b {
         let sigmas = geometric(p.sigma_min, p.sigma_max, p.sigma_points);
         let ratios = [p.amplitude_ratio_1, p.amplitude_ratio_2, p.amplitude_ratio_3];
         let (curve, i) = (id / sigmas.len(), id % sigmas.len());
-        let setup = p.setup(p.youngs_modulus, sigmas[i], sigmas[i])?;
+        let setup = p.setup(p.tip.youngs_modulus, sigmas[i], sigmas[i])?;
         let (force, loss) = adhesion_of(&setup, ratios[curve] * p.wavelength, job)?;
         Ok(vec![force, loss])
     }
@@ -276,7 +279,7 @@ impl Fig4_10Params {
     /// β = σ²E*/(λw) ∝ σ⁴ is solved from w at a reference σ; then A = √(α λ w/E*).
     fn point(&self, alpha: f64, beta: f64) -> Result<(f64, f64)> {
         let reference = 1e-9;
-        let setup = self.setup(self.youngs_modulus, reference, reference)?;
+        let setup = self.setup(self.tip.youngs_modulus, reference, reference)?;
         let k = setup.lj.work_of_adhesion() * reference * reference / setup.modulus;
         let sigma = (beta * self.wavelength * k).powf(0.25);
         let w_over_e = k / (sigma * sigma);
@@ -382,7 +385,7 @@ impl Sweep for Fig4_10 {
         let (alphas, betas) = p.grid();
         let (ia, ib) = (id % alphas.len(), id / alphas.len());
         let (sigma, amplitude) = p.point(alphas[ia], betas[ib])?;
-        let setup = p.setup(p.youngs_modulus, sigma, sigma)?;
+        let setup = p.setup(p.tip.youngs_modulus, sigma, sigma)?;
         let (force, loss) = adhesion_of(&setup, amplitude, job)?;
         Ok(vec![force, loss])
     }
