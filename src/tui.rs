@@ -4,10 +4,12 @@
 //! The parts, from pure to impure:
 //! - [`form`]: the parameter form of one scene (text per field, last valid set, validation);
 //! - [`keymap`]: keys to actions, also the key help;
-//! - [`app`]: the state machine (keys and run messages in, effects out; no I/O);
-//! - [`chart`]: the chart as an instrument (cursor, markers, zoom, history, mouse);
+//! - [`chart`]: the chart's cursor and zoom as plain data, and finding points and markers on it;
 //! - [`compare`]: pinned runs drawn over the current one;
-//! - [`view`]: drawing the state into any ratatui backend;
+//! - [`layout`]: where a drawn frame put what the mouse can hit (plain data);
+//! - [`app`]: the state machine (keys, mouse and run messages in, effects out; no I/O, no
+//!   drawing): the chart as an instrument (cursor, markers, zoom, pins, history) included;
+//! - [`view`]: drawing the state into any ratatui backend, returning the [`layout`];
 //! - [`worker`]: background runs on threads, messages over a channel;
 //! - [`session`]: the state plus the worker, carrying out effects (runs, exports, presets);
 //! - [`run`]: the crossterm event loop around a session.
@@ -21,6 +23,7 @@ pub mod chart;
 pub mod compare;
 pub mod form;
 pub mod keymap;
+pub mod layout;
 pub mod session;
 pub mod view;
 pub mod worker;

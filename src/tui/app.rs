@@ -1,18 +1,26 @@
 //! The state of the terminal UI and its transitions: keys in, [`Effect`]s out, messages of the
 //! background runs in. No I/O, no threads and no clock here: the session carries the effects
 //! out, the view draws the state, so tests drive the UI without a terminal.
+//!
+//! The state never calls the drawing: what it needs from a drawn frame (where the lists, the
+//! chart and the tabs were put) comes back as a [`DrawnLayout`] that the session hands over
+//! with [`App::set_layout`]. Keys and worker messages are handled here, the chart's cursor,
+//! zoom, pins and history in `app/instrument.rs`, the mouse in `app/mouse.rs`.
 
+mod instrument;
+mod mouse;
+
+use std::cell::{Ref, RefCell};
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use ratatui::crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
-use std::cell::Cell;
-use std::collections::HashMap;
-
-use super::chart::{AxesKey, CursorAt, DrawnLayout, HistoryEntry, PanelView};
+use super::chart::{AxesKey, CursorAt, PanelView};
 use super::compare::Pin;
 use super::form::{Form, LineEdit};
 use super::keymap::{Action, action_for};
+use super::layout::DrawnLayout;
 use super::worker::{JobMsg, Outcome};
 use crate::figure::Figure;
 use crate::params::ParamValues;
@@ -108,6 +116,31 @@ pub struct Running {
     pub cancelling: bool,
 }
 
+/// A finished run kept for reopening and exporting without rerunning.
+#[derive(Debug, Clone)]
+pub struct HistoryEntry {
+    /// Scene index.
+    pub scene: usize,
+    /// The figure.
+    pub figure: Figure,
+    /// Its parameters.
+    pub values: ParamValues,
+    /// Wall time in seconds.
+    pub run_time_s: f64,
+}
+
+/// Runs the history keeps.
+pub const HISTORY_LEN: usize = 20;
+
+/// A row of the scene list: a chapter heading or a scene (index).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ListRow {
+    /// Chapter heading (chapter key).
+    Chapter(&'static str),
+    /// A scene, by index.
+    Scene(usize),
+}
+
 /// A line in the status bar.
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct Status {
@@ -195,7 +228,7 @@ pub struct App {
     pub(crate) views: HashMap<(usize, usize), PanelView>,
     pub(crate) last_panel: Vec<usize>,
     pub(crate) axes: Vec<Vec<AxesKey>>,
-    pub(crate) layout: Cell<DrawnLayout>,
+    pub(crate) layout: RefCell<DrawnLayout>,
     preset_dir: PathBuf,
     next_job: u64,
     quit: bool,
@@ -245,7 +278,7 @@ impl App {
             views: HashMap::new(),
             last_panel: vec![0; n],
             axes: vec![Vec::new(); n],
-            layout: Cell::new(DrawnLayout::default()),
+            layout: RefCell::new(DrawnLayout::default()),
             preset_dir: preset_dir.into(),
             next_job: 1,
             quit: false,
@@ -608,6 +641,31 @@ impl App {
     /// The filter of the scene list (empty: every scene).
     pub fn filter(&self) -> &str {
         &self.filter
+    }
+
+    /// The rows of the scene list under the filter: each chapter with visible scenes, then them.
+    pub fn list_rows(&self) -> Vec<ListRow> {
+        let mut rows = Vec::new();
+        let mut chapter = "";
+        for k in self.visible_scenes() {
+            let info = self.scenes[k].info();
+            if info.chapter != chapter {
+                chapter = info.chapter;
+                rows.push(ListRow::Chapter(chapter));
+            }
+            rows.push(ListRow::Scene(k));
+        }
+        rows
+    }
+
+    /// Take the layout of a drawn frame: the mouse acts on what that frame showed.
+    pub fn set_layout(&self, layout: DrawnLayout) {
+        *self.layout.borrow_mut() = layout;
+    }
+
+    /// The layout of the last drawn frame.
+    pub fn layout(&self) -> Ref<'_, DrawnLayout> {
+        self.layout.borrow()
     }
 
     /// Indices of the scenes the filter lets through (id or title contains every word of the

@@ -96,9 +96,10 @@ impl Session {
         }
     }
 
-    /// Draw the state into a frame.
+    /// Draw the state into a frame; the state keeps where the frame put what the mouse can hit.
     pub fn draw(&self, frame: &mut Frame<'_>) {
-        view::draw(frame, &self.app);
+        let layout = view::draw(frame, &self.app);
+        self.app.set_layout(layout);
     }
 
     /// Whether the user asked to quit.

@@ -2,6 +2,9 @@
 //! form (invalid fields in red with their error), the figure as a braille chart
 //! ([`crate::render::terminal::render_panel`]) with panel tabs, the progress gauge, the status
 //! bar, and the help and path-prompt overlays.
+//!
+//! Drawing only reads the state. Where it put the parts the mouse can hit comes back from
+//! [`draw`] as a [`DrawnLayout`], plain data the state keeps for the next mouse event.
 
 use ratatui::Frame;
 use ratatui::crossterm::event::KeyCode;
@@ -10,9 +13,12 @@ use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Gauge, Paragraph, Wrap};
 
-use super::app::{App, FigureState, FigureView, Focus, Mode, PromptKind, fmt_duration};
-use super::chart::history_line;
+use super::app::{
+    App, FigureState, FigureView, Focus, HistoryEntry, ListRow, Mode, PromptKind, fmt_duration,
+};
+use super::compare::difference;
 use super::keymap::BINDINGS;
+use super::layout::{DrawnLayout, Target};
 use crate::params::{ParamKind, fmt_float};
 use crate::render::labels::{fmt_quantity, result_unit};
 use crate::render::terminal::{ChartOptions, render_chart};
@@ -21,23 +27,35 @@ use crate::scenes::chapter_title;
 const ACCENT: Color = Color::Cyan;
 const ERROR: Color = Color::LightRed;
 
-/// Draw the whole UI.
-pub fn draw(frame: &mut Frame<'_>, app: &App) {
+/// Draw the whole UI; returns where the parts the mouse can hit were put.
+pub fn draw(frame: &mut Frame<'_>, app: &App) -> DrawnLayout {
+    let mut layout = DrawnLayout::default();
     let [main, status] = Layout::vertical([Constraint::Min(0), Constraint::Length(1)]).areas(frame.area());
+    draw_scenes_page(frame, app, main, &mut layout);
+    draw_status(frame, app, status);
+    draw_overlays(frame, app, main, &mut layout);
+    layout
+}
+
+/// The scenes page: the scene list and the parameter form on the left, the figure on the right.
+fn draw_scenes_page(frame: &mut Frame<'_>, app: &App, main: Rect, layout: &mut DrawnLayout) {
     let left_width = (main.width * 2 / 5).clamp(30, 52).min(main.width);
     let [left, right] = Layout::horizontal([Constraint::Length(left_width), Constraint::Min(0)]).areas(main);
-    let entries = scene_rows(app).len().max(1);
+    let entries = app.list_rows().len().max(1);
     let list_height = (entries as u16 + 2).min(left.height / 2).max(3);
     let [list_area, form_area] =
         Layout::vertical([Constraint::Length(list_height), Constraint::Min(0)]).areas(left);
-    draw_scene_list(frame, app, list_area);
-    draw_form(frame, app, form_area);
-    draw_figure(frame, app, right);
-    draw_status(frame, app, status);
+    draw_scene_list(frame, app, list_area, layout);
+    draw_form(frame, app, form_area, layout);
+    draw_figure(frame, app, right, layout);
+}
+
+/// The modal overlays over `main`: help, history, a path prompt.
+fn draw_overlays(frame: &mut Frame<'_>, app: &App, main: Rect, layout: &mut DrawnLayout) {
     match &app.mode {
         Mode::Normal | Mode::Filter { .. } => {}
         Mode::Help => draw_help(frame, main),
-        Mode::History { selected } => draw_history(frame, app, *selected, main),
+        Mode::History { selected } => draw_history(frame, app, *selected, main, layout),
         Mode::Prompt { kind, edit } => {
             let area = Rect {
                 x: main.x,
@@ -70,30 +88,6 @@ fn pane(title: String, focused: bool) -> Block<'static> {
     Block::bordered().title(title).border_style(style)
 }
 
-/// A row of the scene list: a chapter heading or a scene (index).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ListRow {
-    /// Chapter heading (chapter key).
-    Chapter(&'static str),
-    /// A scene, by index.
-    Scene(usize),
-}
-
-/// The rows of the scene list under the filter: each chapter with visible scenes, then them.
-pub fn scene_rows(app: &App) -> Vec<ListRow> {
-    let mut rows = Vec::new();
-    let mut chapter = "";
-    for k in app.visible_scenes() {
-        let info = app.scenes[k].info();
-        if info.chapter != chapter {
-            chapter = info.chapter;
-            rows.push(ListRow::Chapter(chapter));
-        }
-        rows.push(ListRow::Scene(k));
-    }
-    rows
-}
-
 /// First row shown in a list of `height` rows so that row `selected` is visible.
 pub fn scroll_offset(selected: usize, height: usize) -> usize {
     (selected + 1).saturating_sub(height.max(1))
@@ -112,7 +106,7 @@ fn clip(text: &str, width: usize) -> String {
     }
 }
 
-fn draw_scene_list(frame: &mut Frame<'_>, app: &App, area: Rect) {
+fn draw_scene_list(frame: &mut Frame<'_>, app: &App, area: Rect, layout: &mut DrawnLayout) {
     let filtering = matches!(app.mode, Mode::Filter { .. });
     let focused = app.focus == Focus::Scenes && (app.mode == Mode::Normal || filtering);
     let title = if app.filter.is_empty() && !filtering {
@@ -134,7 +128,7 @@ fn draw_scene_list(frame: &mut Frame<'_>, app: &App, area: Rect) {
     if inner.height == 0 || inner.width == 0 {
         return;
     }
-    let rows = scene_rows(app);
+    let rows = app.list_rows();
     if rows.is_empty() {
         frame.render_widget(
             Line::styled(
@@ -159,10 +153,8 @@ fn draw_scene_list(frame: &mut Frame<'_>, app: &App, area: Rect) {
         .position(|r| *r == ListRow::Scene(app.selected))
         .unwrap_or(0);
     let offset = scroll_offset(selected_row, inner.height as usize);
-    let mut layout = app.layout.get();
     layout.list = inner;
     layout.list_offset = offset;
-    app.layout.set(layout);
     let highlight = if focused {
         Style::default().bg(Color::Blue).fg(Color::White)
     } else {
@@ -205,7 +197,7 @@ fn draw_scene_list(frame: &mut Frame<'_>, app: &App, area: Rect) {
     frame.render_widget(Paragraph::new(lines), inner);
 }
 
-fn draw_form(frame: &mut Frame<'_>, app: &App, area: Rect) {
+fn draw_form(frame: &mut Frame<'_>, app: &App, area: Rect, layout: &mut DrawnLayout) {
     let Some(form) = app.form() else {
         frame.render_widget(pane(" Parameters ".into(), false), area);
         return;
@@ -242,10 +234,8 @@ fn draw_form(frame: &mut Frame<'_>, app: &App, area: Rect) {
         .max(4);
     let visible = rows_area.height as usize;
     let offset = scroll_offset(form.selected(), visible);
-    let mut layout = app.layout.get();
     layout.form = rows_area;
     layout.form_offset = offset;
-    app.layout.set(layout);
     let mut lines = Vec::new();
     for k in offset..form.len().min(offset + visible) {
         let spec = &form.specs()[k];
@@ -327,7 +317,7 @@ fn draw_form(frame: &mut Frame<'_>, app: &App, area: Rect) {
     frame.render_widget(help.wrap(Wrap { trim: true }), help_area);
 }
 
-fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect) {
+fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect, layout: &mut DrawnLayout) {
     let Some(scene) = app.scene() else {
         frame.render_widget(pane(" Figure ".into(), false), area);
         return;
@@ -356,24 +346,34 @@ fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect) {
         Constraint::Length(1),
     ])
     .areas(inner);
-    let mut layout = app.layout.get();
-    layout.tabs = Rect::default();
     if panels > 1
         && let Some(v) = view
     {
         let mut spans = vec![Span::styled(TABS_PREFIX, Style::default().fg(Color::DarkGray))];
+        let mut left = tabs_area.x + Span::raw(TABS_PREFIX).width() as u16;
         for (k, text) in panel_tabs(v).into_iter().enumerate() {
             let style = if k == app.panel() {
                 Style::default().bg(ACCENT).fg(Color::Black)
             } else {
                 Style::default()
             };
-            spans.push(Span::styled(text, style));
+            let span = Span::styled(text, style);
+            let width = span.width() as u16;
+            layout.targets.push((
+                Rect {
+                    x: left,
+                    width,
+                    ..tabs_area
+                }
+                .intersection(tabs_area),
+                Target::Tab(k),
+            ));
+            left = left.saturating_add(width);
+            spans.push(span);
         }
         frame.render_widget(Line::from(spans), tabs_area);
         layout.tabs = tabs_area;
     }
-    app.layout.set(layout);
     let mut geometry = None;
     match view {
         Some(v) if !app.show_info && !v.figure.panels.is_empty() => {
@@ -386,9 +386,7 @@ fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect) {
                     listed: Some(drawn.current_counts()),
                 };
                 geometry = render_chart(&drawn.panel, &options, chart_area, frame.buffer_mut());
-                let mut layout = app.layout.get();
                 layout.chart_area = chart_area;
-                app.layout.set(layout);
             }
             if let Some(area) = results_area {
                 draw_results(frame, app, Some(v), area);
@@ -396,9 +394,7 @@ fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect) {
         }
         _ => draw_info(frame, app, view, body),
     }
-    let mut layout = app.layout.get();
     layout.chart = geometry;
-    app.layout.set(layout);
     if readout_height > 0 {
         let mut spans = Vec::new();
         if let Some(r) = &readout {
@@ -443,19 +439,6 @@ pub fn panel_tabs(view: &FigureView) -> Vec<String> {
         .collect()
 }
 
-/// The panel whose tab covers `column` of a tab line drawn from `x`.
-pub fn tab_at(view: &FigureView, x: u16, column: u16) -> Option<usize> {
-    let mut left = x + Span::raw(TABS_PREFIX).width() as u16;
-    for (k, text) in panel_tabs(view).iter().enumerate() {
-        let right = left + Span::raw(text.as_str()).width() as u16;
-        if (left..right).contains(&column) {
-            return Some(k);
-        }
-        left = right;
-    }
-    None
-}
-
 /// The parts of the history overlay's last line, each a mouse target: what it says and the key
 /// it stands for.
 pub const HISTORY_FOOTER: [(&str, KeyCode); 3] = [
@@ -463,19 +446,6 @@ pub const HISTORY_FOOTER: [(&str, KeyCode); 3] = [
     ("e exports", KeyCode::Char('e')),
     ("Esc closes", KeyCode::Esc),
 ];
-
-/// The key of the history footer's action at `column` of a footer drawn from `x`.
-pub fn footer_at(x: u16, column: u16) -> Option<KeyCode> {
-    let mut left = x + Span::raw(FOOTER_PREFIX).width() as u16;
-    for (text, key) in HISTORY_FOOTER {
-        let right = left + Span::raw(text).width() as u16;
-        if (left..right).contains(&column) {
-            return Some(key);
-        }
-        left = right + Span::raw(FOOTER_GAP).width() as u16;
-    }
-    None
-}
 
 const FOOTER_PREFIX: &str = " ↑ ↓ or click choose · ";
 const FOOTER_GAP: &str = " · ";
@@ -575,7 +545,7 @@ fn overlay_box(frame: &mut Frame<'_>, area: Rect, width: u16, height: u16, title
     (rect, inner)
 }
 
-fn draw_history(frame: &mut Frame<'_>, app: &App, selected: usize, area: Rect) {
+fn draw_history(frame: &mut Frame<'_>, app: &App, selected: usize, area: Rect, layout: &mut DrawnLayout) {
     let n = app.history().len();
     let width = 96.min(area.width);
     let height = (n as u16 + 4).min(area.height);
@@ -618,12 +588,45 @@ fn draw_history(frame: &mut Frame<'_>, app: &App, selected: usize, area: Rect) {
         Line::styled(footer, Style::default().fg(Color::DarkGray)),
         footer_row,
     );
-    let mut layout = app.layout.get();
+    // Each action of the footer is a mouse target standing for its key.
+    let mut left = footer_row
+        .x
+        .saturating_add(Span::raw(FOOTER_PREFIX).width() as u16);
+    for (text, key) in HISTORY_FOOTER {
+        let width = Span::raw(text).width() as u16;
+        let target = Rect {
+            x: left,
+            width,
+            ..footer_row
+        };
+        layout
+            .targets
+            .push((target.intersection(footer_row), Target::Key(key)));
+        left = left
+            .saturating_add(width)
+            .saturating_add(Span::raw(FOOTER_GAP).width() as u16);
+    }
     layout.overlay = rect;
     layout.history = rows_area;
     layout.history_offset = offset;
     layout.history_footer = footer_row;
-    app.layout.set(layout);
+}
+
+/// Labels of the history entries for the list: scene, run time, the parameters that differ
+/// from the scene's defaults.
+pub fn history_line(app: &App, entry: &HistoryEntry) -> String {
+    let scene = app.scenes[entry.scene];
+    let diff = difference(&entry.values, &scene.defaults());
+    let diff = if diff == "same parameters" {
+        "defaults".to_string()
+    } else {
+        diff
+    };
+    format!(
+        "{:<16} {:>8}  {diff}",
+        scene.info().id,
+        fmt_duration(entry.run_time_s)
+    )
 }
 
 fn draw_info(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, area: Rect) {

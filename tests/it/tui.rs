@@ -584,3 +584,132 @@ fn drawing_never_panics_on_tiny_terminals() {
         press(&mut s, KeyCode::Esc);
     }
 }
+
+/// The modules of `src/tui` a file names: `use super::x…`, `use crate::tui::x…` and such paths in
+/// code, as the top-level module `x` (a file under `src/tui/app/` counts as `app`).
+fn tui_imports(text: &str, own: &str, nested: bool) -> Vec<String> {
+    let mut names = Vec::new();
+    let mut take = |path: &str| {
+        let path = path.trim_start_matches(|c: char| c == '{' || c.is_whitespace());
+        let name: String = path
+            .chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect();
+        if !name.is_empty() && name != own && name.chars().next().is_some_and(char::is_lowercase) {
+            names.push(name);
+        }
+    };
+    let code: String = text
+        .lines()
+        .map(|l| l.split("//").next().unwrap_or(""))
+        .collect::<Vec<_>>()
+        .join("\n");
+    // In a top-level file `super::` is `crate::tui::`; in a nested one `super::super::` is.
+    let prefixes: &[&str] = if nested {
+        &["crate::tui::", "super::super::"]
+    } else {
+        &["crate::tui::", "super::"]
+    };
+    for prefix in prefixes {
+        for (at, _) in code.match_indices(prefix) {
+            let rest = &code[at + prefix.len()..];
+            if nested && *prefix == "crate::tui::" || !rest.starts_with('{') {
+                take(rest);
+                continue;
+            }
+            // A group: `super::{a::X, b::{Y, Z}}` names `a` and `b`.
+            let mut depth = 0;
+            let mut start = 1;
+            for (i, c) in rest.char_indices() {
+                match c {
+                    '{' => depth += 1,
+                    '}' => {
+                        depth -= 1;
+                        if depth == 0 {
+                            take(&rest[start..i]);
+                            break;
+                        }
+                    }
+                    ',' if depth == 1 => {
+                        take(&rest[start..i]);
+                        start = i + 1;
+                    }
+                    _ => {}
+                }
+            }
+        }
+    }
+    names.sort();
+    names.dedup();
+    names
+}
+
+/// The state of the terminal UI never imports its drawing, and the modules of `src/tui` import
+/// each other without a circle (benches/import_graph.py checks the whole of `src/`).
+#[test]
+fn the_state_does_not_import_the_drawing_and_the_tui_modules_form_no_circle() {
+    let dir = super::common::root().join("src/tui");
+    let mut graph: std::collections::BTreeMap<String, Vec<String>> = Default::default();
+    let mut files = Vec::new();
+    for e in std::fs::read_dir(&dir).expect("src/tui").flatten() {
+        let p = e.path();
+        if p.is_dir() {
+            for f in std::fs::read_dir(&p).expect("a folder of src/tui").flatten() {
+                files.push((
+                    p.file_name().unwrap().to_string_lossy().into_owned(),
+                    f.path(),
+                    true,
+                ));
+            }
+        } else {
+            files.push((p.file_stem().unwrap().to_string_lossy().into_owned(), p, false));
+        }
+    }
+    for (module, path, nested) in files {
+        let text = std::fs::read_to_string(&path).expect("a source file");
+        let names = tui_imports(&text, &module, nested);
+        graph.entry(module).or_default().extend(names);
+    }
+    for edges in graph.values_mut() {
+        edges.retain(|n| n != "tests");
+        edges.sort();
+        edges.dedup();
+    }
+    assert!(
+        graph["view"].contains(&"app".to_string()),
+        "the parser sees view -> app: {graph:?}"
+    );
+    for state in ["app", "chart", "layout", "compare", "form", "keymap", "worker"] {
+        for drawing in ["view", "session"] {
+            assert!(
+                !graph[state].contains(&drawing.to_string()),
+                "{state} imports {drawing}: {:?}",
+                graph[state]
+            );
+        }
+    }
+    // Depth-first search for a back edge.
+    fn visit<'a>(
+        m: &'a str,
+        graph: &'a std::collections::BTreeMap<String, Vec<String>>,
+        path: &mut Vec<&'a str>,
+        done: &mut Vec<&'a str>,
+    ) {
+        if done.contains(&m) {
+            return;
+        }
+        if let Some(at) = path.iter().position(|p| *p == m) {
+            panic!("import circle: {} -> {m}", path[at..].join(" -> "));
+        }
+        path.push(m);
+        for n in graph.get(m).into_iter().flatten() {
+            visit(n, graph, path, done);
+        }
+        path.pop();
+        done.push(m);
+    }
+    let mut done = Vec::new();
+    for m in graph.keys() {
+        visit(m, &graph, &mut Vec::new(), &mut done);
+    }
+}
