@@ -5,8 +5,10 @@
 //! The state never calls the drawing: what it needs from a drawn frame (where the lists, the
 //! chart and the tabs were put) comes back as a [`DrawnLayout`] that the session hands over
 //! with [`App::set_layout`]. Keys and worker messages are handled here, the chart's cursor,
-//! zoom, pins and history in `app/instrument.rs`, the mouse in `app/mouse.rs`.
+//! zoom, pins and history in `app/instrument.rs`, the mouse in `app/mouse.rs`, the page of a
+//! measured force-curve file in `app/file.rs`.
 
+mod file;
 mod instrument;
 mod mouse;
 
@@ -18,10 +20,11 @@ use ratatui::crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
 use super::chart::{AxesKey, CursorAt, PanelView};
 use super::compare::Pin;
+use super::curves::FilePage;
 use super::form::{Form, LineEdit};
 use super::keymap::{Action, action_for};
 use super::layout::DrawnLayout;
-use super::worker::{JobMsg, Outcome};
+use super::worker::{JobMsg, Outcome, Task};
 use crate::figure::Figure;
 use crate::params::ParamValues;
 use crate::render::terminal::View;
@@ -36,6 +39,15 @@ pub enum Focus {
     Form,
 }
 
+/// The page the panes show.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Page {
+    /// The scenes: list, parameter form, figure.
+    Scenes,
+    /// A measured force-curve file: its curves on the map's grid, the fit of the chosen one.
+    File,
+}
+
 /// What a path prompt is for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PromptKind {
@@ -43,6 +55,10 @@ pub enum PromptKind {
     LoadPreset,
     /// Save the form as a preset.
     SavePreset,
+    /// Open a measured force-curve file.
+    OpenFile,
+    /// The tip radius of the file page's fits (a number in metres, not a path).
+    TipRadius,
 }
 
 /// Modal state on top of the panes.
@@ -190,6 +206,13 @@ pub enum Effect {
         /// The file.
         path: PathBuf,
     },
+    /// Do background work that is not a scene run (read a file, fit a curve).
+    Task {
+        /// Run id (the message carries it).
+        job: u64,
+        /// The work.
+        task: Task,
+    },
 }
 
 impl std::fmt::Debug for Effect {
@@ -201,6 +224,10 @@ impl std::fmt::Debug for Effect {
             Effect::ExportHistory { entry } => write!(f, "ExportHistory({entry})"),
             Effect::LoadPreset { scene, path } => write!(f, "LoadPreset({scene}, {})", path.display()),
             Effect::SavePreset { scene, path } => write!(f, "SavePreset({scene}, {})", path.display()),
+            Effect::Task { job, task } => match task {
+                Task::Open { path } => write!(f, "Open({job}, {})", path.display()),
+                Task::Fit { position, .. } => write!(f, "Fit({job}, curve {position})"),
+            },
         }
     }
 }
@@ -229,6 +256,9 @@ pub struct App {
     pub(crate) last_panel: Vec<usize>,
     pub(crate) axes: Vec<Vec<AxesKey>>,
     pub(crate) layout: RefCell<DrawnLayout>,
+    pub(crate) page: Page,
+    pub(crate) file: Option<FilePage>,
+    pub(crate) opening: Option<u64>,
     preset_dir: PathBuf,
     next_job: u64,
     quit: bool,
@@ -279,6 +309,9 @@ impl App {
             last_panel: vec![0; n],
             axes: vec![Vec::new(); n],
             layout: RefCell::new(DrawnLayout::default()),
+            page: Page::Scenes,
+            file: None,
+            opening: None,
             preset_dir: preset_dir.into(),
             next_job: 1,
             quit: false,
@@ -454,10 +487,12 @@ impl App {
                             return Vec::new();
                         }
                         let scene = self.selected;
-                        return vec![match kind {
-                            PromptKind::LoadPreset => Effect::LoadPreset { scene, path },
-                            PromptKind::SavePreset => Effect::SavePreset { scene, path },
-                        }];
+                        return match kind {
+                            PromptKind::LoadPreset => vec![Effect::LoadPreset { scene, path }],
+                            PromptKind::SavePreset => vec![Effect::SavePreset { scene, path }],
+                            PromptKind::OpenFile => self.open_file(path),
+                            PromptKind::TipRadius => self.set_tip_radius(&path.to_string_lossy()),
+                        };
                     }
                     _ => {
                         edit.handle(key);
@@ -483,6 +518,7 @@ impl App {
             return self.after_change();
         }
         match action_for(key) {
+            Some(action) if self.page == Page::File => self.file_action(action),
             Some(action) => self.act(action),
             None => Vec::new(),
         }
@@ -632,6 +668,11 @@ impl App {
             | Action::ZoomOut
             | Action::ZoomReset => self.chart_action(action),
             Action::Info => self.show_info = !self.show_info,
+            Action::Open => self.prompt_open(),
+            Action::SwitchPage => self.switch_page(),
+            Action::TipRadius => {
+                self.set_status("the tip radius is set on the file page (o opens a file)", false);
+            }
         }
         // Keep the panel index within the figure.
         self.panel = self.panel();
@@ -736,13 +777,18 @@ impl App {
         effects.push(Effect::Start { job, scene, values });
     }
 
-    /// Take a message of a background run. Messages of runs no longer tracked are ignored.
-    pub fn on_job(&mut self, msg: JobMsg) {
+    /// Take a message of a background run; returns what the session must do next (a file
+    /// read fits its first curve when the tip radius is known). Messages of runs no longer
+    /// tracked are ignored.
+    pub fn on_job(&mut self, msg: JobMsg) -> Vec<Effect> {
+        if let JobMsg::Task { job, outcome } = msg {
+            return self.on_task(job, outcome);
+        }
         let Some(run) = &mut self.running else {
-            return;
+            return Vec::new();
         };
         if msg.job() != run.job {
-            return;
+            return Vec::new();
         }
         let scene = run.scene;
         let id = self.scenes[scene].info().id;
@@ -766,6 +812,7 @@ impl App {
                     state: FigureState::Partial,
                 });
             }
+            JobMsg::Task { .. } => {}
             JobMsg::Finished {
                 outcome, run_time_s, ..
             } => {
@@ -800,6 +847,7 @@ impl App {
                 self.panel = self.panel();
             }
         }
+        Vec::new()
     }
 }
 

@@ -14,9 +14,10 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Gauge, Paragraph, Wrap};
 
 use super::app::{
-    App, FigureState, FigureView, Focus, HistoryEntry, ListRow, Mode, PromptKind, fmt_duration,
+    App, FigureState, FigureView, Focus, HistoryEntry, ListRow, Mode, Page, PromptKind, fmt_duration,
 };
 use super::compare::difference;
+use super::curves::{FilePage, model_name, raw_panel, segment_name};
 use super::keymap::BINDINGS;
 use super::layout::{DrawnLayout, Target};
 use crate::params::{ParamKind, fmt_float};
@@ -31,7 +32,13 @@ const ERROR: Color = Color::LightRed;
 pub fn draw(frame: &mut Frame<'_>, app: &App) -> DrawnLayout {
     let mut layout = DrawnLayout::default();
     let [main, status] = Layout::vertical([Constraint::Min(0), Constraint::Length(1)]).areas(frame.area());
-    draw_scenes_page(frame, app, main, &mut layout);
+    match app.page() {
+        Page::Scenes => draw_scenes_page(frame, app, main, &mut layout),
+        Page::File => match app.file_page() {
+            Some(page) => draw_file_page(frame, page, main),
+            None => draw_scenes_page(frame, app, main, &mut layout),
+        },
+    }
     draw_status(frame, app, status);
     draw_overlays(frame, app, main, &mut layout);
     layout
@@ -50,6 +57,193 @@ fn draw_scenes_page(frame: &mut Frame<'_>, app: &App, main: Rect, layout: &mut D
     draw_figure(frame, app, right, layout);
 }
 
+/// The page of a measured force-curve file: the file and the fit settings, the map's grid of
+/// curves and the chosen curve's fit on the left; its data, fit and residuals on the right (the
+/// curve as recorded until it is fitted).
+fn draw_file_page(frame: &mut Frame<'_>, page: &FilePage, main: Rect) {
+    let left_width = (main.width * 2 / 5).clamp(30, 52).min(main.width);
+    let [left, right] = Layout::horizontal([Constraint::Length(left_width), Constraint::Min(0)]).areas(main);
+    let [info_area, grid_area, fit_area] = Layout::vertical([
+        Constraint::Length(7.min(left.height)),
+        Constraint::Percentage(45),
+        Constraint::Min(0),
+    ])
+    .areas(left);
+    let name = page
+        .path
+        .file_name()
+        .map_or(page.path.display().to_string(), |n| {
+            n.to_string_lossy().into_owned()
+        });
+    let block = pane(" Force-curve file (o opens, g scenes) ".into(), false);
+    let inner = block.inner(info_area);
+    frame.render_widget(block, info_area);
+    let k = page
+        .curve()
+        .and_then(|c| c.meta.spring_constant)
+        .map_or("none in the file".to_string(), |k| fmt_quantity(k, "N/m"));
+    let info = vec![
+        Line::styled(name, Style::default().add_modifier(Modifier::BOLD)),
+        Line::from(format!(
+            "{} · {} curve(s) · k = {k}",
+            page.file.format,
+            page.file.curves.len()
+        )),
+        Line::from(page.settings_text()),
+    ];
+    frame.render_widget(Paragraph::new(info).wrap(Wrap { trim: true }), inner);
+    draw_grid(frame, page, grid_area);
+    draw_fit_results(frame, page, fit_area);
+    let index = page.curve().map_or(0, |c| c.index);
+    let fitted = page.fits.get(&page.selected).and_then(|f| f.as_ref().ok());
+    let state = match (&page.fitting, page.fits.get(&page.selected)) {
+        (Some(f), _) if f.curve == page.selected => " · fitting…",
+        (_, Some(Ok(_))) => " · data, fit and residuals",
+        (_, Some(Err(_))) => " · not fitted (see the message)",
+        _ => " · as recorded (r fits)",
+    };
+    let block = pane(format!(" Curve {index}{state} "), false);
+    let inner = block.inner(right);
+    frame.render_widget(block, right);
+    let options = ChartOptions::default();
+    match fitted {
+        Some(f) if f.figure.panels.len() >= 2 => {
+            let [top, bottom] =
+                Layout::vertical([Constraint::Percentage(64), Constraint::Percentage(36)]).areas(inner);
+            for (panel, area) in f.figure.panels.iter().zip([top, bottom]) {
+                let [title, chart] =
+                    Layout::vertical([Constraint::Length(1), Constraint::Min(0)]).areas(area);
+                frame.render_widget(
+                    Line::styled(
+                        format!("{} {}", panel.label, crate::render::text::terminal(&panel.title)),
+                        Style::default().fg(Color::Yellow),
+                    ),
+                    title,
+                );
+                render_chart(panel, &options, chart, frame.buffer_mut());
+            }
+        }
+        Some(f) => {
+            if let Some(panel) = f.figure.panels.first() {
+                render_chart(panel, &options, inner, frame.buffer_mut());
+            }
+        }
+        None => {
+            if let Some(curve) = page.curve() {
+                render_chart(&raw_panel(curve), &options, inner, frame.buffer_mut());
+            }
+        }
+    }
+}
+
+/// The map's grid, y up: `●` fitted, `✗` failed, `·` not fitted yet, the chosen curve
+/// highlighted; a window around it when the grid is larger than the area.
+fn draw_grid(frame: &mut Frame<'_>, page: &FilePage, area: Rect) {
+    let [nx, ny] = page.grid.shape;
+    let n = page.file.curves.len();
+    let block = pane(format!(" Map {nx} × {ny}, {n} curve(s) — arrows choose "), true);
+    let inner = block.inner(area);
+    frame.render_widget(block, area);
+    if inner.width < 2 || inner.height == 0 || nx == 0 || ny == 0 {
+        return;
+    }
+    let Some(&[si, sj]) = page.grid.cells.get(page.selected) else {
+        return;
+    };
+    // Two columns a cell; the window keeps the chosen cell inside, near its middle.
+    let cols = (usize::from(inner.width) / 2).clamp(1, nx);
+    let rows = usize::from(inner.height).min(ny);
+    let x0 = si.saturating_sub(cols / 2).min(nx - cols);
+    let top = ny - 1 - sj;
+    let y0 = top.saturating_sub(rows / 2).min(ny - rows);
+    let mut lines = Vec::new();
+    for r in y0..y0 + rows {
+        let j = ny - 1 - r;
+        let mut spans = Vec::new();
+        for i in x0..x0 + cols {
+            let (glyph, mut style) = match page.curve_at([i, j]) {
+                None => ("  ", Style::default()),
+                Some(k) => match page.fits.get(&k) {
+                    Some(Ok(_)) => ("● ", Style::default().fg(Color::Green)),
+                    Some(Err(_)) => ("✗ ", Style::default().fg(ERROR)),
+                    None => ("· ", Style::default().fg(Color::Gray)),
+                },
+            };
+            if [i, j] == [si, sj] {
+                style = style.bg(Color::Blue).fg(Color::White);
+            }
+            spans.push(Span::styled(glyph, style));
+        }
+        lines.push(Line::from(spans));
+    }
+    frame.render_widget(Paragraph::new(lines), inner);
+}
+
+/// The chosen curve's fit: values with standard errors, the measured pull-off, the residual,
+/// the warnings; or why it was not fitted.
+fn draw_fit_results(frame: &mut Frame<'_>, page: &FilePage, area: Rect) {
+    let index = page.curve().map_or(0, |c| c.index);
+    let block = pane(
+        format!(
+            " Fit of curve {index} ({} of {}) ",
+            page.selected + 1,
+            page.file.curves.len()
+        ),
+        false,
+    );
+    let inner = block.inner(area);
+    frame.render_widget(block, area);
+    let dim = Style::default().fg(Color::DarkGray);
+    let lines: Vec<Line<'_>> = match page.fits.get(&page.selected) {
+        None if page.radius.is_none() => vec![Line::styled("t sets the tip radius, then r fits", dim)],
+        None => vec![Line::styled("not fitted yet: r fits", dim)],
+        Some(Err(e)) => vec![Line::styled(e.clone(), Style::default().fg(ERROR))],
+        Some(Ok(f)) => {
+            let r = &f.fit.fit;
+            let est = |e: &crate::fit::Estimate, unit: &str| {
+                format!(
+                    "{} ± {}",
+                    fmt_quantity(e.value, unit),
+                    fmt_quantity(e.std_error, unit)
+                )
+            };
+            let mut rows = vec![
+                format!(
+                    "{} fit of the {}",
+                    model_name(Some(r.model)),
+                    segment_name(Some(r.segment))
+                ),
+                format!("ℰ    {}", est(&r.plane_strain_modulus_pa, "Pa")),
+            ];
+            if let Some(w) = &r.work_of_adhesion_j_per_m2 {
+                rows.push(format!("w    {}", est(w, "J/m²")));
+            }
+            rows.push(format!("d_c  {}", est(&r.contact_point_m, "m")));
+            rows.push(format!("F₀   {}", est(&r.baseline_n, "N")));
+            rows.push(format!(
+                "pull-off (measured) {}",
+                fmt_quantity(r.measured_pull_off_force_n, "N")
+            ));
+            rows.push(format!(
+                "rms residual {} · {} of {} rows",
+                fmt_quantity(r.rms_residual_n, "N"),
+                r.points_used,
+                r.points_total
+            ));
+            rows.push(format!("fitted in {}", fmt_duration(f.run_time_s)));
+            let mut lines: Vec<Line<'_>> = rows.into_iter().map(Line::from).collect();
+            for w in &r.warnings {
+                lines.push(Line::styled(
+                    format!("warning: {w}"),
+                    Style::default().fg(Color::Yellow),
+                ));
+            }
+            lines
+        }
+    };
+    frame.render_widget(Paragraph::new(lines).wrap(Wrap { trim: true }), inner);
+}
+
 /// The modal overlays over `main`: help, history, a path prompt.
 fn draw_overlays(frame: &mut Frame<'_>, app: &App, main: Rect, layout: &mut DrawnLayout) {
     match &app.mode {
@@ -66,6 +260,8 @@ fn draw_overlays(frame: &mut Frame<'_>, app: &App, main: Rect, layout: &mut Draw
             let title = match kind {
                 PromptKind::LoadPreset => " Load preset (TOML) — Enter loads, Esc cancels ",
                 PromptKind::SavePreset => " Save preset (TOML) — Enter saves, Esc cancels ",
+                PromptKind::OpenFile => " Open a force-curve file — Enter opens, Esc cancels ",
+                PromptKind::TipRadius => " Tip radius in metres (e.g. 2e-6) — Enter sets, Esc cancels ",
             };
             frame.render_widget(Clear, area);
             let block = Block::bordered()
