@@ -141,7 +141,7 @@ pub const BINDINGS: &[Binding] = &[
         keys: &[KeyCode::Char('r')],
         label: "r",
         action: Action::Run,
-        help: "run the scene in the background (a new run replaces a running one); file page: fit",
+        help: "run the scene (a new run replaces a running one); file page: fit",
     },
     Binding {
         keys: &[KeyCode::Esc],
@@ -183,13 +183,13 @@ pub const BINDINGS: &[Binding] = &[
         keys: &[KeyCode::Left, KeyCode::Char('[')],
         label: "← [",
         action: Action::PrevPanel,
-        help: "previous panel of the figure (or click its tab); file page: the curve to the left",
+        help: "previous panel (or click its tab); file page: the curve to the left",
     },
     Binding {
         keys: &[KeyCode::Right, KeyCode::Char(']')],
         label: "→ ]",
         action: Action::NextPanel,
-        help: "next panel; each panel keeps its cursor and zoom; file page: the curve to the right",
+        help: "next panel; file page: the curve to the right",
     },
     Binding {
         keys: &[KeyCode::Char('p')],
@@ -291,7 +291,7 @@ pub const BINDINGS: &[Binding] = &[
         keys: &[KeyCode::Char('o')],
         label: "o",
         action: Action::Open,
-        help: "open a measured force-curve file (JPK, Asylum .ibw, NT-MDT, AFM Workshop, .tab, .h5)",
+        help: "open a measured force-curve file (the formats of --fit)",
     },
     Binding {
         keys: &[KeyCode::Char('g')],
