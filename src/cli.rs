@@ -34,6 +34,12 @@ pub struct Cli {
     #[arg(long)]
     pub headless: bool,
 
+    /// A measured force-curve file to open in the terminal UI (JPK, Asylum .ibw, NT-MDT, AFM
+    /// Workshop, afmformats .tab/.h5): its curves, a force map as a grid, the chosen curve fitted.
+    /// With --headless, fit it with --fit FILE.
+    #[arg(value_name = "FILE")]
+    pub file: Option<PathBuf>,
+
     /// Scene to export (with --headless), e.g. fig1.1.
     #[arg(long, value_name = "ID", conflicts_with = "all")]
     pub figure: Option<String>,

@@ -23,13 +23,18 @@ fn main() -> ExitCode {
         }
     };
     let interactive = !(cli.headless || cli.list || cli.describe.is_some() || cli.print_preset.is_some());
-    let result = if interactive && let Some(first) = cli.given.first() {
+    let result = if !interactive && let Some(file) = &cli.file {
+        Err(anyhow::anyhow!(
+            "{}: a file argument opens the terminal UI; with --headless fit it with --fit FILE",
+            file.display()
+        ))
+    } else if interactive && let Some(first) = cli.given.iter().find(|g| *g != "file") {
         Err(anyhow::anyhow!(
             "--{} needs --headless (without options, adhesion starts the terminal UI)",
             first.replace('_', "-")
         ))
     } else if interactive {
-        adhesion::tui::run()
+        adhesion::tui::run(cli.file.as_deref())
     } else {
         adhesion::headless::run(&cli)
     };

@@ -4,10 +4,14 @@
 //! The parts, from pure to impure:
 //! - [`form`]: the parameter form of one scene (text per field, last valid set, validation);
 //! - [`keymap`]: keys to actions, also the key help;
-//! - [`app`]: the state machine (keys and run messages in, effects out; no I/O);
-//! - [`chart`]: the chart as an instrument (cursor, markers, zoom, history, mouse);
+//! - [`chart`]: the chart's cursor and zoom as plain data, and finding points and markers on it;
 //! - [`compare`]: pinned runs drawn over the current one;
-//! - [`view`]: drawing the state into any ratatui backend;
+//! - [`curves`]: the page of a measured force-curve file (its curves on the map's grid, the fit
+//!   settings, the fits) as plain data;
+//! - [`layout`]: where a drawn frame put what the mouse can hit (plain data);
+//! - [`app`]: the state machine (keys, mouse and run messages in, effects out; no I/O, no
+//!   drawing): the chart as an instrument (cursor, markers, zoom, pins, history) included;
+//! - [`view`]: drawing the state into any ratatui backend, returning the [`layout`];
 //! - [`worker`]: background runs on threads, messages over a channel;
 //! - [`session`]: the state plus the worker, carrying out effects (runs, exports, presets);
 //! - [`run`]: the crossterm event loop around a session.
@@ -19,8 +23,10 @@
 pub mod app;
 pub mod chart;
 pub mod compare;
+pub mod curves;
 pub mod form;
 pub mod keymap;
+pub mod layout;
 pub mod session;
 pub mod view;
 pub mod worker;
@@ -53,12 +59,16 @@ fn release_mouse() {
 }
 
 /// Start the terminal UI over every scene; exports go to `output/`, presets are offered from
-/// `presets/`.
+/// `presets/`. With `file`, the UI opens on that measured force-curve file (a file it cannot
+/// read leaves a one-line message over the scenes).
 ///
 /// # Errors
 /// Terminal errors (no terminal, a failed draw).
-pub fn run() -> anyhow::Result<ExitCode> {
+pub fn run(file: Option<&std::path::Path>) -> anyhow::Result<ExitCode> {
     let mut session = Session::new(scenes::all(), "output", "presets");
+    if let Some(path) = file {
+        session.open_file(path);
+    }
     let _guard = TerminalGuard;
     let mut terminal =
         ratatui::try_init().context("starting the terminal UI (use --headless without a terminal)")?;

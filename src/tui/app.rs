@@ -1,19 +1,30 @@
 //! The state of the terminal UI and its transitions: keys in, [`Effect`]s out, messages of the
 //! background runs in. No I/O, no threads and no clock here: the session carries the effects
 //! out, the view draws the state, so tests drive the UI without a terminal.
+//!
+//! The state never calls the drawing: what it needs from a drawn frame (where the lists, the
+//! chart and the tabs were put) comes back as a [`DrawnLayout`] that the session hands over
+//! with [`App::set_layout`]. Keys and worker messages are handled here, the chart's cursor,
+//! zoom, pins and history in `app/instrument.rs`, the mouse in `app/mouse.rs`, the page of a
+//! measured force-curve file in `app/file.rs`.
 
+mod file;
+mod instrument;
+mod mouse;
+
+use std::cell::{Ref, RefCell};
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use ratatui::crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
-use std::cell::Cell;
-use std::collections::HashMap;
-
-use super::chart::{AxesKey, CursorAt, DrawnLayout, HistoryEntry, PanelView};
+use super::chart::{AxesKey, CursorAt, PanelView};
 use super::compare::Pin;
+use super::curves::FilePage;
 use super::form::{Form, LineEdit};
 use super::keymap::{Action, action_for};
-use super::worker::{JobMsg, Outcome};
+use super::layout::DrawnLayout;
+use super::worker::{JobMsg, Outcome, Task};
 use crate::figure::Figure;
 use crate::params::ParamValues;
 use crate::render::terminal::View;
@@ -28,6 +39,15 @@ pub enum Focus {
     Form,
 }
 
+/// The page the panes show.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Page {
+    /// The scenes: list, parameter form, figure.
+    Scenes,
+    /// A measured force-curve file: its curves on the map's grid, the fit of the chosen one.
+    File,
+}
+
 /// What a path prompt is for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PromptKind {
@@ -35,6 +55,10 @@ pub enum PromptKind {
     LoadPreset,
     /// Save the form as a preset.
     SavePreset,
+    /// Open a measured force-curve file.
+    OpenFile,
+    /// The tip radius of the file page's fits (a number in metres, not a path).
+    TipRadius,
 }
 
 /// Modal state on top of the panes.
@@ -108,6 +132,31 @@ pub struct Running {
     pub cancelling: bool,
 }
 
+/// A finished run kept for reopening and exporting without rerunning.
+#[derive(Debug, Clone)]
+pub struct HistoryEntry {
+    /// Scene index.
+    pub scene: usize,
+    /// The figure.
+    pub figure: Figure,
+    /// Its parameters.
+    pub values: ParamValues,
+    /// Wall time in seconds.
+    pub run_time_s: f64,
+}
+
+/// Runs the history keeps.
+pub const HISTORY_LEN: usize = 20;
+
+/// A row of the scene list: a chapter heading or a scene (index).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ListRow {
+    /// Chapter heading (chapter key).
+    Chapter(&'static str),
+    /// A scene, by index.
+    Scene(usize),
+}
+
 /// A line in the status bar.
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct Status {
@@ -157,6 +206,13 @@ pub enum Effect {
         /// The file.
         path: PathBuf,
     },
+    /// Do background work that is not a scene run (read a file, fit a curve).
+    Task {
+        /// Run id (the message carries it).
+        job: u64,
+        /// The work.
+        task: Task,
+    },
 }
 
 impl std::fmt::Debug for Effect {
@@ -168,6 +224,10 @@ impl std::fmt::Debug for Effect {
             Effect::ExportHistory { entry } => write!(f, "ExportHistory({entry})"),
             Effect::LoadPreset { scene, path } => write!(f, "LoadPreset({scene}, {})", path.display()),
             Effect::SavePreset { scene, path } => write!(f, "SavePreset({scene}, {})", path.display()),
+            Effect::Task { job, task } => match task {
+                Task::Open { path } => write!(f, "Open({job}, {})", path.display()),
+                Task::Fit { position, .. } => write!(f, "Fit({job}, curve {position})"),
+            },
         }
     }
 }
@@ -195,7 +255,10 @@ pub struct App {
     pub(crate) views: HashMap<(usize, usize), PanelView>,
     pub(crate) last_panel: Vec<usize>,
     pub(crate) axes: Vec<Vec<AxesKey>>,
-    pub(crate) layout: Cell<DrawnLayout>,
+    pub(crate) layout: RefCell<DrawnLayout>,
+    pub(crate) page: Page,
+    pub(crate) file: Option<FilePage>,
+    pub(crate) opening: Option<u64>,
     preset_dir: PathBuf,
     next_job: u64,
     quit: bool,
@@ -245,7 +308,10 @@ impl App {
             views: HashMap::new(),
             last_panel: vec![0; n],
             axes: vec![Vec::new(); n],
-            layout: Cell::new(DrawnLayout::default()),
+            layout: RefCell::new(DrawnLayout::default()),
+            page: Page::Scenes,
+            file: None,
+            opening: None,
             preset_dir: preset_dir.into(),
             next_job: 1,
             quit: false,
@@ -421,10 +487,12 @@ impl App {
                             return Vec::new();
                         }
                         let scene = self.selected;
-                        return vec![match kind {
-                            PromptKind::LoadPreset => Effect::LoadPreset { scene, path },
-                            PromptKind::SavePreset => Effect::SavePreset { scene, path },
-                        }];
+                        return match kind {
+                            PromptKind::LoadPreset => vec![Effect::LoadPreset { scene, path }],
+                            PromptKind::SavePreset => vec![Effect::SavePreset { scene, path }],
+                            PromptKind::OpenFile => self.open_file(path),
+                            PromptKind::TipRadius => self.set_tip_radius(&path.to_string_lossy()),
+                        };
                     }
                     _ => {
                         edit.handle(key);
@@ -450,6 +518,7 @@ impl App {
             return self.after_change();
         }
         match action_for(key) {
+            Some(action) if self.page == Page::File => self.file_action(action),
             Some(action) => self.act(action),
             None => Vec::new(),
         }
@@ -599,6 +668,11 @@ impl App {
             | Action::ZoomOut
             | Action::ZoomReset => self.chart_action(action),
             Action::Info => self.show_info = !self.show_info,
+            Action::Open => self.prompt_open(),
+            Action::SwitchPage => self.switch_page(),
+            Action::TipRadius => {
+                self.set_status("the tip radius is set on the file page (o opens a file)", false);
+            }
         }
         // Keep the panel index within the figure.
         self.panel = self.panel();
@@ -608,6 +682,31 @@ impl App {
     /// The filter of the scene list (empty: every scene).
     pub fn filter(&self) -> &str {
         &self.filter
+    }
+
+    /// The rows of the scene list under the filter: each chapter with visible scenes, then them.
+    pub fn list_rows(&self) -> Vec<ListRow> {
+        let mut rows = Vec::new();
+        let mut chapter = "";
+        for k in self.visible_scenes() {
+            let info = self.scenes[k].info();
+            if info.chapter != chapter {
+                chapter = info.chapter;
+                rows.push(ListRow::Chapter(chapter));
+            }
+            rows.push(ListRow::Scene(k));
+        }
+        rows
+    }
+
+    /// Take the layout of a drawn frame: the mouse acts on what that frame showed.
+    pub fn set_layout(&self, layout: DrawnLayout) {
+        *self.layout.borrow_mut() = layout;
+    }
+
+    /// The layout of the last drawn frame.
+    pub fn layout(&self) -> Ref<'_, DrawnLayout> {
+        self.layout.borrow()
     }
 
     /// Indices of the scenes the filter lets through (id or title contains every word of the
@@ -678,13 +777,18 @@ impl App {
         effects.push(Effect::Start { job, scene, values });
     }
 
-    /// Take a message of a background run. Messages of runs no longer tracked are ignored.
-    pub fn on_job(&mut self, msg: JobMsg) {
+    /// Take a message of a background run; returns what the session must do next (a file
+    /// read fits its first curve when the tip radius is known). Messages of runs no longer
+    /// tracked are ignored.
+    pub fn on_job(&mut self, msg: JobMsg) -> Vec<Effect> {
+        if let JobMsg::Task { job, outcome } = msg {
+            return self.on_task(job, outcome);
+        }
         let Some(run) = &mut self.running else {
-            return;
+            return Vec::new();
         };
         if msg.job() != run.job {
-            return;
+            return Vec::new();
         }
         let scene = run.scene;
         let id = self.scenes[scene].info().id;
@@ -708,6 +812,7 @@ impl App {
                     state: FigureState::Partial,
                 });
             }
+            JobMsg::Task { .. } => {}
             JobMsg::Finished {
                 outcome, run_time_s, ..
             } => {
@@ -742,6 +847,7 @@ impl App {
                 self.panel = self.panel();
             }
         }
+        Vec::new()
     }
 }
 

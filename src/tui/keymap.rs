@@ -78,6 +78,12 @@ pub enum Action {
     ZoomReset,
     /// Show the run history.
     History,
+    /// Open a measured force-curve file (a path prompt).
+    Open,
+    /// Switch between the scenes and the opened force-curve file.
+    SwitchPage,
+    /// Type the tip radius of the file page's fits.
+    TipRadius,
 }
 
 /// One key binding: the keys, how the help writes them, the action, what it does.
@@ -99,13 +105,13 @@ pub const BINDINGS: &[Binding] = &[
         keys: &[KeyCode::Up, KeyCode::Char('k')],
         label: "↑ k",
         action: Action::Up,
-        help: "previous scene or parameter",
+        help: "previous scene or parameter; file page: the curve above on the map",
     },
     Binding {
         keys: &[KeyCode::Down, KeyCode::Char('j')],
         label: "↓ j",
         action: Action::Down,
-        help: "next scene or parameter",
+        help: "next scene or parameter; file page: the curve below on the map",
     },
     Binding {
         keys: &[KeyCode::Char('/')],
@@ -117,7 +123,7 @@ pub const BINDINGS: &[Binding] = &[
         keys: &[KeyCode::Tab, KeyCode::BackTab],
         label: "Tab",
         action: Action::SwitchFocus,
-        help: "switch between scene list and parameters",
+        help: "switch between scene list and parameters; file page: next segment fitted",
     },
     Binding {
         keys: &[KeyCode::Enter],
@@ -129,13 +135,13 @@ pub const BINDINGS: &[Binding] = &[
         keys: &[KeyCode::Char(' ')],
         label: "Space",
         action: Action::Cycle,
-        help: "next option of a choice or true/false parameter",
+        help: "next option of a choice or true/false parameter; file page: next model",
     },
     Binding {
         keys: &[KeyCode::Char('r')],
         label: "r",
         action: Action::Run,
-        help: "run the scene in the background (a new run replaces a running one)",
+        help: "run the scene (a new run replaces a running one); file page: fit",
     },
     Binding {
         keys: &[KeyCode::Esc],
@@ -177,13 +183,13 @@ pub const BINDINGS: &[Binding] = &[
         keys: &[KeyCode::Left, KeyCode::Char('[')],
         label: "← [",
         action: Action::PrevPanel,
-        help: "previous panel of the figure (or click its tab)",
+        help: "previous panel (or click its tab); file page: the curve to the left",
     },
     Binding {
         keys: &[KeyCode::Right, KeyCode::Char(']')],
         label: "→ ]",
         action: Action::NextPanel,
-        help: "next panel; each panel keeps its cursor and zoom",
+        help: "next panel; file page: the curve to the right",
     },
     Binding {
         keys: &[KeyCode::Char('p')],
@@ -280,6 +286,24 @@ pub const BINDINGS: &[Binding] = &[
         label: "h",
         action: Action::History,
         help: "run history: reopen (Enter) or export (e) a past run without rerunning",
+    },
+    Binding {
+        keys: &[KeyCode::Char('o')],
+        label: "o",
+        action: Action::Open,
+        help: "open a measured force-curve file (the formats of --fit)",
+    },
+    Binding {
+        keys: &[KeyCode::Char('g')],
+        label: "g",
+        action: Action::SwitchPage,
+        help: "go between the scenes and the opened force-curve file",
+    },
+    Binding {
+        keys: &[KeyCode::Char('t')],
+        label: "t",
+        action: Action::TipRadius,
+        help: "file page: tip radius of the fits (metres; no fit without it)",
     },
     Binding {
         keys: &[KeyCode::Char('i')],

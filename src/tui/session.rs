@@ -65,12 +65,21 @@ impl Session {
         }
     }
 
+    /// Open a measured force-curve file (read in the background; the file page shows it).
+    pub fn open_file(&mut self, path: impl Into<PathBuf>) {
+        for effect in self.app.open_file(path.into()) {
+            self.apply(effect);
+        }
+    }
+
     /// Take every message the worker has; returns whether there was any.
     pub fn pump(&mut self) -> bool {
         let msgs = self.worker.drain();
         let any = !msgs.is_empty();
         for m in msgs {
-            self.app.on_job(m);
+            for effect in self.app.on_job(m) {
+                self.apply(effect);
+            }
         }
         any
     }
@@ -91,14 +100,17 @@ impl Session {
                 .worker
                 .recv_timeout((end - now).min(Duration::from_millis(20)))
             {
-                self.app.on_job(m);
+                for effect in self.app.on_job(m) {
+                    self.apply(effect);
+                }
             }
         }
     }
 
-    /// Draw the state into a frame.
+    /// Draw the state into a frame; the state keeps where the frame put what the mouse can hit.
     pub fn draw(&self, frame: &mut Frame<'_>) {
-        view::draw(frame, &self.app);
+        let layout = view::draw(frame, &self.app);
+        self.app.set_layout(layout);
     }
 
     /// Whether the user asked to quit.
@@ -118,6 +130,7 @@ impl Session {
             }
             Effect::LoadPreset { scene, path } => self.load_preset(scene, &path),
             Effect::SavePreset { scene, path } => self.save_preset(scene, &path),
+            Effect::Task { job, task } => self.worker.task(job, task),
         }
     }
 

@@ -2,6 +2,9 @@
 //! form (invalid fields in red with their error), the figure as a braille chart
 //! ([`crate::render::terminal::render_panel`]) with panel tabs, the progress gauge, the status
 //! bar, and the help and path-prompt overlays.
+//!
+//! Drawing only reads the state. Where it put the parts the mouse can hit comes back from
+//! [`draw`] as a [`DrawnLayout`], plain data the state keeps for the next mouse event.
 
 use ratatui::Frame;
 use ratatui::crossterm::event::KeyCode;
@@ -10,9 +13,13 @@ use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Gauge, Paragraph, Wrap};
 
-use super::app::{App, FigureState, FigureView, Focus, Mode, PromptKind, fmt_duration};
-use super::chart::history_line;
+use super::app::{
+    App, FigureState, FigureView, Focus, HistoryEntry, ListRow, Mode, Page, PromptKind, fmt_duration,
+};
+use super::compare::difference;
+use super::curves::{FilePage, model_name, raw_panel, segment_name};
 use super::keymap::BINDINGS;
+use super::layout::{DrawnLayout, Target};
 use crate::params::{ParamKind, fmt_float};
 use crate::render::labels::{fmt_quantity, result_unit};
 use crate::render::terminal::{ChartOptions, render_chart};
@@ -21,23 +28,228 @@ use crate::scenes::chapter_title;
 const ACCENT: Color = Color::Cyan;
 const ERROR: Color = Color::LightRed;
 
-/// Draw the whole UI.
-pub fn draw(frame: &mut Frame<'_>, app: &App) {
+/// Draw the whole UI; returns where the parts the mouse can hit were put.
+pub fn draw(frame: &mut Frame<'_>, app: &App) -> DrawnLayout {
+    let mut layout = DrawnLayout::default();
     let [main, status] = Layout::vertical([Constraint::Min(0), Constraint::Length(1)]).areas(frame.area());
+    match app.page() {
+        Page::Scenes => draw_scenes_page(frame, app, main, &mut layout),
+        Page::File => match app.file_page() {
+            Some(page) => draw_file_page(frame, page, main),
+            None => draw_scenes_page(frame, app, main, &mut layout),
+        },
+    }
+    draw_status(frame, app, status);
+    draw_overlays(frame, app, main, &mut layout);
+    layout
+}
+
+/// The scenes page: the scene list and the parameter form on the left, the figure on the right.
+fn draw_scenes_page(frame: &mut Frame<'_>, app: &App, main: Rect, layout: &mut DrawnLayout) {
     let left_width = (main.width * 2 / 5).clamp(30, 52).min(main.width);
     let [left, right] = Layout::horizontal([Constraint::Length(left_width), Constraint::Min(0)]).areas(main);
-    let entries = scene_rows(app).len().max(1);
+    let entries = app.list_rows().len().max(1);
     let list_height = (entries as u16 + 2).min(left.height / 2).max(3);
     let [list_area, form_area] =
         Layout::vertical([Constraint::Length(list_height), Constraint::Min(0)]).areas(left);
-    draw_scene_list(frame, app, list_area);
-    draw_form(frame, app, form_area);
-    draw_figure(frame, app, right);
-    draw_status(frame, app, status);
+    draw_scene_list(frame, app, list_area, layout);
+    draw_form(frame, app, form_area, layout);
+    draw_figure(frame, app, right, layout);
+}
+
+/// The page of a measured force-curve file: the file and the fit settings, the map's grid of
+/// curves and the chosen curve's fit on the left; its data, fit and residuals on the right (the
+/// curve as recorded until it is fitted).
+fn draw_file_page(frame: &mut Frame<'_>, page: &FilePage, main: Rect) {
+    let left_width = (main.width * 2 / 5).clamp(30, 52).min(main.width);
+    let [left, right] = Layout::horizontal([Constraint::Length(left_width), Constraint::Min(0)]).areas(main);
+    let [info_area, grid_area, fit_area] = Layout::vertical([
+        Constraint::Length(7.min(left.height)),
+        Constraint::Percentage(45),
+        Constraint::Min(0),
+    ])
+    .areas(left);
+    let name = page
+        .path
+        .file_name()
+        .map_or(page.path.display().to_string(), |n| {
+            n.to_string_lossy().into_owned()
+        });
+    let block = pane(" Force-curve file (o opens, g scenes) ".into(), false);
+    let inner = block.inner(info_area);
+    frame.render_widget(block, info_area);
+    let k = page
+        .curve()
+        .and_then(|c| c.meta.spring_constant)
+        .map_or("none in the file".to_string(), |k| fmt_quantity(k, "N/m"));
+    let info = vec![
+        Line::styled(name, Style::default().add_modifier(Modifier::BOLD)),
+        Line::from(format!(
+            "{} · {} curve(s) · k = {k}",
+            page.file.format,
+            page.file.curves.len()
+        )),
+        Line::from(page.settings_text()),
+    ];
+    frame.render_widget(Paragraph::new(info).wrap(Wrap { trim: true }), inner);
+    draw_grid(frame, page, grid_area);
+    draw_fit_results(frame, page, fit_area);
+    let index = page.curve().map_or(0, |c| c.index);
+    let fitted = page.fits.get(&page.selected).and_then(|f| f.as_ref().ok());
+    let state = match (&page.fitting, page.fits.get(&page.selected)) {
+        (Some(f), _) if f.curve == page.selected => " · fitting…",
+        (_, Some(Ok(_))) => " · data, fit and residuals",
+        (_, Some(Err(_))) => " · not fitted (see the message)",
+        _ => " · as recorded (r fits)",
+    };
+    let block = pane(format!(" Curve {index}{state} "), false);
+    let inner = block.inner(right);
+    frame.render_widget(block, right);
+    let options = ChartOptions::default();
+    match fitted {
+        Some(f) if f.figure.panels.len() >= 2 => {
+            let [top, bottom] =
+                Layout::vertical([Constraint::Percentage(64), Constraint::Percentage(36)]).areas(inner);
+            for (panel, area) in f.figure.panels.iter().zip([top, bottom]) {
+                let [title, chart] =
+                    Layout::vertical([Constraint::Length(1), Constraint::Min(0)]).areas(area);
+                frame.render_widget(
+                    Line::styled(
+                        format!("{} {}", panel.label, crate::render::text::terminal(&panel.title)),
+                        Style::default().fg(Color::Yellow),
+                    ),
+                    title,
+                );
+                render_chart(panel, &options, chart, frame.buffer_mut());
+            }
+        }
+        Some(f) => {
+            if let Some(panel) = f.figure.panels.first() {
+                render_chart(panel, &options, inner, frame.buffer_mut());
+            }
+        }
+        None => {
+            if let Some(curve) = page.curve() {
+                render_chart(&raw_panel(curve), &options, inner, frame.buffer_mut());
+            }
+        }
+    }
+}
+
+/// The map's grid, y up: `●` fitted, `✗` failed, `·` not fitted yet, the chosen curve
+/// highlighted; a window around it when the grid is larger than the area.
+fn draw_grid(frame: &mut Frame<'_>, page: &FilePage, area: Rect) {
+    let [nx, ny] = page.grid.shape;
+    let n = page.file.curves.len();
+    let block = pane(format!(" Map {nx} × {ny}, {n} curve(s) — arrows choose "), true);
+    let inner = block.inner(area);
+    frame.render_widget(block, area);
+    if inner.width < 2 || inner.height == 0 || nx == 0 || ny == 0 {
+        return;
+    }
+    let Some(&[si, sj]) = page.grid.cells.get(page.selected) else {
+        return;
+    };
+    // Two columns a cell; the window keeps the chosen cell inside, near its middle.
+    let cols = (usize::from(inner.width) / 2).clamp(1, nx);
+    let rows = usize::from(inner.height).min(ny);
+    let x0 = si.saturating_sub(cols / 2).min(nx - cols);
+    let top = ny - 1 - sj;
+    let y0 = top.saturating_sub(rows / 2).min(ny - rows);
+    let mut lines = Vec::new();
+    for r in y0..y0 + rows {
+        let j = ny - 1 - r;
+        let mut spans = Vec::new();
+        for i in x0..x0 + cols {
+            let (glyph, mut style) = match page.curve_at([i, j]) {
+                None => ("  ", Style::default()),
+                Some(k) => match page.fits.get(&k) {
+                    Some(Ok(_)) => ("● ", Style::default().fg(Color::Green)),
+                    Some(Err(_)) => ("✗ ", Style::default().fg(ERROR)),
+                    None => ("· ", Style::default().fg(Color::Gray)),
+                },
+            };
+            if [i, j] == [si, sj] {
+                style = style.bg(Color::Blue).fg(Color::White);
+            }
+            spans.push(Span::styled(glyph, style));
+        }
+        lines.push(Line::from(spans));
+    }
+    frame.render_widget(Paragraph::new(lines), inner);
+}
+
+/// The chosen curve's fit: values with standard errors, the measured pull-off, the residual,
+/// the warnings; or why it was not fitted.
+fn draw_fit_results(frame: &mut Frame<'_>, page: &FilePage, area: Rect) {
+    let index = page.curve().map_or(0, |c| c.index);
+    let block = pane(
+        format!(
+            " Fit of curve {index} ({} of {}) ",
+            page.selected + 1,
+            page.file.curves.len()
+        ),
+        false,
+    );
+    let inner = block.inner(area);
+    frame.render_widget(block, area);
+    let dim = Style::default().fg(Color::DarkGray);
+    let lines: Vec<Line<'_>> = match page.fits.get(&page.selected) {
+        None if page.radius.is_none() => vec![Line::styled("t sets the tip radius, then r fits", dim)],
+        None => vec![Line::styled("not fitted yet: r fits", dim)],
+        Some(Err(e)) => vec![Line::styled(e.clone(), Style::default().fg(ERROR))],
+        Some(Ok(f)) => {
+            let r = &f.fit.fit;
+            let est = |e: &crate::fit::Estimate, unit: &str| {
+                format!(
+                    "{} ± {}",
+                    fmt_quantity(e.value, unit),
+                    fmt_quantity(e.std_error, unit)
+                )
+            };
+            let mut rows = vec![
+                format!(
+                    "{} fit of the {}",
+                    model_name(Some(r.model)),
+                    segment_name(Some(r.segment))
+                ),
+                format!("ℰ    {}", est(&r.plane_strain_modulus_pa, "Pa")),
+            ];
+            if let Some(w) = &r.work_of_adhesion_j_per_m2 {
+                rows.push(format!("w    {}", est(w, "J/m²")));
+            }
+            rows.push(format!("d_c  {}", est(&r.contact_point_m, "m")));
+            rows.push(format!("F₀   {}", est(&r.baseline_n, "N")));
+            rows.push(format!(
+                "pull-off (measured) {}",
+                fmt_quantity(r.measured_pull_off_force_n, "N")
+            ));
+            rows.push(format!(
+                "rms residual {} · {} of {} rows",
+                fmt_quantity(r.rms_residual_n, "N"),
+                r.points_used,
+                r.points_total
+            ));
+            rows.push(format!("fitted in {}", fmt_duration(f.run_time_s)));
+            let mut lines: Vec<Line<'_>> = rows.into_iter().map(Line::from).collect();
+            for w in &r.warnings {
+                lines.push(Line::styled(
+                    format!("warning: {w}"),
+                    Style::default().fg(Color::Yellow),
+                ));
+            }
+            lines
+        }
+    };
+    frame.render_widget(Paragraph::new(lines).wrap(Wrap { trim: true }), inner);
+}
+
+/// The modal overlays over `main`: help, history, a path prompt.
+fn draw_overlays(frame: &mut Frame<'_>, app: &App, main: Rect, layout: &mut DrawnLayout) {
     match &app.mode {
         Mode::Normal | Mode::Filter { .. } => {}
         Mode::Help => draw_help(frame, main),
-        Mode::History { selected } => draw_history(frame, app, *selected, main),
+        Mode::History { selected } => draw_history(frame, app, *selected, main, layout),
         Mode::Prompt { kind, edit } => {
             let area = Rect {
                 x: main.x,
@@ -48,6 +260,8 @@ pub fn draw(frame: &mut Frame<'_>, app: &App) {
             let title = match kind {
                 PromptKind::LoadPreset => " Load preset (TOML) — Enter loads, Esc cancels ",
                 PromptKind::SavePreset => " Save preset (TOML) — Enter saves, Esc cancels ",
+                PromptKind::OpenFile => " Open a force-curve file — Enter opens, Esc cancels ",
+                PromptKind::TipRadius => " Tip radius in metres (e.g. 2e-6) — Enter sets, Esc cancels ",
             };
             frame.render_widget(Clear, area);
             let block = Block::bordered()
@@ -70,30 +284,6 @@ fn pane(title: String, focused: bool) -> Block<'static> {
     Block::bordered().title(title).border_style(style)
 }
 
-/// A row of the scene list: a chapter heading or a scene (index).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ListRow {
-    /// Chapter heading (chapter key).
-    Chapter(&'static str),
-    /// A scene, by index.
-    Scene(usize),
-}
-
-/// The rows of the scene list under the filter: each chapter with visible scenes, then them.
-pub fn scene_rows(app: &App) -> Vec<ListRow> {
-    let mut rows = Vec::new();
-    let mut chapter = "";
-    for k in app.visible_scenes() {
-        let info = app.scenes[k].info();
-        if info.chapter != chapter {
-            chapter = info.chapter;
-            rows.push(ListRow::Chapter(chapter));
-        }
-        rows.push(ListRow::Scene(k));
-    }
-    rows
-}
-
 /// First row shown in a list of `height` rows so that row `selected` is visible.
 pub fn scroll_offset(selected: usize, height: usize) -> usize {
     (selected + 1).saturating_sub(height.max(1))
@@ -112,7 +302,7 @@ fn clip(text: &str, width: usize) -> String {
     }
 }
 
-fn draw_scene_list(frame: &mut Frame<'_>, app: &App, area: Rect) {
+fn draw_scene_list(frame: &mut Frame<'_>, app: &App, area: Rect, layout: &mut DrawnLayout) {
     let filtering = matches!(app.mode, Mode::Filter { .. });
     let focused = app.focus == Focus::Scenes && (app.mode == Mode::Normal || filtering);
     let title = if app.filter.is_empty() && !filtering {
@@ -134,7 +324,7 @@ fn draw_scene_list(frame: &mut Frame<'_>, app: &App, area: Rect) {
     if inner.height == 0 || inner.width == 0 {
         return;
     }
-    let rows = scene_rows(app);
+    let rows = app.list_rows();
     if rows.is_empty() {
         frame.render_widget(
             Line::styled(
@@ -159,10 +349,8 @@ fn draw_scene_list(frame: &mut Frame<'_>, app: &App, area: Rect) {
         .position(|r| *r == ListRow::Scene(app.selected))
         .unwrap_or(0);
     let offset = scroll_offset(selected_row, inner.height as usize);
-    let mut layout = app.layout.get();
     layout.list = inner;
     layout.list_offset = offset;
-    app.layout.set(layout);
     let highlight = if focused {
         Style::default().bg(Color::Blue).fg(Color::White)
     } else {
@@ -205,7 +393,7 @@ fn draw_scene_list(frame: &mut Frame<'_>, app: &App, area: Rect) {
     frame.render_widget(Paragraph::new(lines), inner);
 }
 
-fn draw_form(frame: &mut Frame<'_>, app: &App, area: Rect) {
+fn draw_form(frame: &mut Frame<'_>, app: &App, area: Rect, layout: &mut DrawnLayout) {
     let Some(form) = app.form() else {
         frame.render_widget(pane(" Parameters ".into(), false), area);
         return;
@@ -242,10 +430,8 @@ fn draw_form(frame: &mut Frame<'_>, app: &App, area: Rect) {
         .max(4);
     let visible = rows_area.height as usize;
     let offset = scroll_offset(form.selected(), visible);
-    let mut layout = app.layout.get();
     layout.form = rows_area;
     layout.form_offset = offset;
-    app.layout.set(layout);
     let mut lines = Vec::new();
     for k in offset..form.len().min(offset + visible) {
         let spec = &form.specs()[k];
@@ -327,7 +513,7 @@ fn draw_form(frame: &mut Frame<'_>, app: &App, area: Rect) {
     frame.render_widget(help.wrap(Wrap { trim: true }), help_area);
 }
 
-fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect) {
+fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect, layout: &mut DrawnLayout) {
     let Some(scene) = app.scene() else {
         frame.render_widget(pane(" Figure ".into(), false), area);
         return;
@@ -356,24 +542,34 @@ fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect) {
         Constraint::Length(1),
     ])
     .areas(inner);
-    let mut layout = app.layout.get();
-    layout.tabs = Rect::default();
     if panels > 1
         && let Some(v) = view
     {
         let mut spans = vec![Span::styled(TABS_PREFIX, Style::default().fg(Color::DarkGray))];
+        let mut left = tabs_area.x + Span::raw(TABS_PREFIX).width() as u16;
         for (k, text) in panel_tabs(v).into_iter().enumerate() {
             let style = if k == app.panel() {
                 Style::default().bg(ACCENT).fg(Color::Black)
             } else {
                 Style::default()
             };
-            spans.push(Span::styled(text, style));
+            let span = Span::styled(text, style);
+            let width = span.width() as u16;
+            layout.targets.push((
+                Rect {
+                    x: left,
+                    width,
+                    ..tabs_area
+                }
+                .intersection(tabs_area),
+                Target::Tab(k),
+            ));
+            left = left.saturating_add(width);
+            spans.push(span);
         }
         frame.render_widget(Line::from(spans), tabs_area);
         layout.tabs = tabs_area;
     }
-    app.layout.set(layout);
     let mut geometry = None;
     match view {
         Some(v) if !app.show_info && !v.figure.panels.is_empty() => {
@@ -386,9 +582,7 @@ fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect) {
                     listed: Some(drawn.current_counts()),
                 };
                 geometry = render_chart(&drawn.panel, &options, chart_area, frame.buffer_mut());
-                let mut layout = app.layout.get();
                 layout.chart_area = chart_area;
-                app.layout.set(layout);
             }
             if let Some(area) = results_area {
                 draw_results(frame, app, Some(v), area);
@@ -396,9 +590,7 @@ fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect) {
         }
         _ => draw_info(frame, app, view, body),
     }
-    let mut layout = app.layout.get();
     layout.chart = geometry;
-    app.layout.set(layout);
     if readout_height > 0 {
         let mut spans = Vec::new();
         if let Some(r) = &readout {
@@ -443,19 +635,6 @@ pub fn panel_tabs(view: &FigureView) -> Vec<String> {
         .collect()
 }
 
-/// The panel whose tab covers `column` of a tab line drawn from `x`.
-pub fn tab_at(view: &FigureView, x: u16, column: u16) -> Option<usize> {
-    let mut left = x + Span::raw(TABS_PREFIX).width() as u16;
-    for (k, text) in panel_tabs(view).iter().enumerate() {
-        let right = left + Span::raw(text.as_str()).width() as u16;
-        if (left..right).contains(&column) {
-            return Some(k);
-        }
-        left = right;
-    }
-    None
-}
-
 /// The parts of the history overlay's last line, each a mouse target: what it says and the key
 /// it stands for.
 pub const HISTORY_FOOTER: [(&str, KeyCode); 3] = [
@@ -463,19 +642,6 @@ pub const HISTORY_FOOTER: [(&str, KeyCode); 3] = [
     ("e exports", KeyCode::Char('e')),
     ("Esc closes", KeyCode::Esc),
 ];
-
-/// The key of the history footer's action at `column` of a footer drawn from `x`.
-pub fn footer_at(x: u16, column: u16) -> Option<KeyCode> {
-    let mut left = x + Span::raw(FOOTER_PREFIX).width() as u16;
-    for (text, key) in HISTORY_FOOTER {
-        let right = left + Span::raw(text).width() as u16;
-        if (left..right).contains(&column) {
-            return Some(key);
-        }
-        left = right + Span::raw(FOOTER_GAP).width() as u16;
-    }
-    None
-}
 
 const FOOTER_PREFIX: &str = " ↑ ↓ or click choose · ";
 const FOOTER_GAP: &str = " · ";
@@ -575,7 +741,7 @@ fn overlay_box(frame: &mut Frame<'_>, area: Rect, width: u16, height: u16, title
     (rect, inner)
 }
 
-fn draw_history(frame: &mut Frame<'_>, app: &App, selected: usize, area: Rect) {
+fn draw_history(frame: &mut Frame<'_>, app: &App, selected: usize, area: Rect, layout: &mut DrawnLayout) {
     let n = app.history().len();
     let width = 96.min(area.width);
     let height = (n as u16 + 4).min(area.height);
@@ -618,12 +784,45 @@ fn draw_history(frame: &mut Frame<'_>, app: &App, selected: usize, area: Rect) {
         Line::styled(footer, Style::default().fg(Color::DarkGray)),
         footer_row,
     );
-    let mut layout = app.layout.get();
+    // Each action of the footer is a mouse target standing for its key.
+    let mut left = footer_row
+        .x
+        .saturating_add(Span::raw(FOOTER_PREFIX).width() as u16);
+    for (text, key) in HISTORY_FOOTER {
+        let width = Span::raw(text).width() as u16;
+        let target = Rect {
+            x: left,
+            width,
+            ..footer_row
+        };
+        layout
+            .targets
+            .push((target.intersection(footer_row), Target::Key(key)));
+        left = left
+            .saturating_add(width)
+            .saturating_add(Span::raw(FOOTER_GAP).width() as u16);
+    }
     layout.overlay = rect;
     layout.history = rows_area;
     layout.history_offset = offset;
     layout.history_footer = footer_row;
-    app.layout.set(layout);
+}
+
+/// Labels of the history entries for the list: scene, run time, the parameters that differ
+/// from the scene's defaults.
+pub fn history_line(app: &App, entry: &HistoryEntry) -> String {
+    let scene = app.scenes[entry.scene];
+    let diff = difference(&entry.values, &scene.defaults());
+    let diff = if diff == "same parameters" {
+        "defaults".to_string()
+    } else {
+        diff
+    };
+    format!(
+        "{:<16} {:>8}  {diff}",
+        scene.info().id,
+        fmt_duration(entry.run_time_s)
+    )
 }
 
 fn draw_info(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, area: Rect) {

@@ -4,6 +4,10 @@
 //! second; the final figure always arrives) as [`JobMsg`]s tagged with the run's id, and whose
 //! cancellation flag the worker keeps. The work is CPU-bound, so there is no async runtime. A
 //! panic inside a scene is caught and reported as a failed run.
+//!
+//! Work that is not a scene (reading a measured file, fitting one of its curves) runs the same
+//! way as a [`Task`]: one thread, one [`JobMsg::Task`] back with its [`TaskDone`] or the
+//! one-line reason it failed.
 
 use std::collections::HashMap;
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -14,9 +18,15 @@ use std::time::{Duration, Instant};
 
 use crate::error::Error;
 use crate::figure::Figure;
+use crate::fit::instrument::{PrepareOptions, fit_curve};
+use crate::fit::{FitSettings, fit_figure};
 use crate::job::{Job, JobEvent};
 use crate::params::ParamValues;
+use crate::readers::{ForceCurve, ForceFile, ReadOptions, read_force_file};
 use crate::scenes::SceneDyn;
+use std::path::PathBuf;
+
+use super::curves::FittedCurve;
 
 /// Name of the worker threads (the panic hook lets their panics through to the worker).
 pub const WORKER_THREAD: &str = "adhesion-worker";
@@ -35,6 +45,83 @@ pub enum Outcome {
     Cancelled,
     /// The scene returned an error or panicked: the one-line message.
     Failed(String),
+}
+
+/// Background work that is not a scene run.
+#[derive(Debug, Clone)]
+pub enum Task {
+    /// Read a force-curve file.
+    Open {
+        /// The file.
+        path: PathBuf,
+    },
+    /// Prepare and fit one curve of a file, and draw data, fit and residuals.
+    Fit {
+        /// The file (words errors).
+        path: PathBuf,
+        /// The curve.
+        curve: Box<ForceCurve>,
+        /// Position of the curve in its file.
+        position: usize,
+        /// The fit's settings.
+        settings: FitSettings,
+    },
+}
+
+/// What a [`Task`] produced.
+#[derive(Debug)]
+pub enum TaskDone {
+    /// A file was read.
+    Opened {
+        /// The file.
+        path: PathBuf,
+        /// Its curves.
+        file: Box<ForceFile>,
+    },
+    /// A curve was fitted.
+    Fitted {
+        /// Position of the curve in its file.
+        position: usize,
+        /// The fit and its figure.
+        fitted: Box<FittedCurve>,
+    },
+}
+
+impl Task {
+    /// Do the work (on a worker thread).
+    fn run(self) -> crate::error::Result<TaskDone> {
+        let start = Instant::now();
+        match self {
+            Task::Open { path } => {
+                let file = read_force_file(&path, &ReadOptions::default())?;
+                if file.curves.is_empty() {
+                    return Err(Error::data_file(&path, 0, "the file holds no curve"));
+                }
+                Ok(TaskDone::Opened {
+                    path,
+                    file: Box::new(file),
+                })
+            }
+            Task::Fit {
+                path,
+                curve,
+                position,
+                settings,
+            } => {
+                let (data, fit) = fit_curve(&curve, &path, &PrepareOptions::default(), &settings)?;
+                let mut figure = fit_figure(&data, &fit.fit)?;
+                figure.title = format!("curve {} fitted", curve.index);
+                Ok(TaskDone::Fitted {
+                    position,
+                    fitted: Box::new(FittedCurve {
+                        fit,
+                        figure,
+                        run_time_s: start.elapsed().as_secs_f64(),
+                    }),
+                })
+            }
+        }
+    }
 }
 
 /// A message from a run to the drawing loop.
@@ -58,6 +145,13 @@ pub enum JobMsg {
         /// Partial figure.
         figure: Box<Figure>,
     },
+    /// A task ended.
+    Task {
+        /// The run.
+        job: u64,
+        /// What it produced, or why it failed (one line).
+        outcome: Result<TaskDone, String>,
+    },
     /// The run ended.
     Finished {
         /// The run.
@@ -73,7 +167,10 @@ impl JobMsg {
     /// The id of the run that sent the message.
     pub fn job(&self) -> u64 {
         match self {
-            JobMsg::Progress { job, .. } | JobMsg::Preview { job, .. } | JobMsg::Finished { job, .. } => *job,
+            JobMsg::Progress { job, .. }
+            | JobMsg::Preview { job, .. }
+            | JobMsg::Task { job, .. }
+            | JobMsg::Finished { job, .. } => *job,
         }
     }
 }
@@ -175,6 +272,31 @@ impl Worker {
                 job,
                 outcome: Outcome::Failed(format!("cannot start a worker thread: {e}")),
                 run_time_s: 0.0,
+            });
+        }
+    }
+
+    /// Do `task` on a new thread, reporting as run `job` (a panic is reported as a failure).
+    pub fn task(&mut self, job: u64, task: Task) {
+        let tx = self.tx.clone();
+        let spawned = std::thread::Builder::new().name(WORKER_THREAD.into()).spawn({
+            let tx = tx.clone();
+            move || {
+                let outcome = match catch_unwind(AssertUnwindSafe(|| task.run())) {
+                    Ok(Ok(done)) => Ok(done),
+                    Ok(Err(e)) => Err(e.to_string()),
+                    Err(payload) => Err(format!(
+                        "the computation stopped on an internal error: {}",
+                        panic_text(payload.as_ref())
+                    )),
+                };
+                let _ = tx.send(JobMsg::Task { job, outcome });
+            }
+        });
+        if let Err(e) = spawned {
+            let _ = tx.send(JobMsg::Task {
+                job,
+                outcome: Err(format!("cannot start a worker thread: {e}")),
             });
         }
     }

@@ -13,7 +13,7 @@ use adhesion::figure::{Axis, Figure, Panel, Series, Style};
 use adhesion::job::Job;
 use adhesion::params::Range;
 use adhesion::scenes::{self, Registered, Scene, SceneDyn};
-use adhesion::tui::app::{App, FigureState, Focus, Mode};
+use adhesion::tui::app::{App, FigureState, Focus, Mode, Page};
 use adhesion::tui::session::Session;
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
@@ -583,4 +583,323 @@ fn drawing_never_panics_on_tiny_terminals() {
         terminal.draw(|f| s.draw(f)).expect("draw help");
         press(&mut s, KeyCode::Esc);
     }
+}
+
+/// The modules of `src/tui` a file names: `use super::x…`, `use crate::tui::x…` and such paths in
+/// code, as the top-level module `x` (a file under `src/tui/app/` counts as `app`).
+fn tui_imports(text: &str, own: &str, nested: bool) -> Vec<String> {
+    let mut names = Vec::new();
+    let mut take = |path: &str| {
+        let path = path.trim_start_matches(|c: char| c == '{' || c.is_whitespace());
+        let name: String = path
+            .chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect();
+        if !name.is_empty() && name != own && name.chars().next().is_some_and(char::is_lowercase) {
+            names.push(name);
+        }
+    };
+    let code: String = text
+        .lines()
+        .map(|l| l.split("//").next().unwrap_or(""))
+        .collect::<Vec<_>>()
+        .join("\n");
+    // In a top-level file `super::` is `crate::tui::`; in a nested one `super::super::` is.
+    let prefixes: &[&str] = if nested {
+        &["crate::tui::", "super::super::"]
+    } else {
+        &["crate::tui::", "super::"]
+    };
+    for prefix in prefixes {
+        for (at, _) in code.match_indices(prefix) {
+            let rest = &code[at + prefix.len()..];
+            if nested && *prefix == "crate::tui::" || !rest.starts_with('{') {
+                take(rest);
+                continue;
+            }
+            // A group: `super::{a::X, b::{Y, Z}}` names `a` and `b`.
+            let mut depth = 0;
+            let mut start = 1;
+            for (i, c) in rest.char_indices() {
+                match c {
+                    '{' => depth += 1,
+                    '}' => {
+                        depth -= 1;
+                        if depth == 0 {
+                            take(&rest[start..i]);
+                            break;
+                        }
+                    }
+                    ',' if depth == 1 => {
+                        take(&rest[start..i]);
+                        start = i + 1;
+                    }
+                    _ => {}
+                }
+            }
+        }
+    }
+    names.sort();
+    names.dedup();
+    names
+}
+
+/// The state of the terminal UI never imports its drawing, and the modules of `src/tui` import
+/// each other without a circle (benches/import_graph.py checks the whole of `src/`).
+#[test]
+fn the_state_does_not_import_the_drawing_and_the_tui_modules_form_no_circle() {
+    let dir = super::common::root().join("src/tui");
+    let mut graph: std::collections::BTreeMap<String, Vec<String>> = Default::default();
+    let mut files = Vec::new();
+    for e in std::fs::read_dir(&dir).expect("src/tui").flatten() {
+        let p = e.path();
+        if p.is_dir() {
+            for f in std::fs::read_dir(&p).expect("a folder of src/tui").flatten() {
+                files.push((
+                    p.file_name().unwrap().to_string_lossy().into_owned(),
+                    f.path(),
+                    true,
+                ));
+            }
+        } else {
+            files.push((p.file_stem().unwrap().to_string_lossy().into_owned(), p, false));
+        }
+    }
+    for (module, path, nested) in files {
+        let text = std::fs::read_to_string(&path).expect("a source file");
+        let names = tui_imports(&text, &module, nested);
+        graph.entry(module).or_default().extend(names);
+    }
+    for edges in graph.values_mut() {
+        edges.retain(|n| n != "tests");
+        edges.sort();
+        edges.dedup();
+    }
+    assert!(
+        graph["view"].contains(&"app".to_string()),
+        "the parser sees view -> app: {graph:?}"
+    );
+    for state in ["app", "chart", "layout", "compare", "form", "keymap", "worker"] {
+        for drawing in ["view", "session"] {
+            assert!(
+                !graph[state].contains(&drawing.to_string()),
+                "{state} imports {drawing}: {:?}",
+                graph[state]
+            );
+        }
+    }
+    // Depth-first search for a back edge.
+    fn visit<'a>(
+        m: &'a str,
+        graph: &'a std::collections::BTreeMap<String, Vec<String>>,
+        path: &mut Vec<&'a str>,
+        done: &mut Vec<&'a str>,
+    ) {
+        if done.contains(&m) {
+            return;
+        }
+        if let Some(at) = path.iter().position(|p| *p == m) {
+            panic!("import circle: {} -> {m}", path[at..].join(" -> "));
+        }
+        path.push(m);
+        for n in graph.get(m).into_iter().flatten() {
+            visit(n, graph, path, done);
+        }
+        path.pop();
+        done.push(m);
+    }
+    let mut done = Vec::new();
+    for m in graph.keys() {
+        visit(m, &graph, &mut Vec::new(), &mut done);
+    }
+}
+
+/// A force map of the afmformats test data: 4 curves of JPK's, at the corners of a 10 × 10 grid.
+fn map_fixture() -> std::path::PathBuf {
+    super::common::root().join("tests/fixtures/afm/fmt-jpk-fd_map2x2_extracted.jpk-force-map")
+}
+
+fn file_idle(app: &App) -> bool {
+    !app.opening() && app.file_page().is_none_or(|p| p.fitting.is_none())
+}
+
+/// `o` asks for a path; a JPK force map opens (read in the background) on the file page with
+/// its grid (10 × 10, the curves at the corners); the arrow keys move to the next curve in their
+/// direction, and stay at the edge.
+#[test]
+fn a_force_map_opens_as_a_grid_and_the_arrows_choose_its_curves() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = session(dir.path(), vec![&PROBE]);
+    press(&mut s, KeyCode::Char('o'));
+    assert!(matches!(s.app().mode(), Mode::Prompt { .. }));
+    clear_line(&mut s);
+    type_text(&mut s, &map_fixture().display().to_string());
+    press(&mut s, KeyCode::Enter);
+    assert!(s.wait_until(WAIT, |a| a.file_page().is_some() && file_idle(a)));
+    assert_eq!(s.app().page(), Page::File);
+    let page = s.app().file_page().expect("the file page");
+    assert_eq!(page.file.curves.len(), 4);
+    assert_eq!(page.grid.shape, [10, 10]);
+    assert_eq!(page.selected, 0);
+    let screen = text(&draw(&s));
+    assert!(screen.contains("Map 10 × 10"), "{screen}");
+    assert!(screen.contains("Fit of curve 0 (1 of 4)"), "{screen}");
+    assert!(screen.contains("as recorded"), "{screen}");
+    // The chart of the recorded curve is drawn before any fit.
+    assert!(braille_cells(&draw(&s)) > 50);
+    // An arrow moves to the next curve in its direction (the cells between are empty).
+    let cell = |s: &Session| {
+        let p = s.app().file_page().expect("the file page");
+        p.grid.cells[p.selected]
+    };
+    let start = cell(&s);
+    let right = if start[0] == 0 {
+        KeyCode::Right
+    } else {
+        KeyCode::Left
+    };
+    press(&mut s, right);
+    let moved = cell(&s);
+    assert_eq!(moved[1], start[1]);
+    assert_eq!(moved[0].abs_diff(start[0]), 9);
+    let chosen = s.app().file_page().expect("the file page").selected;
+    assert_ne!(chosen, 0);
+    let screen = text(&draw(&s));
+    assert!(screen.contains(&format!("({} of 4)", chosen + 1)), "{screen}");
+    let up = if start[1] == 0 { KeyCode::Up } else { KeyCode::Down };
+    press(&mut s, up);
+    assert_eq!(cell(&s)[1].abs_diff(start[1]), 9);
+    assert_eq!(cell(&s)[0], moved[0]);
+    // Moving past the edge stays at the edge.
+    let before = cell(&s);
+    press(&mut s, up);
+    assert_eq!(cell(&s), before);
+    // Small terminals draw the page without a panic.
+    for (w, h) in [(1, 1), (10, 3), (30, 8), (50, 12), (80, 24)] {
+        let mut terminal = Terminal::new(TestBackend::new(w, h)).expect("test backend");
+        terminal.draw(|f| s.draw(f)).expect("draw");
+    }
+    // g goes back to the scenes and again to the file.
+    press(&mut s, KeyCode::Char('g'));
+    assert_eq!(s.app().page(), Page::Scenes);
+    press(&mut s, KeyCode::Char('g'));
+    assert_eq!(s.app().page(), Page::File);
+}
+
+/// With a tip radius (t), r fits the chosen curve in the background (the key returns at once);
+/// the page then shows the data with the fitted model and the residuals, and the values are the
+/// library's own fit of the same curve. Choosing another curve fits it too.
+#[test]
+fn the_chosen_curve_is_fitted_in_the_background_with_data_fit_and_residuals() {
+    use adhesion::fit::instrument::{PrepareOptions, fit_curve};
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = session(dir.path(), vec![&PROBE]);
+    s.open_file(map_fixture());
+    assert!(s.wait_until(WAIT, |a| a.file_page().is_some() && file_idle(a)));
+    press(&mut s, KeyCode::Char('r'));
+    assert!(s.app().status().error, "no fit without a tip radius");
+    assert!(s.app().status().text.contains("tip radius"));
+    press(&mut s, KeyCode::Char('t'));
+    clear_line(&mut s);
+    type_text(&mut s, "2e-6");
+    press(&mut s, KeyCode::Enter);
+    // Setting the radius starts the fit of the chosen curve; it runs on the worker.
+    assert!(s.app().file_page().expect("page").fitting.is_some());
+    assert!(s.wait_until(WAIT, file_idle));
+    let page = s.app().file_page().expect("page");
+    let fitted = match page.fits.get(&0) {
+        Some(Ok(f)) => f.clone(),
+        other => panic!("curve 0 not fitted: {:?}", other.map(|r| r.as_ref().err())),
+    };
+    let settings = page.settings().expect("settings");
+    let (_, direct) = fit_curve(
+        &page.file.curves[0],
+        &page.path,
+        &PrepareOptions::default(),
+        &settings,
+    )
+    .expect("the library fits the same curve");
+    let (e_ui, e_lib) = (
+        fitted.fit.fit.plane_strain_modulus_pa.value,
+        direct.fit.plane_strain_modulus_pa.value,
+    );
+    assert!((e_ui - e_lib).abs() <= 1e-12 * e_lib.abs(), "{e_ui} vs {e_lib}");
+    // Panels: (a) the measured points with the model, (b) one residual per fitted row.
+    let fig = &fitted.figure;
+    assert_eq!(fig.panels.len(), 2);
+    assert!(
+        fig.panels[0]
+            .series
+            .iter()
+            .any(|x| x.name.starts_with("measured"))
+    );
+    assert!(
+        fig.panels[0]
+            .series
+            .iter()
+            .any(|x| !x.name.starts_with("measured"))
+    );
+    let residuals = &fig.panels[1].series[0];
+    assert_eq!(residuals.name, "residual");
+    assert_eq!(residuals.points.len(), fitted.fit.fit.points_used);
+    let buf = draw(&s);
+    let screen = text(&buf);
+    assert!(screen.contains("data, fit and residuals"), "{screen}");
+    assert!(screen.contains("residuals of the fitted rows"), "{screen}");
+    assert!(screen.contains("ℰ"), "{screen}");
+    assert!(screen.contains("pull-off (measured)"), "{screen}");
+    // The measured points and the residuals are drawn as dots.
+    assert!(screen.matches('•').count() > 100, "{screen}");
+    // The fitted cell is marked on the grid.
+    assert!(screen.contains('●'), "{screen}");
+    // Another curve is fitted as soon as it is chosen.
+    press(&mut s, KeyCode::Right);
+    press(&mut s, KeyCode::Left);
+    press(&mut s, KeyCode::Up);
+    press(&mut s, KeyCode::Down);
+    assert!(s.wait_until(WAIT, file_idle));
+    let page = s.app().file_page().expect("page");
+    assert!(page.fits.len() >= 2, "{:?}", page.fits.keys());
+}
+
+/// A file that is not a force-curve file gives one line in the status bar and keeps the page
+/// that was open; a bad tip radius is refused with its range.
+#[test]
+fn a_bad_file_or_radius_leaves_one_line_and_the_last_good_page() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let bad = dir.path().join("notes.jpk-force");
+    std::fs::write(&bad, "not a zip archive\n").expect("write");
+    let mut s = session(dir.path(), vec![&PROBE]);
+    s.open_file(&bad);
+    assert!(s.wait_until(WAIT, file_idle));
+    assert!(s.app().status().error);
+    assert!(!s.app().status().text.contains('\n'));
+    assert!(
+        s.app().status().text.contains("notes.jpk-force"),
+        "{:?}",
+        s.app().status()
+    );
+    assert_eq!(s.app().page(), Page::Scenes);
+    assert!(s.app().file_page().is_none());
+    s.open_file(map_fixture());
+    assert!(s.wait_until(WAIT, |a| a.file_page().is_some() && file_idle(a)));
+    s.open_file(dir.path().join("missing.jpk-force"));
+    assert!(s.wait_until(WAIT, file_idle));
+    assert!(s.app().status().error);
+    let page = s.app().file_page().expect("the last good page");
+    assert_eq!(page.file.curves.len(), 4);
+    assert_eq!(s.app().page(), Page::File);
+    press(&mut s, KeyCode::Char('t'));
+    clear_line(&mut s);
+    type_text(&mut s, "-1");
+    press(&mut s, KeyCode::Enter);
+    assert!(s.app().status().error);
+    assert!(
+        s.app().status().text.contains("tip radius"),
+        "{:?}",
+        s.app().status()
+    );
+    assert!(s.app().file_page().expect("page").radius.is_none());
+    let screen = text(&draw(&s));
+    assert!(screen.contains("Map 10 × 10"), "{screen}");
 }
