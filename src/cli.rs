@@ -5,6 +5,7 @@
 //! `Args` struct of its own here and a branch in [`crate::headless::run`].
 
 use std::path::PathBuf;
+use std::str::FromStr;
 
 use clap::Parser;
 
@@ -73,7 +74,7 @@ pub struct Cli {
     /// one file per point in a folder under --out; points already there are skipped, so a rerun
     /// resumes. One task of a job array (--shard $SLURM_ARRAY_TASK_ID/N); needs --figure.
     #[arg(long, value_name = "I/N", conflicts_with = "merge")]
-    pub shard: Option<crate::headless::shard::Shard>,
+    pub shard: Option<Shard>,
 
     /// Assemble a sweep computed with --shard from its folder under --out (same --figure,
     /// --preset, --set and --quick) and export the figure as an unsharded run does.
@@ -348,4 +349,43 @@ pub fn join_negative_values<I: IntoIterator<Item = std::ffi::OsString>>(args: I)
         out.push(a);
     }
     out
+}
+
+/// Shard `index` of `count`: the points whose id is `index` modulo `count`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shard {
+    /// I, from 0 (Slurm's `$SLURM_ARRAY_TASK_ID` with `--array=0-(N-1)`).
+    pub index: usize,
+    /// N, at least 1.
+    pub count: usize,
+}
+
+impl FromStr for Shard {
+    type Err = String;
+
+    /// `I/N` with 0 ≤ I < N.
+    fn from_str(text: &str) -> Result<Self, String> {
+        let (i, n) = text
+            .split_once('/')
+            .ok_or_else(|| "expected I/N, e.g. 0/4 (shard I of N, I from 0 to N-1)".to_string())?;
+        let parse = |t: &str, what: &str| {
+            t.trim().parse::<usize>().map_err(|_| {
+                format!(
+                    "{what} `{}` is not a whole number (expected I/N, e.g. 0/4)",
+                    t.trim()
+                )
+            })
+        };
+        let (index, count) = (parse(i, "the shard index I")?, parse(n, "the shard count N")?);
+        if count == 0 {
+            return Err("the shard count N must be at least 1".into());
+        }
+        if index >= count {
+            return Err(format!(
+                "the shard index I = {index} must be below N = {count} (shards are numbered 0 to {})",
+                count - 1
+            ));
+        }
+        Ok(Shard { index, count })
+    }
 }

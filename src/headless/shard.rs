@@ -16,7 +16,6 @@
 //! as text that reads back to the same `f64` (`{:e}`, the shortest exact form; `NaN`, `inf`).
 
 use std::path::{Path, PathBuf};
-use std::str::FromStr;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
@@ -34,44 +33,7 @@ use crate::scenes::{self, SceneDyn};
 /// The name of the parameter file in a sweep's folder.
 pub const PARAMS_FILE: &str = "params.toml";
 
-/// Shard `index` of `count`: the points whose id is `index` modulo `count`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Shard {
-    /// I, from 0 (Slurm's `$SLURM_ARRAY_TASK_ID` with `--array=0-(N-1)`).
-    pub index: usize,
-    /// N, at least 1.
-    pub count: usize,
-}
-
-impl FromStr for Shard {
-    type Err = String;
-
-    /// `I/N` with 0 ≤ I < N.
-    fn from_str(text: &str) -> Result<Self, String> {
-        let (i, n) = text
-            .split_once('/')
-            .ok_or_else(|| "expected I/N, e.g. 0/4 (shard I of N, I from 0 to N-1)".to_string())?;
-        let parse = |t: &str, what: &str| {
-            t.trim().parse::<usize>().map_err(|_| {
-                format!(
-                    "{what} `{}` is not a whole number (expected I/N, e.g. 0/4)",
-                    t.trim()
-                )
-            })
-        };
-        let (index, count) = (parse(i, "the shard index I")?, parse(n, "the shard count N")?);
-        if count == 0 {
-            return Err("the shard count N must be at least 1".into());
-        }
-        if index >= count {
-            return Err(format!(
-                "the shard index I = {index} must be below N = {count} (shards are numbered 0 to {})",
-                count - 1
-            ));
-        }
-        Ok(Shard { index, count })
-    }
-}
+pub use crate::cli::Shard;
 
 /// The parameter set as canonical text, one `name=value` line per parameter in declaration
 /// order, floats in their shortest exact form: equal sets give equal text.

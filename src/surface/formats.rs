@@ -29,6 +29,7 @@ use crate::error::{Error, Result};
 use crate::params::fmt_sig;
 
 mod di;
+pub(crate) mod gsf;
 mod gwy;
 mod ibw;
 mod sdf;
@@ -291,7 +292,7 @@ fn channels<'a>(format: Format, bytes: &'a [u8], path: &'a Path) -> Result<Vec<C
     let list = match format {
         Format::Text => text::channels(bytes, path)?,
         Format::Gsf => {
-            let map = super::io::parse_gsf(bytes, path)?;
+            let map = gsf::parse_gsf(bytes, path)?;
             let info = ChannelInfo {
                 name: "Default".into(),
                 nx: map.nx,
