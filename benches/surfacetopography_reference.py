@@ -45,6 +45,9 @@ FILES = [
     ("10x10-one_channel_without_name.ibw", None),
     ("di-3.di", "ZSensor"),
     ("di-3.di", "Height"),
+    ("mi-1.mi", "Topography"),
+    ("mi-1.mi", "Deflection"),
+    ("al3d-1.al3d", None),
 ]
 
 EXTRA = [

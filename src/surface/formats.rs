@@ -11,6 +11,8 @@
 //! | Digital Surf `.sur` | `sur` | one per object in the file |
 //! | Asylum Research Igor binary wave image `.ibw` | `ibw` | one per layer |
 //! | Bruker / Digital Instruments Nanoscope `.di`, `.spm` | `di` | one per image |
+//! | Agilent / Molecular Imaging PicoView `.mi` | `mi` | one per buffer |
+//! | Alicona Imaging `.al3d` | `al3d` | one (the depth image) |
 //!
 //! Each reader yields [`Channel`]s: name, grid, physical size and units as the file declares
 //! them, and the heights decoded on demand (only the chosen channel is decoded). Heights keep
@@ -28,10 +30,12 @@ use super::height_map::{HeightMap, size_problem};
 use crate::error::{Error, Result};
 use crate::params::fmt_sig;
 
+mod al3d;
 mod di;
 pub(crate) mod gsf;
 mod gwy;
 mod ibw;
+mod mi;
 mod sdf;
 mod sur;
 mod text;
@@ -216,6 +220,10 @@ pub enum Format {
     Ibw,
     /// Bruker / Digital Instruments Nanoscope.
     Di,
+    /// Agilent / Molecular Imaging `.mi`.
+    Mi,
+    /// Alicona Imaging `.al3d`.
+    Al3d,
 }
 
 impl Format {
@@ -230,6 +238,8 @@ impl Format {
             Format::Sur => "Digital Surf (.sur)",
             Format::Ibw => "Igor binary wave (.ibw)",
             Format::Di => "Bruker/Digital Instruments Nanoscope (.di, .spm)",
+            Format::Mi => "Agilent/Molecular Imaging (.mi)",
+            Format::Al3d => "Alicona Imaging (.al3d)",
         }
     }
 
@@ -262,6 +272,12 @@ pub fn detect(bytes: &[u8], path: &Path) -> Result<Format> {
     if bytes.starts_with(b"\\*File list") || bytes.starts_with(b"\\*EC File list") {
         return Ok(Format::Di);
     }
+    if bytes.starts_with(al3d::MAGIC) {
+        return Ok(Format::Al3d);
+    }
+    if bytes.starts_with(b"fileType      ") {
+        return Ok(Format::Mi);
+    }
     if bytes.len() >= 8 && crate::readers::igor_version(bytes).is_some() {
         return Ok(Format::Ibw);
     }
@@ -280,7 +296,7 @@ pub fn detect(bytes: &[u8], path: &Path) -> Result<Format> {
             0,
             format!(
                 "not a height map this program reads (binary file starting `{shown}`); formats: \
-                 text matrix or xyz, .gsf, .gwy, .x3p, .sdf, .sur, .ibw, Nanoscope .di/.spm"
+                 text matrix or xyz, .gsf, .gwy, .x3p, .sdf, .sur, .ibw, Nanoscope .di/.spm, .mi, .al3d"
             ),
         ));
     }
@@ -310,6 +326,8 @@ fn channels<'a>(format: Format, bytes: &'a [u8], path: &'a Path) -> Result<Vec<C
         Format::Sur => sur::channels(bytes, path)?,
         Format::Ibw => ibw::channels(bytes, path)?,
         Format::Di => di::channels(bytes, path)?,
+        Format::Mi => mi::channels(bytes, path)?,
+        Format::Al3d => al3d::channels(bytes, path)?,
     };
     if list.is_empty() {
         return Err(Error::data_file(

@@ -180,7 +180,8 @@ fn seeds() -> Vec<(&'static str, Vec<u8>)> {
 }
 
 /// The height-map readers' seeds: small fixtures, and small files built from the headers of
-/// larger ones (a 4 x 4 Digital Surf object, a 4 x 4 Nanoscope image).
+/// larger ones (a 4 x 4 Digital Surf object, a 4 x 4 Nanoscope image, a 4 x 4 .mi file of four
+/// buffers, a 4 x 4 Alicona depth image).
 fn map_seeds() -> Vec<(&'static str, Vec<u8>)> {
     let dir = crate::common::root().join("tests/fixtures/maps");
     let read = |f: &str| std::fs::read(dir.join(f)).unwrap();
@@ -208,6 +209,27 @@ fn map_seeds() -> Vec<(&'static str, Vec<u8>)> {
     for k in 0..16i16 {
         di.extend((k * 100 - 800).to_le_bytes());
     }
+    let mi_full = read("mi-1.mi");
+    let data = mi_full.windows(6).position(|w| w == b"\ndata ").unwrap();
+    let end = data + 1 + mi_full[data + 1..].iter().position(|&b| b == b'\n').unwrap() + 1;
+    let mut mi = String::from_utf8_lossy(&mi_full[..end])
+        .replace("xPixels       256", "xPixels       4")
+        .replace("yPixels       256", "yPixels       4")
+        .into_bytes();
+    for k in 0..64i32 {
+        mi.extend((k * 3_000_000 - 90_000_000).to_le_bytes());
+    }
+    let mut al3d = read("al3d-1.al3d")[..1261].to_vec();
+    for (key, value) in [(b"Cols".as_slice(), b"4".as_slice()), (b"Rows", b"4")] {
+        let at = (0..al3d.len() - 20)
+            .find(|&k| al3d[k..].starts_with(key) && al3d[k + key.len()] == 0)
+            .unwrap();
+        al3d[at + 20..at + 50].fill(0);
+        al3d[at + 20..at + 20 + value.len()].copy_from_slice(value);
+    }
+    for k in 0..16 {
+        al3d.extend((1e-6f32 * k as f32).to_le_bytes());
+    }
     vec![
         ("map text", read("matrix-6.txt")),
         ("map xyz", read("xyz-2.txt")),
@@ -218,6 +240,8 @@ fn map_seeds() -> Vec<(&'static str, Vec<u8>)> {
         ("map .sur", sur),
         ("map .ibw", read("10x10-one_channel_without_name.ibw")),
         ("map .di", di),
+        ("map .mi", mi),
+        ("map .al3d", al3d),
     ]
 }
 

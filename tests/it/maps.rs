@@ -30,7 +30,7 @@ fn metres(m: &Measured) -> Vec<f64> {
 
 #[test]
 fn every_fixture_reads_as_surfacetopography_does() {
-    compare_with_reference(&maps(), "reference.json", 12);
+    compare_with_reference(&maps(), "reference.json", 15);
 }
 
 /// The example files too large to commit (SurfaceTopography's `test/file_format_examples`),
@@ -156,6 +156,8 @@ fn fixtures_with_units_become_height_maps() {
         ("sur-3.sur", None),
         ("di-3.di", Some("Height")),
         ("xyz-1.txt", None),
+        ("mi-1.mi", Some("Topography")),
+        ("al3d-1.al3d", None),
     ] {
         let path = maps().join(file);
         let m = read_measured(&path, channel).unwrap();
@@ -292,11 +294,18 @@ fn truncated_and_corrupt_files_give_one_line_errors() {
         "10x10-one_channel_without_name.ibw",
         "di-3.di",
         "sdf-1.sdf",
+        "mi-1.mi",
+        "al3d-1.al3d",
     ] {
         let bytes = std::fs::read(maps().join(file)).unwrap();
         let path = Path::new(file);
-        // A text file cut after its data (in its trailer) still reads.
-        let last = if file == "sdf-1.sdf" { 100 } else { bytes.len() - 1 };
+        // A text file cut after its data (in its trailer) still reads; the Alicona file's
+        // depth image (1 261 + 296 rows of 800 bytes) is followed by its texture image.
+        let last = match file {
+            "sdf-1.sdf" => 100,
+            "al3d-1.al3d" => 1261 + 296 * 800 - 1,
+            _ => bytes.len() - 1,
+        };
         let cuts = [bytes.len() / 2, last, 100.min(bytes.len() - 1), 20, 5];
         for cut in cuts {
             let e = parse_bytes(&bytes[..cut], path, None)
@@ -378,6 +387,26 @@ fn a_header_claiming_a_huge_map_is_refused() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("huge.di") && e.contains("100000"), "{e}");
+    // .mi: xPixels = yPixels = 100000.
+    let mi = std::fs::read(maps().join("mi-1.mi")).unwrap();
+    let mi: Vec<u8> = String::from_utf8_lossy(&mi[..8192])
+        .replace("xPixels       256", "xPixels       100000")
+        .replace("yPixels       256", "yPixels       100000")
+        .into_bytes();
+    let e = parse_bytes(&mi, Path::new("huge.mi"), None)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("huge.mi") && e.contains("100000 x 100000"), "{e}");
+    // .al3d: Cols = Rows = 100000.
+    let mut al3d = std::fs::read(maps().join("al3d-1.al3d")).unwrap();
+    for key in [b"Cols".as_slice(), b"Rows"] {
+        let at = (0..1261).find(|&k| al3d[k..].starts_with(key)).unwrap();
+        al3d[at + 20..at + 26].copy_from_slice(b"100000");
+    }
+    let e = parse_bytes(&al3d, Path::new("huge.al3d"), None)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("huge.al3d") && e.contains("100000 x 100000"), "{e}");
     // .gsf: XRes = YRes = 100000.
     let gsf = b"Gwyddion Simple Field 1.0\nXRes = 100000\nYRes = 100000\nXReal = 1\nYReal = 1\n\0\0\0";
     let e = parse_bytes(gsf, Path::new("huge.gsf"), None)
