@@ -7,6 +7,7 @@ mod efficiency;
 mod fibril;
 mod single_spring;
 
+use super::groups::{ArrayCycle, ArraySurface, SurfaceSamples};
 use super::sweep::Swept;
 use super::{Registered, SceneDyn};
 use crate::error::Result;
@@ -73,6 +74,23 @@ fn cycle_window(k_e: f64, sigma_bar: f64, c_min: f64, c_max: f64) -> Result<(f64
     ))
 }
 
+impl ArrayCycle {
+    /// The displacement window of this cycle over a surface of roughness σ̄_rms
+    /// ([`cycle_window`] with `depth_sigmas` and `end_sigmas`).
+    fn window(&self, k_e: f64, sigma_bar: f64) -> Result<(f64, f64)> {
+        cycle_window(k_e, sigma_bar, self.depth_sigmas, self.end_sigmas)
+    }
+}
+
+impl ArraySurface {
+    /// Heights z̄ = z/σ of the N x M surface of `seed`: the unit surface scaled by σ̄_rms.
+    fn heights(&self, nx: usize, ny: usize, seed: u64) -> Result<Vec<f64>> {
+        let mut z = unit_surface(nx, ny, self.correlation_length, seed)?;
+        z.iter_mut().for_each(|v| *v *= self.roughness);
+        Ok(z)
+    }
+}
+
 /// k̄_e of k̂_e = k_e/k_cr = 2⁻ⁿ (section 5.5.2).
 fn k_bar_of_n(n: f64) -> f64 {
     K_CR_BAR * 2f64.powf(-n)
@@ -90,22 +108,17 @@ fn mean_std(v: &[f64]) -> (f64, f64) {
     (mean, var.sqrt())
 }
 
-/// Unit-RMS surfaces of samples `seed .. seed + samples` (rayon over samples).
-fn unit_surfaces(
-    nx: usize,
-    ny: usize,
-    lc_bar: f64,
-    samples: usize,
-    seed: u64,
-    job: &Job,
-) -> Result<Vec<Vec<f64>>> {
+/// Unit-RMS N x N surfaces of correlation length L̄_c, of samples `seed .. seed + samples`
+/// (rayon over samples).
+fn unit_surfaces(samples: &SurfaceSamples, lc_bar: f64, job: &Job) -> Result<Vec<Vec<f64>>> {
     use rayon::prelude::*;
-    let done = job.ticker(samples, "surfaces", 0.0, 1.0);
-    (0..samples)
+    let n = samples.springs;
+    let done = job.ticker(samples.samples, "surfaces", 0.0, 1.0);
+    (0..samples.samples)
         .into_par_iter()
         .map(|k| {
             job.check()?;
-            let surface = unit_surface(nx, ny, lc_bar, seed + k as u64);
+            let surface = unit_surface(n, n, lc_bar, samples.seed + k as u64);
             done.tick();
             surface
         })
@@ -118,12 +131,12 @@ fn uncoupled_samples(
     unit: &[Vec<f64>],
     sigma_bar: f64,
     k_e: f64,
-    steps: usize,
+    cycle: &ArrayCycle,
     oversample: usize,
-    window: (f64, f64),
     job: &Job,
 ) -> Result<Vec<crate::models::spring_array::ArrayCycle>> {
     use rayon::prelude::*;
+    let window = cycle.window(k_e, sigma_bar)?;
     let (lo, hi) = unit
         .iter()
         .flatten()
@@ -134,7 +147,7 @@ fn uncoupled_samples(
         k_e,
         window.0,
         window.1,
-        steps,
+        cycle.steps,
         oversample,
         (sigma_bar * lo, sigma_bar * hi),
     )?;
@@ -147,5 +160,13 @@ fn uncoupled_samples(
             done.tick();
             cycle
         })
+        .collect()
+}
+
+/// The adhesion efficiency (5.36) of each cycle of an array of `springs` springs.
+fn efficiencies(cycles: &[crate::models::spring_array::ArrayCycle], springs: usize) -> Vec<f64> {
+    cycles
+        .iter()
+        .map(|cy| crate::models::spring_array::adhesion_efficiency(cy, springs))
         .collect()
 }

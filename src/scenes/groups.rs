@@ -130,3 +130,63 @@ impl FeMesh {
         self.fe_size_over_radius = self.fe_size_over_radius.min(4.0);
     }
 }
+
+crate::param_group! {
+    /// The surface samples of an uncoupled spring array (section 5.5.2): N x N springs on
+    /// `samples` Gaussian surfaces of seeds `seed .. seed + samples`, the same surfaces at every
+    /// point of a study (common random numbers). Defaults: Figs. 5.7-5.9's.
+    pub struct SurfaceSamples {
+        /// Springs along each side (N = M).
+        springs: usize = 256, unit = "", range = Range::between(2.0, 4096.0);
+        /// Surface samples averaged.
+        samples: usize = 15, unit = "", range = Range::between(1.0, 1000.0);
+        /// Seed of the first sample.
+        seed: u64 = 1, unit = "", range = Range::non_negative();
+    }
+}
+
+impl SurfaceSamples {
+    /// The quick form: at most 32 x 32 springs on two surfaces.
+    pub fn quick(&mut self) {
+        self.springs = self.springs.min(32);
+        self.samples = self.samples.min(2);
+    }
+
+    /// The number of springs MN = N².
+    pub fn count(&self) -> usize {
+        self.springs * self.springs
+    }
+}
+
+crate::param_group! {
+    /// The displacement-controlled cycle of a spring array over a surface of roughness σ̄_rms
+    /// (sections 5.5-5.6): `steps` displacement steps per phase, from `end_sigmas` σ̄_rms beyond
+    /// the pull-off displacement down to `depth_sigmas` σ̄_rms below the pull-in displacement and
+    /// back. Defaults: Figs. 5.7-5.11's.
+    pub struct ArrayCycle {
+        /// Displacement steps per phase.
+        steps: usize = 1000, unit = "", range = Range::between(10.0, 1.0e6);
+        /// Loading goes this many σ_rms below the pull-in displacement.
+        depth_sigmas: f64 = 4.0, unit = "", range = Range::positive();
+        /// Unloading ends this many σ_rms beyond the pull-off displacement.
+        end_sigmas: f64 = 5.0, unit = "", range = Range::positive();
+    }
+}
+
+impl ArrayCycle {
+    /// The quick form: at most 100 steps per phase.
+    pub fn quick(&mut self) {
+        self.steps = self.steps.min(100);
+    }
+}
+
+crate::param_group! {
+    /// One Gaussian rough surface under a spring array (section 5.6): normalized roughness
+    /// σ̄_rms = σ_rms/σ and correlation length L̄_c = L_c/(100 µm). Defaults: Fig. 5.10's.
+    pub struct ArraySurface {
+        /// Normalized roughness σ̄_rms.
+        roughness: f64 = 100.0, unit = "", range = Range::positive();
+        /// Normalized correlation length L̄_c.
+        correlation_length: f64 = 0.01, unit = "", range = Range::open(0.0, 1.0);
+    }
+}

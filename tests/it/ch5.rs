@@ -424,9 +424,15 @@ fn efficiency_falls_with_roughness_rises_with_softness_and_follows_the_fit_5_37(
     use adhesion::scenes::Scene;
     use adhesion::scenes::fig5::{Fig5_8, Fig5_8Params};
     let p = Fig5_8Params {
-        springs: 64,
-        samples: 4,
-        steps: 300,
+        surfaces: adhesion::scenes::groups::SurfaceSamples {
+            springs: 64,
+            samples: 4,
+            ..Default::default()
+        },
+        cycle: adhesion::scenes::groups::ArrayCycle {
+            steps: 300,
+            ..Default::default()
+        },
         roughness_points: 5,
         ..Default::default()
     };
@@ -461,9 +467,15 @@ fn efficiency_barely_depends_on_the_correlation_length_fig_5_9() {
     use adhesion::scenes::Scene;
     use adhesion::scenes::fig5::{Fig5_9, Fig5_9Params};
     let p = Fig5_9Params {
-        springs: 64,
-        samples: 4,
-        steps: 300,
+        surfaces: adhesion::scenes::groups::SurfaceSamples {
+            springs: 64,
+            samples: 4,
+            ..Default::default()
+        },
+        cycle: adhesion::scenes::groups::ArrayCycle {
+            steps: 300,
+            ..Default::default()
+        },
         correlation_lengths: vec![0.01, 0.05, 0.1],
         ..Default::default()
     };

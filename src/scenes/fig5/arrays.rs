@@ -1,12 +1,13 @@
 //! Arrays of uncoupled springs on random rough surfaces (sections 5.4-5.5): the
 //! force-displacement cycles of Fig. 5.7.
 
-use super::{cycle_window, k_bar_of_n, mean_std, uncoupled_samples, unit_surfaces};
+use super::{efficiencies, k_bar_of_n, mean_std, uncoupled_samples, unit_surfaces};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Figure, Legend, Panel, Series, Style};
 use crate::job::Job;
 use crate::params::Range;
 use crate::scenes::Scene;
+use crate::scenes::groups::{ArrayCycle, SurfaceSamples};
 
 crate::param_choice! {
     /// Path for uncoupled arrays.
@@ -22,18 +23,11 @@ crate::scene_params! {
         roughness: Vec<f64> = vec![10.0, 25.0, 50.0, 100.0], unit = "", range = Range::positive();
         /// Normalized correlation length L̄_c = L_c/(100 µm).
         correlation_length: f64 = 0.01, unit = "", range = Range::open(0.0, 1.0);
-        /// Springs along each side (N = M).
-        springs: usize = 256, unit = "", range = Range::between(2.0, 4096.0);
-        /// Surface samples averaged.
-        samples: usize = 15, unit = "", range = Range::between(1.0, 1000.0);
-        /// Seed of the first sample (sample k uses seed + k).
-        seed: u64 = 1, unit = "", range = Range::non_negative();
-        /// Displacement steps per phase.
-        steps: usize = 1000, unit = "", range = Range::between(10.0, 1.0e6);
-        /// Loading goes this many σ_rms below the pull-in displacement.
-        depth_sigmas: f64 = 4.0, unit = "", range = Range::positive();
-        /// Unloading ends this many σ_rms beyond the pull-off displacement.
-        end_sigmas: f64 = 5.0, unit = "", range = Range::positive();
+        /// The springs and their surfaces.
+        group surfaces: SurfaceSamples
+            help { seed: "Seed of the first sample (sample k uses seed + k)." };
+        /// The displacement cycle.
+        group cycle: ArrayCycle;
         /// Height bins per displacement step of the binned path.
         oversample: usize = 4, unit = "", range = Range::between(1.0, 1000.0);
         /// Uncoupled path: binned (convolution) or exact (spring by spring).
@@ -116,16 +110,16 @@ impl Scene for Fig5_7 {
     }
 
     fn quick(p: &mut Self::Params) {
-        p.springs = p.springs.min(32);
-        p.samples = p.samples.min(2);
-        p.steps = p.steps.min(100);
+        p.surfaces.quick();
+        p.cycle.quick();
         p.roughness.truncate(2);
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
         let k_e = k_bar_of_n(p.stiffness_exponent);
-        let n = p.springs;
-        let norm = (n * n) as f64 * crate::models::spring_array::single_spring_adhesive_force().abs();
+        let n = p.surfaces.springs;
+        let norm =
+            p.surfaces.count() as f64 * crate::models::spring_array::single_spring_adhesive_force().abs();
         let mut panel = Panel::new(
             Axis::linear("Displacement u/σ", ""),
             Axis::linear("Force P/(MN |P_m|)", ""),
@@ -138,34 +132,29 @@ impl Scene for Fig5_7 {
         let mut effs = Vec::new();
         // Progress: the surfaces (about 4 % of a run at the defaults), then each roughness's
         // cycles sample by sample.
-        let unit = unit_surfaces(
-            n,
-            n,
-            p.correlation_length,
-            p.samples,
-            p.seed,
-            &job.part(0.0, 0.04),
-        )?;
+        let unit = unit_surfaces(&p.surfaces, p.correlation_length, &job.part(0.0, 0.04))?;
         let stages = job.parts(&vec![1.0; p.roughness.len()], 0.04, 0.99);
         for ((c, &sigma), stage) in p.roughness.iter().enumerate().zip(&stages) {
             job.check()?;
             stage.progress(0.0, &format!("σ_rms/σ = {sigma}"));
-            let window = cycle_window(k_e, sigma, p.depth_sigmas, p.end_sigmas)?;
             let cycles = match p.path {
-                UncoupledPath::Binned => {
-                    uncoupled_samples(&unit, sigma, k_e, p.steps, p.oversample, window, stage)?
-                }
+                UncoupledPath::Binned => uncoupled_samples(&unit, sigma, k_e, &p.cycle, p.oversample, stage)?,
                 UncoupledPath::Exact => {
                     use rayon::prelude::*;
-                    let done = stage.ticker(p.samples, "samples", 0.0, 1.0);
-                    (0..p.samples)
+                    let window = p.cycle.window(k_e, sigma)?;
+                    let done = stage.ticker(p.surfaces.samples, "samples", 0.0, 1.0);
+                    (0..p.surfaces.samples)
                         .into_par_iter()
                         .map(|k| {
                             job.check()?;
                             let z: Vec<f64> = unit[k].iter().map(|v| v * sigma).collect();
                             let a = crate::models::spring_array::SpringArray::new(n, n, k_e, 0.0, z)?;
-                            let cycle =
-                                crate::models::spring_array::uncoupled_cycle(&a, window.0, window.1, p.steps);
+                            let cycle = crate::models::spring_array::uncoupled_cycle(
+                                &a,
+                                window.0,
+                                window.1,
+                                p.cycle.steps,
+                            );
                             done.tick();
                             cycle
                         })
@@ -192,11 +181,7 @@ impl Scene for Fig5_7 {
             panel.arrow(unload[k], unload[k + 1], Some(c));
             panel.add(Series::new(&name, Style::Stable, load).with_color(c));
             panel.add(Series::new(&name, Style::Stable, unload).with_color(c));
-            let e: Vec<f64> = cycles
-                .iter()
-                .map(|cy| crate::models::spring_array::adhesion_efficiency(cy, n * n))
-                .collect();
-            effs.push(mean_std(&e).0);
+            effs.push(mean_std(&efficiencies(&cycles, p.surfaces.count())).0);
         }
         let zoom = adhesive_window(&panel);
         fig.panels.push(panel);

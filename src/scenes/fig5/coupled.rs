@@ -2,12 +2,13 @@
 //! ratio over the cycle (Fig. 5.11), and the accuracy of the coupled solver against its run
 //! time (Fig. 5.10-accuracy).
 
-use super::{cycle_window, k_bar_of_n, unit_surface};
+use super::{cycle_window, k_bar_of_n};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Figure, Panel, Series, Style};
 use crate::job::Job;
 use crate::params::Range;
 use crate::scenes::Scene;
+use crate::scenes::groups::{ArrayCycle, ArraySurface};
 
 crate::scene_params! {
     /// Parameters of scenes fig5.10 and fig5.11 (section 5.6).
@@ -16,22 +17,16 @@ crate::scene_params! {
         stiffness_exponent: f64 = 10.0, unit = "", range = Range::open(0.0, 30.0);
         /// Coupling stiffnesses k_μ in units of k_e.
         couplings: Vec<f64> = vec![0.0, 2.0, 10.0], unit = "", range = Range::non_negative();
-        /// Normalized roughness σ̄_rms.
-        roughness: f64 = 100.0, unit = "", range = Range::positive();
-        /// Normalized correlation length L̄_c.
-        correlation_length: f64 = 0.01, unit = "", range = Range::open(0.0, 1.0);
+        /// The rough surface.
+        group surface: ArraySurface;
         /// Springs N along ê₁.
         springs_x: usize = 256, unit = "", range = Range::between(1.0, 4096.0);
         /// Springs M along ê₂.
         springs_y: usize = 1, unit = "", range = Range::between(1.0, 4096.0);
         /// Seed of the surface.
         seed: u64 = 1, unit = "", range = Range::non_negative();
-        /// Displacement steps per phase.
-        steps: usize = 1000, unit = "", range = Range::between(10.0, 1.0e6);
-        /// Loading goes this many σ_rms below the pull-in displacement.
-        depth_sigmas: f64 = 4.0, unit = "", range = Range::positive();
-        /// Unloading ends this many σ_rms beyond the pull-off displacement.
-        end_sigmas: f64 = 5.0, unit = "", range = Range::positive();
+        /// The displacement cycle.
+        group cycle: ArrayCycle;
         /// Newton tolerance on the largest gradient component.
         gradient_tol: f64 = 1e-10, unit = "", range = Range::positive();
     }
@@ -44,9 +39,8 @@ fn coupling_study(
 ) -> Result<Vec<(f64, crate::models::spring_array::ArrayCycle)>> {
     use rayon::prelude::*;
     let k_e = k_bar_of_n(p.stiffness_exponent);
-    let mut z = unit_surface(p.springs_x, p.springs_y, p.correlation_length, p.seed)?;
-    z.iter_mut().for_each(|v| *v *= p.roughness);
-    let window = cycle_window(k_e, p.roughness, p.depth_sigmas, p.end_sigmas)?;
+    let z = p.surface.heights(p.springs_x, p.springs_y, p.seed)?;
+    let window = p.cycle.window(k_e, p.surface.roughness)?;
     // The iterative path at every size: it resolves avalanches locally (a chain of coupled
     // springs can have hundreds of generations in one step, one direct iteration each) and
     // ends jumps where the overdamped dynamics end them.
@@ -70,8 +64,13 @@ fn coupling_study(
                 mult * k_e,
                 z.clone(),
             )?;
-            let c =
-                crate::models::spring_array::coupled_cycle(&a, window.0, window.1, p.steps, &opts, |f| {
+            let c = crate::models::spring_array::coupled_cycle(
+                &a,
+                window.0,
+                window.1,
+                p.cycle.steps,
+                &opts,
+                |f| {
                     job.check()?;
                     // Reported under the lock, so the means arrive in order.
                     let Ok(mut all) = fractions.lock() else {
@@ -80,17 +79,18 @@ fn coupling_study(
                     };
                     all[slot] = f;
                     let mean = all.iter().sum::<f64>() / n_couplings as f64;
-                    let steps = (mean * (2 * p.steps * n_couplings) as f64).round();
+                    let steps = (mean * (2 * p.cycle.steps * n_couplings) as f64).round();
                     // The figure is built after the last step: `done` brings the 1.
                     job.progress(
                         0.99 * mean,
                         &format!(
                             "coupled cycles: {steps:.0}/{} steps of {n_couplings} couplings",
-                            2 * p.steps * n_couplings
+                            2 * p.cycle.steps * n_couplings
                         ),
                     );
                     Ok(())
-                })?;
+                },
+            )?;
             Ok((mult, c))
         })
         .collect()
@@ -118,7 +118,7 @@ fn coupling_memory(p: &CouplingParams) -> crate::scenes::MemoryEstimate {
 fn coupling_quick(p: &mut CouplingParams) {
     p.springs_x = p.springs_x.min(32);
     p.springs_y = p.springs_y.min(2);
-    p.steps = p.steps.min(100);
+    p.cycle.quick();
 }
 
 /// Fig. 5.10: force-displacement cycles for several coupling stiffnesses.
@@ -319,10 +319,8 @@ crate::scene_params! {
         stiffness_exponent: f64 = 10.0, unit = "", range = Range::open(0.0, 30.0);
         /// Coupling k_μ in units of k_e.
         coupling: f64 = 2.0, unit = "", range = Range::non_negative();
-        /// Normalized roughness σ̄_rms.
-        roughness: f64 = 100.0, unit = "", range = Range::positive();
-        /// Normalized correlation length L̄_c.
-        correlation_length: f64 = 0.01, unit = "", range = Range::open(0.0, 1.0);
+        /// The rough surface.
+        group surface: ArraySurface;
         /// Springs N along ê₁ (M = 1).
         springs: usize = 256, unit = "", range = Range::between(2.0, 4096.0);
         /// Seed of the surface.
@@ -333,10 +331,8 @@ crate::scene_params! {
         tolerances: Vec<f64> = vec![1e-3, 1e-6, 1e-10], unit = "", range = Range::positive();
         /// Steps per phase of the reference run (tolerance 1e-12).
         reference_steps: usize = 6400, unit = "", range = Range::between(10.0, 1.0e7);
-        /// Loading goes this many σ_rms below the pull-in displacement.
-        depth_sigmas: f64 = 4.0, unit = "", range = Range::positive();
-        /// Unloading ends this many σ_rms beyond the pull-off displacement.
-        end_sigmas: f64 = 5.0, unit = "", range = Range::positive();
+        from ArrayCycle: depth_sigmas: f64;
+        from ArrayCycle: end_sigmas: f64;
         /// Horizontal axis: measured run time (true) or the deterministic count of Newton iterations (false, for reproducible snapshots).
         wall_clock: bool = true, unit = "", range = Range::any();
     }
@@ -392,10 +388,9 @@ impl Scene for Fig5_10Accuracy {
         use crate::models::spring_array::{SpringArray, coupled_cycle};
         use crate::numerics::newton::NewtonOptions;
         let k_e = k_bar_of_n(p.stiffness_exponent);
-        let mut z = unit_surface(p.springs, 1, p.correlation_length, p.seed)?;
-        z.iter_mut().for_each(|v| *v *= p.roughness);
+        let z = p.surface.heights(p.springs, 1, p.seed)?;
         let a = SpringArray::new(p.springs, 1, k_e, p.coupling * k_e, z)?;
-        let window = cycle_window(k_e, p.roughness, p.depth_sigmas, p.end_sigmas)?;
+        let window = cycle_window(k_e, p.surface.roughness, p.depth_sigmas, p.end_sigmas)?;
         let norm = p.springs as f64 * crate::models::spring_array::single_spring_adhesive_force().abs();
         let run = |steps: usize,
                    tol: f64,

@@ -2,13 +2,14 @@
 //! stiffness (Fig. 5.8) and against the correlation length (Fig. 5.9), sweeps of many
 //! surface samples.
 
-use super::{cycle_window, k_bar_of_n, mean_std, uncoupled_samples, unit_surfaces};
+use super::{efficiencies, k_bar_of_n, mean_std, uncoupled_samples, unit_surfaces};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Figure, Panel, Series, Style, number};
 use crate::job::Job;
 use crate::numerics::curve::logspace;
 use crate::params::{Range, fmt_sig};
 use crate::scenes::Scene;
+use crate::scenes::groups::{ArrayCycle, SurfaceSamples};
 use crate::scenes::sweep::Sweep;
 
 crate::scene_params! {
@@ -24,18 +25,10 @@ crate::scene_params! {
         roughness_points: usize = 10, unit = "", range = Range::between(2.0, 1000.0);
         /// Normalized correlation length L̄_c.
         correlation_length: f64 = 0.01, unit = "", range = Range::open(0.0, 1.0);
-        /// Springs along each side (N = M).
-        springs: usize = 256, unit = "", range = Range::between(2.0, 4096.0);
-        /// Surface samples averaged.
-        samples: usize = 15, unit = "", range = Range::between(1.0, 1000.0);
-        /// Seed of the first sample.
-        seed: u64 = 1, unit = "", range = Range::non_negative();
-        /// Displacement steps per phase.
-        steps: usize = 1000, unit = "", range = Range::between(10.0, 1.0e6);
-        /// Loading goes this many σ_rms below the pull-in displacement.
-        depth_sigmas: f64 = 4.0, unit = "", range = Range::positive();
-        /// Unloading ends this many σ_rms beyond the pull-off displacement.
-        end_sigmas: f64 = 5.0, unit = "", range = Range::positive();
+        /// The springs and their surfaces.
+        group surfaces: SurfaceSamples;
+        /// The displacement cycle.
+        group cycle: ArrayCycle;
         /// Height bins per displacement step.
         oversample: usize = 4, unit = "", range = Range::between(1.0, 1000.0);
     }
@@ -112,9 +105,8 @@ impl Scene for Fig5_8 {
     }
 
     fn quick(p: &mut Self::Params) {
-        p.springs = p.springs.min(32);
-        p.samples = p.samples.min(2);
-        p.steps = p.steps.min(100);
+        p.surfaces.quick();
+        p.cycle.quick();
         p.roughness_points = p.roughness_points.min(3);
     }
 
@@ -131,11 +123,11 @@ impl Sweep for Fig5_8 {
     type Context = Vec<Vec<f64>>;
 
     fn point_len(p: &Self::Params, _id: usize) -> usize {
-        p.samples
+        p.surfaces.samples
     }
 
     fn context(p: &Self::Params, job: &Job) -> Result<Self::Context> {
-        unit_surfaces(p.springs, p.springs, p.correlation_length, p.samples, p.seed, job)
+        unit_surfaces(&p.surfaces, p.correlation_length, job)
     }
 
     fn points(p: &Self::Params) -> Vec<String> {
@@ -151,19 +143,14 @@ impl Sweep for Fig5_8 {
     }
 
     fn run_point(p: &Self::Params, unit: &Self::Context, id: usize, job: &Job) -> Result<Vec<f64>> {
-        let n = p.springs;
         let sigmas = logspace(p.roughness_min, p.roughness_max, p.roughness_points);
         let (ne, sigma) = (
             p.stiffness_exponents[id / sigmas.len()],
             sigmas[id % sigmas.len()],
         );
         let k_e = k_bar_of_n(ne);
-        let window = cycle_window(k_e, sigma, p.depth_sigmas, p.end_sigmas)?;
-        let cycles = uncoupled_samples(unit, sigma, k_e, p.steps, p.oversample, window, job)?;
-        Ok(cycles
-            .iter()
-            .map(|cy| crate::models::spring_array::adhesion_efficiency(cy, n * n))
-            .collect())
+        let cycles = uncoupled_samples(unit, sigma, k_e, &p.cycle, p.oversample, job)?;
+        Ok(efficiencies(&cycles, p.surfaces.count()))
     }
 
     fn assemble(p: &Self::Params, points: &[Vec<f64>], job: &Job) -> Result<Figure> {
@@ -211,7 +198,7 @@ impl Sweep for Fig5_8 {
         );
         panel.annotate(format!(
             "symbols: simulation, mean ± 1 s.d. over {} surfaces; lines: (5.37)",
-            p.samples
+            p.surfaces.samples
         ));
         panel.annotate(fit_verdict(&p.stiffness_exponents, &deviations));
         fig.panels.push(panel);
@@ -232,18 +219,11 @@ crate::scene_params! {
         roughness: Vec<f64> = vec![10.0, 50.0], unit = "", range = Range::positive();
         /// Normalized correlation lengths L̄_c.
         correlation_lengths: Vec<f64> = vec![0.01, 0.02, 0.04, 0.06, 0.08, 0.1], unit = "", range = Range::open(0.0, 1.0);
-        /// Springs along each side.
-        springs: usize = 256, unit = "", range = Range::between(2.0, 4096.0);
-        /// Surface samples.
-        samples: usize = 15, unit = "", range = Range::between(1.0, 1000.0);
-        /// Seed of the first sample.
-        seed: u64 = 1, unit = "", range = Range::non_negative();
-        /// Displacement steps per phase.
-        steps: usize = 1000, unit = "", range = Range::between(10.0, 1.0e6);
-        /// Loading goes this many σ_rms below the pull-in displacement.
-        depth_sigmas: f64 = 4.0, unit = "", range = Range::positive();
-        /// Unloading ends this many σ_rms beyond the pull-off displacement.
-        end_sigmas: f64 = 5.0, unit = "", range = Range::positive();
+        /// The springs and their surfaces.
+        group surfaces: SurfaceSamples
+            help { springs: "Springs along each side.", samples: "Surface samples." };
+        /// The displacement cycle.
+        group cycle: ArrayCycle;
         /// Height bins per displacement step.
         oversample: usize = 4, unit = "", range = Range::between(1.0, 1000.0);
     }
@@ -294,9 +274,8 @@ impl Scene for Fig5_9 {
     }
 
     fn quick(p: &mut Self::Params) {
-        p.springs = p.springs.min(32);
-        p.samples = p.samples.min(2);
-        p.steps = p.steps.min(100);
+        p.surfaces.quick();
+        p.cycle.quick();
         p.correlation_lengths.truncate(2);
     }
 
@@ -312,7 +291,7 @@ impl Sweep for Fig5_9 {
     type Context = ();
 
     fn point_len(p: &Self::Params, _id: usize) -> usize {
-        p.samples
+        p.surfaces.samples
     }
 
     fn context(_p: &Self::Params, _job: &Job) -> Result<()> {
@@ -331,25 +310,12 @@ impl Sweep for Fig5_9 {
     }
 
     fn run_point(p: &Self::Params, _context: &(), id: usize, job: &Job) -> Result<Vec<f64>> {
-        let n = p.springs;
         let k_e = k_bar_of_n(p.stiffness_exponent);
         let nl = p.correlation_lengths.len();
         let (sigma, lc) = (p.roughness[id / nl], p.correlation_lengths[id % nl]);
-        let window = cycle_window(k_e, sigma, p.depth_sigmas, p.end_sigmas)?;
-        let unit = unit_surfaces(n, n, lc, p.samples, p.seed, &job.part(0.0, 0.5))?;
-        let cycles = uncoupled_samples(
-            &unit,
-            sigma,
-            k_e,
-            p.steps,
-            p.oversample,
-            window,
-            &job.part(0.5, 1.0),
-        )?;
-        Ok(cycles
-            .iter()
-            .map(|cy| crate::models::spring_array::adhesion_efficiency(cy, n * n))
-            .collect())
+        let unit = unit_surfaces(&p.surfaces, lc, &job.part(0.0, 0.5))?;
+        let cycles = uncoupled_samples(&unit, sigma, k_e, &p.cycle, p.oversample, &job.part(0.5, 1.0))?;
+        Ok(efficiencies(&cycles, p.surfaces.count()))
     }
 
     fn assemble(p: &Self::Params, points: &[Vec<f64>], job: &Job) -> Result<Figure> {
@@ -394,7 +360,7 @@ impl Sweep for Fig5_9 {
             );
             panel.add(
                 Series::new(
-                    format!("simulation: mean of {} surfaces", p.samples),
+                    format!("simulation: mean of {} surfaces", p.surfaces.samples),
                     Style::Scatter,
                     pts,
                 )
@@ -403,7 +369,8 @@ impl Sweep for Fig5_9 {
             panel.add(Series::new("± 1 s.d. over the surfaces", Style::ErrorBar, bars).with_color(c));
             // The text (section 5.5.2): no appreciable dependence on L_c, the uncertainty
             // growing with L_c. Compare the spread of the means with their standard errors.
-            let sem_max = sds.iter().fold(0.0f64, |a, &v| a.max(v)) / (p.samples.max(1) as f64).sqrt();
+            let sem_max =
+                sds.iter().fold(0.0f64, |a, &v| a.max(v)) / (p.surfaces.samples.max(1) as f64).sqrt();
             panel.annotate(format!(
                 "s.d. over the surfaces {} at L_c = {} to {} at {}",
                 number(sds[0], 2),
