@@ -118,6 +118,20 @@ pub struct ChannelInfo {
 }
 
 impl ChannelInfo {
+    /// The one channel (`Default`) of a file whose grid of `nx` × `ny` points is spaced by
+    /// `dx`, `dy` and whose lengths and heights are in metres (not periodic).
+    fn single_in_metres(nx: usize, ny: usize, dx: f64, dy: f64) -> Self {
+        Self {
+            name: "Default".into(),
+            nx,
+            ny,
+            size: Some([dx * nx as f64, dy * ny as f64]),
+            xy_unit: Unit::metre(),
+            z_unit: Unit::metre(),
+            periodic: false,
+        }
+    }
+
     /// Check the grid before anything is allocated from it.
     fn check_grid(&self, path: &Path) -> Result<()> {
         let n = self.nx.checked_mul(self.ny).filter(|&n| n <= MAX_POINTS);

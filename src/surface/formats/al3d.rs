@@ -11,7 +11,7 @@
 use std::collections::HashMap;
 use std::path::Path;
 
-use super::{Bytes, Channel, ChannelInfo, Unit, cstr};
+use super::{Bytes, Channel, ChannelInfo, cstr};
 use crate::error::{Error, Result};
 
 /// The magic bytes at the start.
@@ -74,15 +74,7 @@ pub(crate) fn channels<'a>(bytes: &'a [u8], path: &'a Path) -> Result<Vec<Channe
     let (dx, dy) = (float("PixelSizeXMeter")?, float("PixelSizeYMeter")?);
     let offset = int("DepthImageOffset")?;
     let invalid = float("InvalidPixelValue")?;
-    let info = ChannelInfo {
-        name: "Default".into(),
-        nx,
-        ny,
-        size: Some([dx * nx as f64, dy * ny as f64]),
-        xy_unit: Unit::metre(),
-        z_unit: Unit::metre(),
-        periodic: false,
-    };
+    let info = ChannelInfo::single_in_metres(nx, ny, dx, dy);
     info.check_grid(path)?;
     // Rows padded to multiples of 8 bytes.
     let row = (nx * 4).div_ceil(8) * 8;

@@ -8,7 +8,7 @@
 
 use std::path::Path;
 
-use super::{Bytes, Channel, ChannelInfo, Num, Unit, numbers};
+use super::{Bytes, Channel, ChannelInfo, Num, numbers};
 use crate::error::{Error, Result};
 
 /// Size of the binary header.
@@ -126,13 +126,5 @@ fn info(nx: usize, ny: usize, sx: f64, sy: f64, path: &Path) -> Result<ChannelIn
             format!(".sdf Xscale = {sx}, Yscale = {sy}: spacings must be positive and finite"),
         ));
     }
-    Ok(ChannelInfo {
-        name: "Default".into(),
-        nx,
-        ny,
-        size: Some([sx * nx as f64, sy * ny as f64]),
-        xy_unit: Unit::metre(),
-        z_unit: Unit::metre(),
-        periodic: false,
-    })
+    Ok(ChannelInfo::single_in_metres(nx, ny, sx, sy))
 }

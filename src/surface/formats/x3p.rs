@@ -9,7 +9,7 @@
 
 use std::path::Path;
 
-use super::{Channel, ChannelInfo, Num, Unit};
+use super::{Channel, ChannelInfo, Num};
 use crate::error::{Error, Result};
 use crate::readers::archive::Zip;
 
@@ -123,15 +123,7 @@ pub(crate) fn channels<'a>(bytes: &'a [u8], path: &'a Path) -> Result<Vec<Channe
             )));
         }
     }
-    let info = ChannelInfo {
-        name: "Default".into(),
-        nx,
-        ny,
-        size: Some([dx * nx as f64, dy * ny as f64]),
-        xy_unit: Unit::metre(),
-        z_unit: Unit::metre(),
-        periodic: false,
-    };
+    let info = ChannelInfo::single_in_metres(nx, ny, dx, dy);
     let decode = move || -> Result<Vec<f64>> {
         let data = zip.read(&link)?;
         let n = nx * ny;
