@@ -841,8 +841,8 @@ pub fn fit_with(curve: &Curve, path: &Path, settings: &FitSettings) -> Result<Fi
     // force 8σ above the baseline) only supplies the noise level and the turning row, so a noisy
     // curve whose force rises little above its noise is fitted, with the warnings that say how
     // well (a JPK QI curve of 15 rows in contact and a force 10σ at most).
-    let hertz = !model.contact_model().adhesive();
-    let (range, contact_detection) = detect_contact(curve, path, if hertz { 0 } else { 10 })?;
+    let adhesive = model.contact_model().adhesive();
+    let (range, contact_detection) = detect_contact(curve, path, if adhesive { 10 } else { 0 })?;
     let turn = turning_row(curve, range.start);
     // Rows fitted: (row, in contact).
     let rows = fitted_rows(curve.depth.len(), segment, turn, range.start);
@@ -859,7 +859,7 @@ pub fn fit_with(curve: &Curve, path: &Path, settings: &FitSettings) -> Result<Fi
             .unzip();
         check_meaningful_data(&h, &p, path, (curve.lines[a], curve.lines[b]))?;
     }
-    if !hertz && used_contact.len() < 5 {
+    if adhesive && used_contact.len() < 5 {
         return Err(Error::data_file(
             path,
             curve.lines[range.start],
@@ -888,7 +888,7 @@ pub fn fit_with(curve: &Curve, path: &Path, settings: &FitSettings) -> Result<Fi
         other => other,
     })?;
     // Hertz's rows in contact are those past its fitted contact point.
-    let used_contact: Vec<usize> = if hertz {
+    let used_contact: Vec<usize> = if !adhesive {
         rows.iter()
             .copied()
             .filter(|&k| curve.depth[k] > fit.contact_point)
@@ -901,7 +901,6 @@ pub fn fit_with(curve: &Curve, path: &Path, settings: &FitSettings) -> Result<Fi
         _ => (first_line, first_line),
     };
     let warnings = engine::warnings(&fit, &data);
-    let adhesive = model.contact_model().adhesive();
     let (w, e) = (fit.work_of_adhesion, fit.modulus);
     let se = &fit.std_errors;
     let (w_est, e_est, dc_est, f0_est) = if adhesive {

@@ -499,6 +499,13 @@ fn hertz_profile(data: &FitData, dc: f64) -> (f64, f64, f64) {
         sf += f;
         sff += f * f;
     }
+    hertz_solve(n, [sgg, sg, sgf, sf, sff])
+}
+
+/// The least-squares (K, F₀) of P = K·g + F₀ over `n` rows from the sums Σg², Σg, Σg·P, ΣP and
+/// ΣP², and the cost there: K = 0 and F₀ the mean force where no row is in contact.
+fn hertz_solve(n: f64, sums: [f64; 5]) -> (f64, f64, f64) {
+    let [sgg, sg, sgf, sf, sff] = sums;
     let det = n * sgg - sg * sg;
     if det.abs() <= 1e-300 || sgg <= 0.0 {
         let f0 = sf / n;
@@ -522,14 +529,8 @@ fn hertz_profile_sorted(rows: &[(f64, f64)], dc: f64, sf: f64, sff: f64) -> (f64
         sg += g;
         sgf += g * f;
     }
-    let det = n * sgg - sg * sg;
-    if det.abs() <= 1e-300 || sgg <= 0.0 {
-        return (0.0, sff - sf * sf / n);
-    }
-    let k = (n * sgf - sg * sf) / det;
-    let f0 = (sf - k * sg) / n;
-    let c = sff + k * k * sgg + n * f0 * f0 - 2.0 * k * sgf - 2.0 * f0 * sf + 2.0 * k * f0 * sg;
-    (k, c.max(0.0))
+    let (k, _, c) = hertz_solve(n, [sgg, sg, sgf, sf, sff]);
+    (k, c)
 }
 
 /// The best contact point of the Hertz profile: a scan of `candidates` trial points between
@@ -980,10 +981,7 @@ fn modulus_profile_interval(
     let (sf, sff) = data.force.iter().fold((0.0, 0.0), |(a, b), f| (a + f, b + f * f));
     for dc in points {
         let (k, cost) = match model {
-            ContactModel::Hertz => {
-                let (k, c) = hertz_profile_sorted(&by_depth, dc, sf, sff);
-                (k, c)
-            }
+            ContactModel::Hertz => hertz_profile_sorted(&by_depth, dc, sf, sff),
             _ => match dmt_profile(data, dc) {
                 Some((k, a, _, c)) if a > 0.0 => (k, c),
                 _ => (0.0, f64::INFINITY),
