@@ -66,14 +66,27 @@ const BRANCH_RESULTS: &[(&str, &str)] = &[
     ),
 ];
 
-/// What a states-vs-stage-displacement figure draws.
-struct BranchSpec {
-    tip: TipShape,
-    alpha: f64,
-    delta_min: f64,
-    delta_max: f64,
-    points: usize,
-    markers: usize,
+crate::param_group! {
+    /// The stage displacements of a states-vs-stage-displacement figure (Figs. 2.4 and 2.6), in
+    /// units of the tip's ĥ. Defaults: the spherical tip's figure.
+    pub struct StagePath {
+        /// Smallest stage displacement Δ/ĥ (below the pull-off).
+        delta_min: f64 = -2.5, unit = "", range = Range::open(-1.0e9, 0.0);
+        /// Largest stage displacement Δ/ĥ.
+        delta_max: f64 = 1.5, unit = "", range = Range::open(0.0, 1.0e9);
+        /// Samples per branch.
+        points: usize = 400, unit = "", range = Range::between(20.0, 1.0e6);
+        /// Stage displacements at which the stationary points are marked.
+        markers: usize = 25, unit = "", range = Range::between(2.0, 1.0e4);
+    }
+}
+
+impl StagePath {
+    /// The quick form: 60 samples per branch, 8 markers.
+    fn quick(&mut self) {
+        self.points = self.points.min(60);
+        self.markers = self.markers.min(8);
+    }
 }
 
 /// A quantity of a state drawn against the stage displacement: panel title, axis label and
@@ -115,15 +128,20 @@ fn scales(tip: TipShape) -> Scales {
     }
 }
 
-fn branch_figure(id: &str, title: &str, spec: &BranchSpec, job: &Job) -> Result<Figure> {
-    let BranchSpec {
-        tip,
-        alpha,
+/// The states of a tip under machine stiffness α along the stage displacements `path`.
+fn branch_figure(
+    (id, title): (&str, &str),
+    tip: TipShape,
+    alpha: f64,
+    path: &StagePath,
+    job: &Job,
+) -> Result<Figure> {
+    let StagePath {
         delta_min,
         delta_max,
         points,
         markers,
-    } = *spec;
+    } = *path;
     let m = MachineStiffness::new(tip, alpha)?;
     let pull_in = m.pull_in(XTOL)?;
     let pull_off = m.pull_off(XTOL)?;
@@ -240,14 +258,8 @@ crate::scene_params! {
     pub struct Fig2_4Params {
         /// Stiffness ratio α = k_s/k̂, k̂ = (9πwℰ²R²/8)^(1/3), Eq. (2.35a).
         alpha: f64 = 1.0, unit = "", range = Range::positive();
-        /// Smallest stage displacement Δ/ĥ (below the pull-off).
-        delta_min: f64 = -2.5, unit = "", range = Range::open(-1.0e9, 0.0);
-        /// Largest stage displacement Δ/ĥ.
-        delta_max: f64 = 1.5, unit = "", range = Range::open(0.0, 1.0e9);
-        /// Samples per branch.
-        points: usize = 400, unit = "", range = Range::between(20.0, 1.0e6);
-        /// Stage displacements at which the stationary points are marked.
-        markers: usize = 25, unit = "", range = Range::between(2.0, 1.0e4);
+        /// The stage displacements.
+        group path: StagePath;
     }
 }
 
@@ -265,20 +277,11 @@ impl Scene for Fig2_4 {
     const RESULTS: &'static [(&'static str, &'static str)] = BRANCH_RESULTS;
 
     fn quick(p: &mut Self::Params) {
-        p.points = p.points.min(60);
-        p.markers = p.markers.min(8);
+        p.path.quick();
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        let spec = BranchSpec {
-            tip: TipShape::Sphere,
-            alpha: p.alpha,
-            delta_min: p.delta_min,
-            delta_max: p.delta_max,
-            points: p.points,
-            markers: p.markers,
-        };
-        branch_figure(Self::ID, Self::TITLE, &spec, job)
+        branch_figure((Self::ID, Self::TITLE), TipShape::Sphere, p.alpha, &p.path, job)
     }
 }
 
@@ -288,14 +291,8 @@ crate::scene_params! {
     pub struct Fig2_6Params {
         /// Stiffness ratio α = k_s/k̂, k̂ = w/(π tan²θ), Eq. (2.45a).
         alpha: f64 = 10.0, unit = "", range = Range::positive();
-        /// Smallest stage displacement Δ/ĥ (below the pull-off).
-        delta_min: f64 = -5.0, unit = "", range = Range::open(-1.0e9, 0.0);
-        /// Largest stage displacement Δ/ĥ.
-        delta_max: f64 = 3.0, unit = "", range = Range::open(0.0, 1.0e9);
-        /// Samples per branch.
-        points: usize = 400, unit = "", range = Range::between(20.0, 1.0e6);
-        /// Stage displacements at which the stationary points are marked.
-        markers: usize = 25, unit = "", range = Range::between(2.0, 1.0e4);
+        /// The stage displacements (the cone's jumps are longer in ĥ).
+        group path: StagePath { delta_min: -5.0, delta_max: 3.0 };
     }
 }
 
@@ -313,20 +310,11 @@ impl Scene for Fig2_6 {
     const RESULTS: &'static [(&'static str, &'static str)] = BRANCH_RESULTS;
 
     fn quick(p: &mut Self::Params) {
-        p.points = p.points.min(60);
-        p.markers = p.markers.min(8);
+        p.path.quick();
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        let spec = BranchSpec {
-            tip: TipShape::Cone,
-            alpha: p.alpha,
-            delta_min: p.delta_min,
-            delta_max: p.delta_max,
-            points: p.points,
-            markers: p.markers,
-        };
-        branch_figure(Self::ID, Self::TITLE, &spec, job)
+        branch_figure((Self::ID, Self::TITLE), TipShape::Cone, p.alpha, &p.path, job)
     }
 }
 

@@ -525,193 +525,147 @@ fn assemble_map(
     Ok(fig)
 }
 
-/// Fig. 6.2: peel force along a sinusoidal substrate.
-pub struct Fig6_2;
+/// A peel-force scene along one substrate profile: the curves of [`run_curves`].
+macro_rules! peel_curves_scene {
+    ($(#[$doc:meta])* $name:ident, $id:literal, $profile:expr, $title:literal, $caption:literal) => {
+        $(#[$doc])*
+        pub struct $name;
 
-impl Scene for Fig6_2 {
-    type Params = PeelCurvesParams;
-    const ID: &'static str = "fig6.2";
-    const CHAPTER: &'static str = "6";
-    const TITLE: &'static str = "Peel force along a sinusoidal substrate";
-    const CAPTION: &'static str = "Peel force F/(Ebh) vs peel-front position x_p/λ on the sinusoid (6.20) for several A and θ, \
+        impl Scene for $name {
+            type Params = PeelCurvesParams;
+            const ID: &'static str = $id;
+            const CHAPTER: &'static str = "6";
+            const TITLE: &'static str = $title;
+            const CAPTION: &'static str = $caption;
+            const RESULTS: &'static [(&'static str, &'static str)] = CURVES_RESULTS;
+
+            fn validate(p: &Self::Params) -> Result<()> {
+                validate_curves(p, &$profile)
+            }
+
+            fn quick(p: &mut Self::Params) {
+                p.points_per_period = p.points_per_period.min(40);
+                p.periods = p.periods.min(2.0);
+            }
+
+            fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+                let mut fig = run_curves(p, &$profile, job)?;
+                fig.title = Self::TITLE.into();
+                Ok(fig)
+            }
+        }
+    };
+}
+
+/// A map scene of the effective peel force and work of adhesion over one substrate profile: a
+/// sweep over the aspect ratio, point `i` the column of A number `i` ([`map_point`]), with the
+/// profile's optimum-angle fit `$fit` (equation `$fit_eq`).
+macro_rules! peel_map_scene {
+    ($(#[$doc:meta])* $name:ident, $id:literal, $profile:expr, $fit:path, $fit_eq:literal, $title:literal, $caption:literal) => {
+        $(#[$doc])*
+        pub struct $name;
+
+        impl Scene for $name {
+            type Params = PeelMapParams;
+            const ID: &'static str = $id;
+            const CHAPTER: &'static str = "6";
+            const TITLE: &'static str = $title;
+            const CAPTION: &'static str = $caption;
+            const RESULTS: &'static [(&'static str, &'static str)] = MAP_RESULTS;
+
+            fn validate(p: &Self::Params) -> Result<()> {
+                profile_of(&p.profile_file, &$profile).map(|_| ())
+            }
+
+            fn quick(p: &mut Self::Params) {
+                p.aspect_ratio_points = p.aspect_ratio_points.min(21);
+                p.angle_points = p.angle_points.min(37);
+            }
+
+            fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+                super::sweep::run::<Self>(p, job)
+            }
+        }
+
+        impl Sweep for $name {
+            type Context = Profile;
+
+            fn context(p: &Self::Params, _job: &Job) -> Result<Profile> {
+                profile_of(&p.profile_file, &$profile)
+            }
+
+            /// The column's forces and works at every angle, then its extrema ([`map_point`]);
+            /// NaN where an angle is not admissible.
+            fn point_len(p: &Self::Params, _id: usize) -> usize {
+                2 * p.angle_points + 7
+            }
+
+            const NAN_VALUES: bool = true;
+
+            fn points(p: &Self::Params) -> Vec<String> {
+                map_points(p)
+            }
+
+            fn run_point(p: &Self::Params, profile: &Profile, id: usize, job: &Job) -> Result<Vec<f64>> {
+                map_point(p, profile, id, job)
+            }
+
+            fn assemble(p: &Self::Params, points: &[Vec<f64>], job: &Job) -> Result<Figure> {
+                let mut fig = assemble_map(p, &$profile, $fit, $fit_eq, points, job)?;
+                fig.title = Self::TITLE.into();
+                Ok(fig)
+            }
+        }
+    };
+}
+
+peel_curves_scene!(
+    /// Fig. 6.2: peel force along a sinusoidal substrate.
+    Fig6_2,
+    "fig6.2",
+    Profile::Sinusoid,
+    "Peel force along a sinusoidal substrate",
+    "Peel force F/(Ebh) vs peel-front position x_p/λ on the sinusoid (6.20) for several A and θ, \
         w = 0.005: (6.9)-(6.10), stable (solid) and unstable (dashed) by (6.15); thin black arrows: snap-throughs under load \
-        control up to F_max (6.17), which lies at the steepest descent x_p = 3/4 + n.";
-    const RESULTS: &'static [(&'static str, &'static str)] = CURVES_RESULTS;
+        control up to F_max (6.17), which lies at the steepest descent x_p = 3/4 + n."
+);
 
-    fn validate(p: &Self::Params) -> Result<()> {
-        validate_curves(p, &Profile::Sinusoid)
-    }
-
-    fn quick(p: &mut Self::Params) {
-        p.points_per_period = p.points_per_period.min(40);
-        p.periods = p.periods.min(2.0);
-    }
-
-    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        let mut fig = run_curves(p, &Profile::Sinusoid, job)?;
-        fig.title = Self::TITLE.into();
-        Ok(fig)
-    }
-}
-
-/// Fig. 6.3: maps of the effective peel force and work of adhesion, sinusoid.
-pub struct Fig6_3;
-
-impl Scene for Fig6_3 {
-    type Params = PeelMapParams;
-    const ID: &'static str = "fig6.3";
-    const CHAPTER: &'static str = "6";
-    const TITLE: &'static str = "Effective peel force and work of adhesion, sinusoidal substrate";
-    const CAPTION: &'static str = "Contours of (a) F_max/(Ebh), (6.21), and (b) w_e/w, (6.22), over aspect ratio A and peel \
+peel_map_scene!(
+    /// Fig. 6.3: maps of the effective peel force and work of adhesion, sinusoid.
+    Fig6_3,
+    "fig6.3",
+    Profile::Sinusoid,
+    sinusoid_optimum_angle_fit,
+    "(6.23)",
+    "Effective peel force and work of adhesion, sinusoidal substrate",
+    "Contours of (a) F_max/(Ebh), (6.21), and (b) w_e/w, (6.22), over aspect ratio A and peel \
         angle θ (admissible angles only), w = 0.005; yellow/purple: maximum/minimum over θ at each A; dotted: the \
-        optimum-angle fit (6.23).";
-    const RESULTS: &'static [(&'static str, &'static str)] = MAP_RESULTS;
+        optimum-angle fit (6.23)."
+);
 
-    fn validate(p: &Self::Params) -> Result<()> {
-        profile_of(&p.profile_file, &Profile::Sinusoid).map(|_| ())
-    }
-
-    fn quick(p: &mut Self::Params) {
-        p.aspect_ratio_points = p.aspect_ratio_points.min(21);
-        p.angle_points = p.angle_points.min(37);
-    }
-
-    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        super::sweep::run::<Self>(p, job)
-    }
-}
-
-/// A sweep over the aspect ratio: point `i` is the column of A number `i` (`map_point`).
-impl Sweep for Fig6_3 {
-    type Context = Profile;
-
-    fn context(p: &Self::Params, _job: &Job) -> Result<Profile> {
-        profile_of(&p.profile_file, &Profile::Sinusoid)
-    }
-
-    /// The column's forces and works at every angle, then its extrema ([`map_point`]); NaN
-    /// where an angle is not admissible.
-    fn point_len(p: &Self::Params, _id: usize) -> usize {
-        2 * p.angle_points + 7
-    }
-
-    const NAN_VALUES: bool = true;
-
-    fn points(p: &Self::Params) -> Vec<String> {
-        map_points(p)
-    }
-
-    fn run_point(p: &Self::Params, profile: &Profile, id: usize, job: &Job) -> Result<Vec<f64>> {
-        map_point(p, profile, id, job)
-    }
-
-    fn assemble(p: &Self::Params, points: &[Vec<f64>], job: &Job) -> Result<Figure> {
-        let mut fig = assemble_map(
-            p,
-            &Profile::Sinusoid,
-            sinusoid_optimum_angle_fit,
-            "(6.23)",
-            points,
-            job,
-        )?;
-        fig.title = Self::TITLE.into();
-        Ok(fig)
-    }
-}
-
-/// Fig. 6.4: peel force along a zigzag substrate.
-pub struct Fig6_4;
-
-impl Scene for Fig6_4 {
-    type Params = PeelCurvesParams;
-    const ID: &'static str = "fig6.4";
-    const CHAPTER: &'static str = "6";
-    const TITLE: &'static str = "Peel force along a zigzag substrate";
-    const CAPTION: &'static str = "Peel force F/(Ebh) vs peel-front position x_p/λ on the zigzag (6.24) for several A and θ, \
+peel_curves_scene!(
+    /// Fig. 6.4: peel force along a zigzag substrate.
+    Fig6_4,
+    "fig6.4",
+    Profile::Zigzag,
+    "Peel force along a zigzag substrate",
+    "Peel force F/(Ebh) vs peel-front position x_p/λ on the zigzag (6.24) for several A and θ, \
         w = 0.005: neutral equilibrium on the flanks, the front rests at the crests; thin black arrows: snap-throughs \
-        from each valley to the next crest once the load reaches F_max (6.25).";
-    const RESULTS: &'static [(&'static str, &'static str)] = CURVES_RESULTS;
+        from each valley to the next crest once the load reaches F_max (6.25)."
+);
 
-    fn validate(p: &Self::Params) -> Result<()> {
-        validate_curves(p, &Profile::Zigzag)
-    }
-
-    fn quick(p: &mut Self::Params) {
-        p.points_per_period = p.points_per_period.min(40);
-        p.periods = p.periods.min(2.0);
-    }
-
-    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        let mut fig = run_curves(p, &Profile::Zigzag, job)?;
-        fig.title = Self::TITLE.into();
-        Ok(fig)
-    }
-}
-
-/// Fig. 6.5: maps of the effective peel force and work of adhesion, zigzag.
-pub struct Fig6_5;
-
-impl Scene for Fig6_5 {
-    type Params = PeelMapParams;
-    const ID: &'static str = "fig6.5";
-    const CHAPTER: &'static str = "6";
-    const TITLE: &'static str = "Effective peel force and work of adhesion, zigzag substrate";
-    const CAPTION: &'static str = "Contours of (a) F_max/(Ebh), (6.25), and (b) w_e/w, (6.26), over aspect ratio A and peel \
+peel_map_scene!(
+    /// Fig. 6.5: maps of the effective peel force and work of adhesion, zigzag.
+    Fig6_5,
+    "fig6.5",
+    Profile::Zigzag,
+    zigzag_optimum_angle_fit,
+    "(6.27)",
+    "Effective peel force and work of adhesion, zigzag substrate",
+    "Contours of (a) F_max/(Ebh), (6.25), and (b) w_e/w, (6.26), over aspect ratio A and peel \
         angle θ (admissible angles only), w = 0.005; yellow/purple: maximum/minimum over θ at each A; dotted: the \
-        optimum-angle fit (6.27).";
-    const RESULTS: &'static [(&'static str, &'static str)] = MAP_RESULTS;
-
-    fn validate(p: &Self::Params) -> Result<()> {
-        profile_of(&p.profile_file, &Profile::Zigzag).map(|_| ())
-    }
-
-    fn quick(p: &mut Self::Params) {
-        p.aspect_ratio_points = p.aspect_ratio_points.min(21);
-        p.angle_points = p.angle_points.min(37);
-    }
-
-    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        super::sweep::run::<Self>(p, job)
-    }
-}
-
-/// A sweep over the aspect ratio: point `i` is the column of A number `i` (`map_point`).
-impl Sweep for Fig6_5 {
-    type Context = Profile;
-
-    fn context(p: &Self::Params, _job: &Job) -> Result<Profile> {
-        profile_of(&p.profile_file, &Profile::Zigzag)
-    }
-
-    /// The column's forces and works at every angle, then its extrema ([`map_point`]); NaN
-    /// where an angle is not admissible.
-    fn point_len(p: &Self::Params, _id: usize) -> usize {
-        2 * p.angle_points + 7
-    }
-
-    const NAN_VALUES: bool = true;
-
-    fn points(p: &Self::Params) -> Vec<String> {
-        map_points(p)
-    }
-
-    fn run_point(p: &Self::Params, profile: &Profile, id: usize, job: &Job) -> Result<Vec<f64>> {
-        map_point(p, profile, id, job)
-    }
-
-    fn assemble(p: &Self::Params, points: &[Vec<f64>], job: &Job) -> Result<Figure> {
-        let mut fig = assemble_map(
-            p,
-            &Profile::Zigzag,
-            zigzag_optimum_angle_fit,
-            "(6.27)",
-            points,
-            job,
-        )?;
-        fig.title = Self::TITLE.into();
-        Ok(fig)
-    }
-}
+        optimum-angle fit (6.27)."
+);
 
 crate::scene_params! {
     /// Parameters of scene fig6.3-limits (Sec. 6.4): the approach of (6.17)-(6.18) to the flat
