@@ -508,6 +508,18 @@ mod tests {
         LennardJones::new(&LennardJonesParams::default()).unwrap()
     }
 
+    /// The potential at (C₆, C₁₂) = (3, 1), (1, 1) and (2, 5), σ and A_H of Fig. 4.5.
+    fn several_exponent_pairs() -> impl Iterator<Item = LennardJones> {
+        [(3.0, 1.0), (1.0, 1.0), (2.0, 5.0)].into_iter().map(|(c6, c12)| {
+            LennardJones::new(&LennardJonesParams {
+                c6,
+                c12,
+                ..LennardJonesParams::default()
+            })
+            .unwrap()
+        })
+    }
+
     #[test]
     fn invalid_parameters_are_named() {
         let bad = |p: LennardJonesParams, name: &str| {
@@ -525,13 +537,7 @@ mod tests {
     fn plate_energy_is_minus_w_at_zeta0_with_zero_traction_and_matches_the_zeta0_form() {
         // The A_H, σ form of (4.4) against the normalised form −(4w/3)[s² − s⁸/4], and the
         // definitions of ζ₀ (4.6) and w (4.7b); closed forms, so 1e-13 relative.
-        for (c6, c12) in [(3.0, 1.0), (1.0, 1.0), (2.0, 5.0)] {
-            let lj = LennardJones::new(&LennardJonesParams {
-                c6,
-                c12,
-                ..LennardJonesParams::default()
-            })
-            .unwrap();
+        for lj in several_exponent_pairs() {
             let (z0, w) = (lj.zeta0(), lj.work_of_adhesion());
             assert!((lj.plate_energy(z0) + w).abs() < 1e-13 * w);
             assert!(lj.traction(z0).abs() < 1e-13 * w / z0);
@@ -617,13 +623,7 @@ mod tests {
     fn dugdale_range_is_w_over_the_largest_traction() {
         // σ₀ by golden-section search on the consistent traction vs 16w/(9√3ζ₀), for several
         // (C₆, C₁₂): the location is found to ~1e-8, the maximum value to ~1e-15 relative.
-        for (c6, c12) in [(3.0, 1.0), (1.0, 1.0), (2.0, 5.0)] {
-            let lj = LennardJones::new(&LennardJonesParams {
-                c6,
-                c12,
-                ..LennardJonesParams::default()
-            })
-            .unwrap();
+        for lj in several_exponent_pairs() {
             let z0 = lj.zeta0();
             let g = crate::numerics::curve::golden_min(|g| -lj.traction(g), 0.9 * z0, 2.0 * z0, 1e-14 * z0);
             assert!((g - lj.max_traction_gap()).abs() < 1e-7 * z0);
