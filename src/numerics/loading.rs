@@ -296,7 +296,12 @@ pub fn follow<C: Controlled>(
                     Ok(())
                 }
             };
-            let rep = match solver.minimize_watched(&e, trial, newton, &mut watch) {
+            // A bisection trial's verdict is its first Hessian: no warm start there.
+            let warm = solver.warm_start();
+            solver.set_warm_start(warm && kind != Trial::Bisect);
+            let result = solver.minimize_watched(&e, trial, newton, &mut watch);
+            solver.set_warm_start(warm);
+            let rep = match result {
                 Ok(rep) => rep,
                 Err(Error::NoConvergence { iterations, .. }) if capped => {
                     stats.newton_iterations += iterations;

@@ -86,6 +86,15 @@ pub trait Energy {
     fn hessian_pattern(&self) -> Vec<(usize, usize)>;
     /// Hessian values at `x` in the order of [`Energy::hessian_pattern`].
     fn hessian_values(&self, x: &[f64], values: &mut [f64]);
+    /// Optional: a key that tells this energy apart from the others a solver sees (two
+    /// energies with the same key have the same Hessian at every state), such as the bits of
+    /// the load parameter of a family of energies. Offering it lets [`StableNewton`] skip
+    /// evaluating the Hessian again at the state where it evaluated it last (an accepted
+    /// state's stability test, and the tangent solve of the next load step at that state). The
+    /// default offers nothing.
+    fn key(&self) -> Option<u64> {
+        None
+    }
     /// Optional: the energy as a function of unknown `i` alone, all others held at `x`,
     /// evaluated at x_i = `s`: (E, dE/ds, d²E/ds²), E up to a constant independent of s and
     /// `f64::INFINITY` outside the domain. Offering it (at a cost independent of `dim()`) lets
@@ -241,6 +250,12 @@ pub struct StableNewton {
     /// How [`StableNewton::is_stable`] and [`StableNewton::solve_at`] decide (the
     /// minimisation takes its own from [`NewtonOptions`]).
     linear: LinearSolver,
+    /// The key ([`Energy::key`]) of the energy and the state whose Hessian the values hold,
+    /// where known.
+    loaded: Option<(u64, Vec<f64>)>,
+    /// Whether a minimisation on the direct path starts with chord steps on the last
+    /// positive-definite factorisation (see [`StableNewton::set_warm_start`]).
+    warm: bool,
 }
 
 impl StableNewton {
@@ -310,6 +325,8 @@ impl StableNewton {
             row_values: Vec::new(),
             last_move: None,
             linear: LinearSolver::Auto,
+            loaded: None,
+            warm: false,
         })
     }
 
@@ -318,6 +335,44 @@ impl StableNewton {
     /// (the iterative path's certificate never applies), however large.
     pub fn set_linear(&mut self, linear: LinearSolver) {
         self.linear = linear;
+    }
+
+    /// Whether a minimisation on the direct path starts with chord steps on the last
+    /// positive-definite factorisation, computed at an earlier state (the one accepted last,
+    /// on a path that follows a load), instead of factorising at its start. The chord steps
+    /// go on while each cuts the gradient by [`direct::CHORD_CONTRACTION`]; acceptance still
+    /// factorises the Hessian at the accepted state itself, so that only the cost changes:
+    /// one factorisation fewer per load step where the step converges on the old factor.
+    /// Off by default. A caller that reads the first iterations for a verdict (a bisection
+    /// trial that stops at the first indefinite Hessian) turns it off for that minimisation:
+    /// chord steps would postpone the first look at the Hessian.
+    pub fn set_warm_start(&mut self, on: bool) {
+        self.warm = on;
+    }
+
+    /// Whether minimisations start warm ([`Self::set_warm_start`]).
+    pub fn warm_start(&self) -> bool {
+        self.warm
+    }
+
+    /// Put the Hessian of `energy` at `x` into the values, unless they hold it already (the
+    /// same energy by [`Energy::key`] at the same state).
+    fn load_hessian(&mut self, energy: &impl Energy, x: &[f64]) {
+        let key = energy.key();
+        if let (Some(key), Some((loaded, at))) = (key, &self.loaded)
+            && key == *loaded
+            && at[..] == *x
+        {
+            return;
+        }
+        let n_pattern = self.values.len() - self.n;
+        energy.hessian_values(x, &mut self.values[..n_pattern]);
+        let (_, mut at) = self.loaded.take().unwrap_or_default();
+        if let Some(key) = key {
+            at.clear();
+            at.extend_from_slice(x);
+            self.loaded = Some((key, at));
+        }
     }
 
     /// Numeric factorisations computed so far (single-precision ones included, reused ones
@@ -341,7 +396,7 @@ impl StableNewton {
     /// Assembly failures (not expected).
     pub fn is_stable(&mut self, energy: &impl Energy, x: &[f64]) -> Result<bool> {
         let n_pattern = self.values.len() - self.n;
-        energy.hessian_values(x, &mut self.values[..n_pattern]);
+        self.load_hessian(energy, x);
         if let Some((v, _)) = &self.certified
             && v[..] == self.values[..n_pattern]
         {
@@ -366,8 +421,7 @@ impl StableNewton {
         if self.iterative(self.linear) {
             return Ok(false);
         }
-        let n_pattern = self.values.len() - self.n;
-        energy.hessian_values(x, &mut self.values[..n_pattern]);
+        self.load_hessian(energy, x);
         match self.factor(0.0)? {
             Some(l) => {
                 l.solve(rhs);

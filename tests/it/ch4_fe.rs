@@ -12,6 +12,11 @@ use adhesion::models::body_force_fe::tip::{FeTip, FeTipParams};
 use adhesion::models::lennard_jones::{LennardJones, LennardJonesParams};
 use std::time::Instant;
 
+// Fig. 4.5's finite-element tip as the benchmarks build it.
+#[path = "../../benches/common/mod.rs"]
+mod common;
+use common::fig4_5_fe;
+
 /// A loading path from `start` to `end` (in units of the normal length) in steps of `step`,
 /// with one unloading step.
 fn load<M: adhesion::models::axisymmetric::cycle::CycleModel>(
@@ -555,4 +560,96 @@ fn fig4_5_finite_element_model_agrees_with_the_surface_model_in_quick_form() {
     );
     assert!(ph.markers.iter().any(|m| m.name == "pull-in"));
     assert!(ph.markers.iter().any(|m| m.name == "pull-off"));
+}
+
+/// Fig. 4.5's finite-element cycle (from 12 ζ0 to `h_min` ζ0 and back in steps of `step` ζ0,
+/// jumps located to 1e-3 ζ0) on the tip `params`: P_adh [N] and the jumps (loading or not, the
+/// depths before and after in ζ0), and whether every state was stable.
+fn fe_cycle_path(params: &FeTipParams, h_min: f64, step: f64) -> (f64, Vec<(bool, f64, f64)>, bool) {
+    let tip = FeTip::new(params).expect("tip");
+    let z = tip.scales().length;
+    let opts = CycleOptions {
+        h_start: 12.0 * z,
+        h_min: h_min * z,
+        step: step * z,
+        refine_to: 1e-3 * z,
+        contact_gap: 1e-9,
+        keep_profiles: false,
+        unload_to: None,
+    };
+    let cycle = run_cycle(&tip, &opts, |_| Ok(())).expect("cycle");
+    let jumps = cycle
+        .jumps
+        .iter()
+        .map(|j| (j.loading, j.before.depth / z, j.after.depth / z))
+        .collect();
+    (cycle.adhesive_force(), jumps, cycle.stats.all_stable)
+}
+
+/// The path of a cycle against the one recorded before the minimiser started its load steps
+/// warm (chord steps on the previous state's factorisation) and stopped re-evaluating the
+/// Hessian of a state it had just evaluated: P_adh to 1e-6 relative, the same jumps at the
+/// same bisection points (depths to 1e-9 ζ0; a bisection point moved by one trial would move
+/// them by at least 1e-3 ζ0).
+fn assert_same_path(
+    (p_adh, jumps, stable): (f64, Vec<(bool, f64, f64)>, bool),
+    recorded_p_adh: f64,
+    recorded_jumps: &[(bool, f64, f64)],
+) {
+    eprintln!("P_adh {p_adh:.12e} N (recorded {recorded_p_adh:.12e}), jumps {jumps:?}");
+    assert!(stable);
+    assert!(
+        (p_adh / recorded_p_adh - 1.0).abs() < 1e-6,
+        "P_adh {p_adh:e} against {recorded_p_adh:e}"
+    );
+    assert_eq!(jumps.len(), recorded_jumps.len(), "{jumps:?}");
+    for (got, want) in jumps.iter().zip(recorded_jumps) {
+        assert_eq!(got.0, want.0, "{got:?} against {want:?}");
+        assert!(
+            (got.1 - want.1).abs() < 1e-9 && (got.2 - want.2).abs() < 1e-9,
+            "{got:?} against {want:?}"
+        );
+    }
+}
+
+// Fig. 4.5's finite-element cycle on a coarse bulk (grading 0.4 in a tip of 4 R, 6 810
+// unknowns, to h = −3 ζ0 in steps of 0.25 ζ0): the pull-in and the seven hops of the receding
+// contact edge on unloading at the depths, and P_adh to the digits, of the path recorded before
+// the load steps started warm (`FeTip::warm_start`), which changed the cost only (2 515 to
+// 2 419 factorisations).
+#[test]
+fn fe_cycle_on_a_coarse_mesh_keeps_its_path_with_warm_load_steps() {
+    let params = FeTipParams {
+        grading: 0.4,
+        r0: 2e-5,
+        h0: 2e-5,
+        ..fig4_5_fe()
+    };
+    let recorded = [
+        (true, 4.194335937500, 4.193359375000),
+        (false, 7.691978454590, 7.692722320557),
+        (false, 7.809570312500, 7.810546875000),
+        (false, 7.903053283691, 7.903793334961),
+        (false, 7.978203177452, 7.978954792023),
+        (false, 8.026367187500, 8.027343750000),
+        (false, 8.057785034180, 8.058654785156),
+        (false, 8.061644554138, 8.062391996384),
+    ];
+    assert_same_path(fe_cycle_path(&params, -3.0, 0.25), -8.347624872492e-9, &recorded);
+}
+
+// The same for the cycle `cargo bench --bench fe` times (Fig. 4.5's tip of 22 266 unknowns to
+// h = −15 ζ0 in steps of 0.2 ζ0): pull-in and pull-off where they were, P_adh to 1e-6.
+#[test]
+#[ignore = "slow: the benchmark's cycle, about a minute"]
+fn fe_cycle_of_the_benchmark_keeps_its_path_with_warm_load_steps() {
+    let recorded = [
+        (true, 4.228125000000, 4.227343750000),
+        (false, 8.168212890625, 8.169206237793),
+    ];
+    assert_same_path(
+        fe_cycle_path(&fig4_5_fe(), -15.0, 0.2),
+        -8.326694758257e-9,
+        &recorded,
+    );
 }

@@ -156,6 +156,11 @@ pub trait CycleModel: Controlled {
     }
     /// Adapt how the path is followed (see [`PathOptions`]); by default nothing changes.
     fn tune_path(&self, _path: &mut PathOptions) {}
+    /// Whether the minimiser starts each load step warm, with chord steps on the last
+    /// accepted state's factorisation ([`StableNewton::set_warm_start`]); by default not.
+    fn warm_start(&self) -> bool {
+        false
+    }
     /// Seconds of one core an accepted state of a cycle costs, about; `None` where no
     /// estimate is known. [`run_cycle`] refuses a cycle estimated above
     /// [`MAX_CYCLE_SECONDS`].
@@ -326,6 +331,7 @@ fn walk<M: CycleModel>(
     let start_energy = tip.at(start);
     let mut solver = StableNewton::new(&start_energy)?;
     solver.set_linear(newton.linear);
+    solver.set_warm_start(tip.warm_start());
     let mut u = vec![0.0; tip.unknowns()];
     let progress = RefCell::new(progress);
     let reported = Cell::new(0.0);

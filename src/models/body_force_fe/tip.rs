@@ -475,6 +475,11 @@ impl Energy for FeEnergy<'_> {
         values.copy_from_slice(&self.tip.stiffness);
         self.tip.body.add_hessian(self.delta, u, values);
     }
+
+    /// The approach: one tip's energies differ only in it.
+    fn key(&self) -> Option<u64> {
+        Some(self.delta.to_bits())
+    }
 }
 
 impl Controlled for FeTip {
@@ -552,5 +557,11 @@ impl CycleModel for FeTip {
     /// it, is on for every tip.)
     fn tune_path(&self, path: &mut PathOptions) {
         path.landing_iterations = path.newton.max_iterations;
+    }
+    /// A load step of the finite-element tip mostly converges on the factorisation of the
+    /// state before it: starting warm saves the step's first factorisation and Hessian (the
+    /// path is the same: every accepted state is still factorised where it lies).
+    fn warm_start(&self) -> bool {
+        true
     }
 }

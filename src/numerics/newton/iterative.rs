@@ -148,6 +148,7 @@ impl StableNewton {
             watch(&rep)?;
             energy.gradient(x, &mut g);
             let gnorm = inf_norm(&g);
+            self.loaded = None;
             energy.hessian_values(x, &mut self.values[..n_pattern]);
             self.rows.gather(&self.values[..n_pattern], &mut self.row_values);
             let z_matrix = self
