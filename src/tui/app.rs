@@ -280,6 +280,7 @@ pub struct App {
     pub(crate) results: Option<bool>,
     pub(crate) nudged: Option<u64>,
     pub(crate) help_scroll: u16,
+    pub(crate) kept_marker: Option<String>,
     preset_dir: PathBuf,
     next_job: u64,
     quit: bool,
@@ -337,6 +338,7 @@ impl App {
             results: None,
             nudged: None,
             help_scroll: 0,
+            kept_marker: None,
             preset_dir: preset_dir.into(),
             next_job: 1,
             quit: false,
@@ -882,6 +884,7 @@ impl App {
         if let Some(old) = self.running.take() {
             effects.push(Effect::Cancel { job: old.job });
         }
+        self.keep_marker();
         let job = self.next_job();
         self.running = Some(Running {
             job,

@@ -198,6 +198,12 @@ impl Session {
         let Some(scene) = self.app.scenes().get(k) else {
             return;
         };
+        // Files of an earlier export of this figure that this one replaces: said, not silent.
+        let replaced: Vec<String> = Format::ALL
+            .iter()
+            .map(|f| format!("{}.{}", figure.id, f.extension()))
+            .filter(|name| self.out_dir.join(name).exists())
+            .collect();
         let written = write_figure_with_runs(
             figure,
             scene.info().caption,
@@ -218,8 +224,13 @@ impl Session {
                 } else {
                     format!(" (with {} pinned run(s))", runs.len())
                 };
+                let replaced = if replaced.is_empty() {
+                    String::new()
+                } else {
+                    format!("; replaced the earlier {}", replaced.join(", "))
+                };
                 let text = format!(
-                    "exported to {}: {}{extra}",
+                    "exported to {}: {}{extra}{replaced}",
                     self.out_dir.display(),
                     names.join(", ")
                 );

@@ -626,11 +626,24 @@ fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect, layout: &mut DrawnL
     if readout_height > 0 {
         let mut spans = Vec::new();
         if let Some(r) = &readout {
+            // The values never cut: on a narrow chart the axes' labels give way to `x =`, `y =`.
+            let change = marker_change(app);
+            let change_len = change.as_ref().map_or(0, |(t, _)| t.chars().count() + 2);
+            let full = format!("◆ {}  {}  {}", r.name, r.x, r.y);
+            let value = |t: &str| t.rsplit(" = ").next().unwrap_or(t).to_string();
+            let (x, y) = if full.chars().count() + change_len <= usize::from(readout_area.width) {
+                (r.x.clone(), r.y.clone())
+            } else {
+                (format!("x = {}", value(&r.x)), format!("y = {}", value(&r.y)))
+            };
+            spans.push(Span::raw(format!("{x}  {y}  ")));
             spans.push(Span::styled(
                 format!("◆ {}", r.name),
                 Style::default().fg(Color::White),
             ));
-            spans.push(Span::raw(format!("  {}  {}", r.x, r.y)));
+            if let Some((text, color)) = change {
+                spans.push(Span::styled(format!("  {text}"), Style::default().fg(color)));
+            }
         }
         if app.zoom().is_some() {
             spans.push(Span::styled(
@@ -641,6 +654,39 @@ fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect, layout: &mut DrawnL
         frame.render_widget(Line::from(spans), readout_area);
     }
     draw_gauge(frame, app, view, gauge_area);
+}
+
+/// With the cursor on one of the current run's markers: how it moved against the same marker
+/// of the first shown pin (`Δ vs #1: x +0.1 µm, y −1.3 µN`), in that pin's colour.
+fn marker_change(app: &App) -> Option<(String, Color)> {
+    let Some(super::chart::CursorAt::Marker(m)) = app.cursor() else {
+        return None;
+    };
+    let drawn = app.drawn()?;
+    if drawn.markers.get(m) != Some(&Owner::Current) {
+        return None;
+    }
+    let mine = &drawn.panel.markers[m];
+    let suffix = format!(" · {}", mine.name);
+    let pins = app.pins(app.selected);
+    let (other, owner) = drawn
+        .panel
+        .markers
+        .iter()
+        .zip(&drawn.markers)
+        .find(|(mk, o)| matches!(o, Owner::Pin(i) if !pins[*i].hidden) && mk.name.ends_with(&suffix))?;
+    let Owner::Pin(i) = *owner else { return None };
+    let d = |a: f64, b: f64, unit: &str| {
+        let v = fmt_quantity(a - b, unit);
+        if a >= b { format!("+{v}") } else { v }
+    };
+    let text = format!(
+        "Δ vs #{}: x {}, y {}",
+        i + 1,
+        d(mine.x, other.x, &drawn.panel.x.unit),
+        d(mine.y, other.y, &drawn.panel.y.unit)
+    );
+    Some((text, chart_color(pins[i].color)))
 }
 
 /// What the panel tabs start with.

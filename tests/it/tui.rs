@@ -508,6 +508,18 @@ fn export_writes_png_svg_csv_and_json() {
     assert!(csv.starts_with("panel,series,style,x,y"));
     let json = std::fs::read_to_string(dir.path().join("out/fig1.1.json")).expect("json");
     assert!(json.contains("jkr_hysteresis_norm"));
+    assert!(
+        !s.app().status().text.contains("replaced"),
+        "{:?}",
+        s.app().status()
+    );
+    // A second export says which files it replaced.
+    press(&mut s, KeyCode::Char('e'));
+    let status = &s.app().status().text;
+    assert!(
+        status.contains("replaced the earlier fig1.1.png, fig1.1.svg, fig1.1.csv, fig1.1.json"),
+        "{status}"
+    );
 }
 
 #[test]
@@ -1178,4 +1190,52 @@ fn at_80_by_24_values_are_whole_and_the_legend_toggles() {
     assert!(!hidden.contains("L hides"), "{hidden}");
     press(&mut s, KeyCode::Char('L'));
     assert!(text(&draw_at(&s, 80, 24)).contains("L hides"));
+}
+
+/// Nudging as a slider over the pull-off: with the cursor on fig1.1's pull-off marker and a
+/// pin, a nudge of the radius (×1.1) reruns, the cursor stays on the pull-off of the new run,
+/// and the readout shows how it moved against the pin: P_D ∝ R (Eq. 1.4), so by a tenth of the
+/// pin's P_D.
+#[test]
+fn the_cursor_stays_on_the_pull_off_across_nudges_and_reads_the_change() {
+    use super::workbench::{at_scene, draw_at, run, set_param};
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = at_scene(dir.path(), "fig1.1");
+    set_param(&mut s, "units", "si");
+    run(&mut s);
+    press(&mut s, KeyCode::Char('p'));
+    for _ in 0..12 {
+        if s.app().readout().is_some_and(|r| r.name == "pull-off (D)") {
+            break;
+        }
+        press(&mut s, KeyCode::Char('m'));
+    }
+    assert_eq!(s.app().readout().expect("a readout").name, "pull-off (D)");
+    let before = s.app().readout().expect("a readout").point;
+    // The radius is the first parameter.
+    press(&mut s, KeyCode::Tab);
+    while s.app().form().expect("a form").selected() > 0 {
+        press(&mut s, KeyCode::Up);
+    }
+    press(&mut s, KeyCode::Char('}'));
+    assert!(
+        s.wait_until(WAIT, |a| a.history().len() == 2 && idle(a)),
+        "the nudge reruns"
+    );
+    let r = s.app().readout().expect("the cursor is kept");
+    assert_eq!(r.name, "pull-off (D)");
+    assert!(
+        (r.point.1 / before.1 - 1.1).abs() < 1e-9,
+        "{:?} vs {before:?}",
+        r.point
+    );
+    let screen = text(&draw_at(&s, 160, 48));
+    assert!(screen.contains("Δ vs #1: x "), "{screen}");
+    let k = s.app().selected();
+    let pinned = s.app().pins(k)[0]
+        .figure
+        .result_value("jkr_pull_off_force_N")
+        .expect("P_D");
+    let moved = adhesion::render::labels::fmt_quantity(0.1 * pinned, "N");
+    assert!(screen.contains(&format!("y {moved}")), "Δy = {moved}:\n{screen}");
 }

@@ -438,6 +438,19 @@ impl App {
         self.drag = None;
     }
 
+    /// The name of the current run's marker under the cursor, kept when a run starts so that
+    /// the cursor finds the marker of that name in its results.
+    pub(crate) fn keep_marker(&mut self) {
+        self.kept_marker = match self.cursor {
+            Some(CursorAt::Marker(m)) => self
+                .figure(self.selected)
+                .and_then(|v| v.figure.panels.get(self.panel))
+                .and_then(|p| p.markers.get(m))
+                .map(|mk| mk.name.clone()),
+            _ => None,
+        };
+    }
+
     /// Complete results of scene `scene` arrive: the cursor and zoom of every panel whose axes
     /// they change are reset (those of the others are kept).
     pub(crate) fn on_results(&mut self, scene: usize, figure: &Figure) {
@@ -449,10 +462,24 @@ impl App {
             .filter(|k| old.get(*k) != new.get(*k))
             .collect();
         *old = new;
+        // A cursor on one of the current run's markers (the pull-off) stays on the marker of
+        // the same name in the new results, wherever it moved: nudging a parameter then reads
+        // how that marker moves.
+        let on_marker = if scene == self.selected {
+            self.kept_marker.take()
+        } else {
+            None
+        };
         for k in changed {
             self.views.remove(&(scene, k));
             if scene == self.selected && k == self.panel {
-                self.cursor = None;
+                self.cursor = on_marker.as_ref().and_then(|name| {
+                    let p = figure.panels.get(k)?;
+                    p.markers
+                        .iter()
+                        .position(|m| m.name == *name)
+                        .map(CursorAt::Marker)
+                });
                 self.zoom = None;
                 self.zoom_mark = None;
                 self.drag = None;
