@@ -75,6 +75,8 @@ pub struct ChartOptions {
     /// Only the first this many markers and regions get legend entries (`None`: all); the
     /// others belong to an entry that lists them, such as a pinned run's.
     pub listed: Option<(usize, usize)>,
+    /// Leave the legend out (the caller draws its own, e.g. one that is never hidden).
+    pub legend_off: bool,
 }
 
 /// Where the plotting area of a drawn chart is and what it shows, to map screen cells to data
@@ -371,7 +373,7 @@ pub fn render_chart(
                 .labels(vec![blank(y_width), blank(y_width)])
                 .style(TuiStyle::default().fg(Color::Gray)),
         )
-        .legend_position(Some(LegendPosition::TopRight))
+        .legend_position((!options.legend_off).then_some(LegendPosition::TopRight))
         .hidden_legend_constraints((Constraint::Ratio(2, 3), Constraint::Ratio(2, 3)));
     chart.render(area, buf);
     let layout = chart_layout(area, y_width as u16)?;

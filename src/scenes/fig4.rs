@@ -22,7 +22,7 @@ use super::{Registered, Scene, SceneDyn};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Figure, Marker, MarkerShape, Panel, Series, Style};
 use crate::job::Job;
-use crate::models::axisymmetric::cycle::{CycleOptions, TipCycle, TipState, run_cycle};
+use crate::models::axisymmetric::cycle::{CycleOptions, TipCycle, TipState, run_cycle, run_cycle_watched};
 use crate::models::axisymmetric::tip::{Tip, TipParams};
 use crate::models::body_force_fe::tip::FeTip;
 use crate::models::lennard_jones::LennardJones;
@@ -178,6 +178,23 @@ impl SceneTip {
         match self {
             Self::Surface(t) => run_cycle(t.as_ref(), opts, progress),
             Self::Fe(t) => run_cycle(t.as_ref(), opts, progress),
+        }
+    }
+
+    /// Run one cycle, showing it as far as it goes to `on_state` after every accepted state
+    /// ([`run_cycle_watched`]).
+    ///
+    /// # Errors
+    /// As [`run_cycle`].
+    fn cycle_watched(
+        &self,
+        opts: &CycleOptions,
+        progress: impl FnMut(f64) -> Result<()>,
+        on_state: impl FnMut(&TipCycle),
+    ) -> Result<TipCycle> {
+        match self {
+            Self::Surface(t) => run_cycle_watched(t.as_ref(), opts, progress, on_state),
+            Self::Fe(t) => run_cycle_watched(t.as_ref(), opts, progress, on_state),
         }
     }
 
@@ -372,14 +389,31 @@ impl Scene for Fig4_5 {
             keep_profiles: false,
             unload_to: None,
         };
-        // The cycle is nearly all of the run; the Maugis-Dugdale curves follow.
-        let cycle = tip.cycle(&opts, |f| {
-            job.progress(0.98 * f, "cycle");
-            job.check()
-        })?;
+        let scale = (p.tip.radius, 2.0 * modulus * p.tip.radius * p.tip.radius);
+        let ph_axes = || {
+            Panel::new(
+                Axis::linear("Indentation depth h/R", ""),
+                Axis::linear("Contact force P/(2E*R²)", ""),
+            )
+        };
+        // The cycle is nearly all of the run (the Maugis-Dugdale curves follow); a listener
+        // sees its P-h path grow, jumps included, on the axes of panel (a).
+        let cycle = tip.cycle_watched(
+            &opts,
+            |f| {
+                job.progress(0.98 * f, "cycle");
+                job.check()
+            },
+            |so_far| {
+                if job.wants_preview() {
+                    let mut ph = ph_axes().titled("(a)", "the cycle so far");
+                    draw_cycle(&mut ph, so_far, tip.label(), 0, scale);
+                    job.preview(&Figure::new(Self::ID, Self::TITLE).with_panel(ph));
+                }
+            },
+        )?;
         let (chi, ell) = (lj.chi(modulus), lj.ell(p.tip.radius, modulus));
         let md = MaugisDugdale::new(chi, ell)?;
-        let scale = (p.tip.radius, 2.0 * modulus * p.tip.radius * p.tip.radius);
         let a_max = cycle
             .loading
             .iter()
@@ -392,11 +426,7 @@ impl Scene for Fig4_5 {
             SceneTip::Fe(_) => "Smooth tip: Lennard-Jones finite-element model against Maugis-Dugdale",
         };
         let mut fig = Figure::new(Self::ID, title);
-        let mut ph = Panel::new(
-            Axis::linear("Indentation depth h/R", ""),
-            Axis::linear("Contact force P/(2E*R²)", ""),
-        )
-        .titled(
+        let mut ph = ph_axes().titled(
             "(a)",
             format!("μ_T = {:.3}", lj.tabor_parameter(p.tip.radius, modulus)),
         );

@@ -143,7 +143,14 @@ pub struct HistoryEntry {
     pub values: ParamValues,
     /// Wall time in seconds.
     pub run_time_s: f64,
+    /// When it ended.
+    pub finished_at: std::time::SystemTime,
+    /// Complete, or cancelled with the partial figure it had.
+    pub state: FigureState,
 }
+
+/// How long after the last nudge of a parameter the scene reruns.
+pub const NUDGE_PAUSE: std::time::Duration = std::time::Duration::from_millis(350);
 
 /// Runs the history keeps.
 pub const HISTORY_LEN: usize = 20;
@@ -206,6 +213,14 @@ pub enum Effect {
         /// The file.
         path: PathBuf,
     },
+    /// Call [`App::on_timer`] with `token` once `after` has passed (a later timer replaces
+    /// an earlier one).
+    Timer {
+        /// What the timer is for (only the latest token acts).
+        token: u64,
+        /// How long to wait.
+        after: std::time::Duration,
+    },
     /// Do background work that is not a scene run (read a file, fit a curve).
     Task {
         /// Run id (the message carries it).
@@ -222,11 +237,13 @@ impl std::fmt::Debug for Effect {
             Effect::Cancel { job } => write!(f, "Cancel({job})"),
             Effect::Export { scene } => write!(f, "Export({scene})"),
             Effect::ExportHistory { entry } => write!(f, "ExportHistory({entry})"),
+            Effect::Timer { token, after } => write!(f, "Timer({token}, {} ms)", after.as_millis()),
             Effect::LoadPreset { scene, path } => write!(f, "LoadPreset({scene}, {})", path.display()),
             Effect::SavePreset { scene, path } => write!(f, "SavePreset({scene}, {})", path.display()),
             Effect::Task { job, task } => match task {
                 Task::Open { path } => write!(f, "Open({job}, {})", path.display()),
                 Task::Fit { position, .. } => write!(f, "Fit({job}, curve {position})"),
+                Task::Convert { scene, .. } => write!(f, "Convert({job}, {scene:?})"),
             },
         }
     }
@@ -259,6 +276,11 @@ pub struct App {
     pub(crate) page: Page,
     pub(crate) file: Option<FilePage>,
     pub(crate) opening: Option<u64>,
+    pub(crate) legend: bool,
+    pub(crate) results: Option<bool>,
+    pub(crate) nudged: Option<u64>,
+    pub(crate) help_scroll: u16,
+    pub(crate) kept_marker: Option<String>,
     preset_dir: PathBuf,
     next_job: u64,
     quit: bool,
@@ -312,6 +334,11 @@ impl App {
             page: Page::Scenes,
             file: None,
             opening: None,
+            legend: true,
+            results: None,
+            nudged: None,
+            help_scroll: 0,
+            kept_marker: None,
             preset_dir: preset_dir.into(),
             next_job: 1,
             quit: false,
@@ -437,7 +464,15 @@ impl App {
         match &mut self.mode {
             Mode::Normal => {}
             Mode::Help => {
-                self.mode = Mode::Normal;
+                match key.code {
+                    KeyCode::Down | KeyCode::Char('j') | KeyCode::PageDown => {
+                        self.help_scroll = self.help_scroll.saturating_add(1);
+                    }
+                    KeyCode::Up | KeyCode::Char('k') | KeyCode::PageUp => {
+                        self.help_scroll = self.help_scroll.saturating_sub(1);
+                    }
+                    _ => self.mode = Mode::Normal,
+                }
                 return Vec::new();
             }
             Mode::History { selected } => {
@@ -448,7 +483,15 @@ impl App {
                     KeyCode::Down | KeyCode::Char('j') => *selected = (k + 1).min(n.saturating_sub(1)),
                     KeyCode::Enter => {
                         self.mode = Mode::Normal;
-                        self.reopen(k);
+                        return self.reopen(k);
+                    }
+                    KeyCode::Char('e')
+                        if self
+                            .history
+                            .get(k)
+                            .is_some_and(|e| e.state != FigureState::Complete) =>
+                    {
+                        self.set_status("a cancelled run is partial: it is not exported", true);
                     }
                     KeyCode::Char('e') if k < n => return vec![Effect::ExportHistory { entry: k }],
                     KeyCode::Esc | KeyCode::Char('h' | 'q') => self.mode = Mode::Normal,
@@ -517,6 +560,13 @@ impl App {
             self.show_form_status();
             return self.after_change();
         }
+        if let (Some(Action::TogglePin), KeyCode::Char(d)) = (action_for(key), key.code)
+            && self.page == Page::Scenes
+        {
+            let i = d.to_digit(10).map_or(0, |d| d as usize);
+            self.toggle_pin(i.saturating_sub(1));
+            return Vec::new();
+        }
         match action_for(key) {
             Some(action) if self.page == Page::File => self.file_action(action),
             Some(action) => self.act(action),
@@ -543,7 +593,10 @@ impl App {
                     effects.push(Effect::Cancel { job: run.job });
                 }
             }
-            Action::Help => self.mode = Mode::Help,
+            Action::Help => {
+                self.mode = Mode::Help;
+                self.help_scroll = 0;
+            }
             Action::Filter => {
                 self.focus = Focus::Scenes;
                 self.mode = Mode::Filter {
@@ -668,6 +721,28 @@ impl App {
             | Action::ZoomOut
             | Action::ZoomReset => self.chart_action(action),
             Action::Info => self.show_info = !self.show_info,
+            Action::TogglePin => {}
+            Action::NudgeUp | Action::NudgeDown => effects.extend(self.nudge(action == Action::NudgeUp)),
+            Action::Legend => {
+                self.legend = !self.legend;
+                let text = if self.legend {
+                    "legend shown"
+                } else {
+                    "legend hidden (L shows it)"
+                };
+                self.set_status(text, false);
+            }
+            Action::Results => {
+                // From what is shown: beside the chart where there is room, else nothing.
+                let shown = self.results.unwrap_or(self.layout.borrow().results_beside);
+                self.results = Some(!shown);
+                let text = if shown {
+                    "results hidden (R shows them)"
+                } else {
+                    "results shown"
+                };
+                self.set_status(text, false);
+            }
             Action::Open => self.prompt_open(),
             Action::SwitchPage => self.switch_page(),
             Action::TipRadius => {
@@ -748,6 +823,53 @@ impl App {
         self.select_index(k);
     }
 
+    /// Step the selected parameter ([`Form::nudge`]) and ask for a rerun after [`NUDGE_PAUSE`]:
+    /// steps in quick succession rerun once, with the last value.
+    fn nudge(&mut self, up: bool) -> Vec<Effect> {
+        let Some(form) = self.forms.get_mut(self.selected) else {
+            return Vec::new();
+        };
+        match form.nudge(up) {
+            Ok(text) => {
+                let k = form.selected();
+                let name = form.specs()[k].name;
+                self.focus = Focus::Form;
+                match form.first_error() {
+                    Some(e) => {
+                        let text = format!("{name} = {text}, but: {e}");
+                        self.set_status(text, true);
+                        Vec::new()
+                    }
+                    None => {
+                        let token = self.next_job();
+                        self.nudged = Some(token);
+                        self.set_status(format!("{name} = {text}: reruns in a moment"), false);
+                        vec![Effect::Timer {
+                            token,
+                            after: NUDGE_PAUSE,
+                        }]
+                    }
+                }
+            }
+            Err(e) => {
+                self.set_status(e, true);
+                Vec::new()
+            }
+        }
+    }
+
+    /// A timer asked for by [`Effect::Timer`] ran out: the latest nudge reruns the scene
+    /// (cancelling the run in flight); earlier ones do nothing.
+    pub fn on_timer(&mut self, token: u64) -> Vec<Effect> {
+        if self.nudged != Some(token) {
+            return Vec::new();
+        }
+        self.nudged = None;
+        let mut effects = Vec::new();
+        self.run(&mut effects);
+        effects
+    }
+
     fn run(&mut self, effects: &mut Vec<Effect>) {
         let Some(form) = self.forms.get(self.selected) else {
             return;
@@ -762,8 +884,8 @@ impl App {
         if let Some(old) = self.running.take() {
             effects.push(Effect::Cancel { job: old.job });
         }
-        let job = self.next_job;
-        self.next_job += 1;
+        self.keep_marker();
+        let job = self.next_job();
         self.running = Some(Running {
             job,
             scene: self.selected,
@@ -782,6 +904,10 @@ impl App {
     /// tracked are ignored.
     pub fn on_job(&mut self, msg: JobMsg) -> Vec<Effect> {
         if let JobMsg::Task { job, outcome } = msg {
+            if self.pins.iter().flatten().any(|p| p.converting == Some(job)) {
+                self.on_converted(job, outcome);
+                return Vec::new();
+            }
             return self.on_task(job, outcome);
         }
         let Some(run) = &mut self.running else {
@@ -814,7 +940,10 @@ impl App {
             }
             JobMsg::Task { .. } => {}
             JobMsg::Finished {
-                outcome, run_time_s, ..
+                outcome,
+                run_time_s,
+                finished_at,
+                ..
             } => {
                 let run = self.running.take();
                 match outcome {
@@ -822,7 +951,14 @@ impl App {
                         let values = run
                             .map(|r| r.values)
                             .unwrap_or_else(|| self.forms[scene].values().clone());
-                        self.remember(scene, &figure, &values, run_time_s);
+                        self.remember(HistoryEntry {
+                            scene,
+                            figure: (*figure).clone(),
+                            values: values.clone(),
+                            run_time_s,
+                            finished_at,
+                            state: FigureState::Complete,
+                        });
                         self.on_results(scene, &figure);
                         self.figures[scene] = Some(FigureView {
                             figure: *figure,
@@ -831,9 +967,26 @@ impl App {
                             state: FigureState::Complete,
                         });
                         self.set_status(format!("{id} done in {}", fmt_duration(run_time_s)), false);
+                        self.panel = self.panel();
+                        return self.convert_pins(scene);
                     }
                     Outcome::Cancelled => {
                         mark_partial(&mut self.figures[scene], FigureState::Cancelled);
+                        // The history keeps a cancelled run with what it had computed.
+                        if let (Some(run), Some(v)) = (run, &self.figures[scene])
+                            && v.state == FigureState::Cancelled
+                            && v.values == run.values
+                        {
+                            let entry = HistoryEntry {
+                                scene,
+                                figure: v.figure.clone(),
+                                values: run.values,
+                                run_time_s,
+                                finished_at,
+                                state: FigureState::Cancelled,
+                            };
+                            self.remember(entry);
+                        }
                         self.set_status(
                             format!("{id} cancelled after {}", fmt_duration(run_time_s)),
                             false,

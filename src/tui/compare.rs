@@ -5,9 +5,16 @@
 //! CSV tell the runs apart. The same overlay is what an export writes when runs are pinned, so
 //! the PNG/SVG/CSV carry every drawn run; in the terminal the run's entry lists the symbols of
 //! its markers and regions instead of an entry for each.
+//!
+//! A pin is drawn in the units of the current run's axes or not at all: a pin computed with
+//! other display parameters (`units = normalized` against `si`) is drawn from its own figure
+//! recomputed with the current run's display parameters (its own scales: its radius, modulus
+//! and work of adhesion), an axis in another SI prefix (`nN` against `µN`) is rescaled, and a
+//! pin whose axes still differ is refused: its legend entry stays and says why it is not drawn.
 
-use crate::figure::{Figure, Panel, Series};
+use crate::figure::{Figure, Panel, Scale, Series};
 use crate::params::{ParamValues, value_text};
+use crate::render::labels::split_unit;
 use crate::render::terminal::{REGION_SYMBOL, marker_symbol};
 
 /// A run kept on the chart.
@@ -21,6 +28,124 @@ pub struct Pin {
     pub run_time_s: f64,
     /// Palette index of all its curves.
     pub color: usize,
+    /// Its figure recomputed with other display parameters ([`DISPLAY_PARAMS`]), by the
+    /// parameters it was recomputed with.
+    pub converted: Vec<(ParamValues, Figure)>,
+    /// The run recomputing it in the current run's units, while it goes on.
+    pub converting: Option<u64>,
+    /// Hidden from the chart (its legend entry and its row of the table stay).
+    pub hidden: bool,
+}
+
+impl Pin {
+    /// A pinned run in colour `color`, shown, with no recomputed figure.
+    pub fn new(figure: Figure, values: ParamValues, run_time_s: f64, color: usize) -> Self {
+        Self {
+            figure,
+            values,
+            run_time_s,
+            color,
+            converted: Vec::new(),
+            converting: None,
+            hidden: false,
+        }
+    }
+
+    /// The figure to draw against a run with parameters `current`: its own when the display
+    /// parameters agree, else its figure recomputed with the current run's display parameters;
+    /// `Err` says why there is none yet.
+    pub fn figure_for(&self, current: &ParamValues) -> Result<&Figure, String> {
+        let Some(wanted) = display_variant(&self.values, current) else {
+            return Ok(&self.figure);
+        };
+        self.converted
+            .iter()
+            .find(|(v, _)| *v == wanted)
+            .map(|(_, f)| f)
+            .ok_or_else(|| {
+                if self.converting.is_some() {
+                    "being converted to the shown units".to_string()
+                } else {
+                    "computed in other units".to_string()
+                }
+            })
+    }
+}
+
+/// Parameters that change how a run is drawn, not what it computes: a pin that differs from
+/// the current run in them is recomputed with the current run's values before it is drawn.
+pub const DISPLAY_PARAMS: &[&str] = &["units"];
+
+/// The parameters of `pinned` with the display parameters ([`DISPLAY_PARAMS`]) of `current`,
+/// when they differ (`None`: the pin is drawn as computed).
+pub fn display_variant(pinned: &ParamValues, current: &ParamValues) -> Option<ParamValues> {
+    let mut variant = pinned.clone();
+    let mut changed = false;
+    for name in DISPLAY_PARAMS {
+        if let (Ok(k), Some(v)) = (variant.index(name), current.get(name))
+            && variant.values[k] != *v
+        {
+            variant.values[k] = v.clone();
+            changed = true;
+        }
+    }
+    changed.then_some(variant)
+}
+
+/// How an axis of a pinned panel is drawn on the same axis of the current panel: the factor
+/// its values are multiplied by, or why they cannot be (one line).
+///
+/// # Errors
+/// Another scale (linear against log), another quantity (label) or a unit that is not the
+/// same one with another SI prefix.
+pub fn axis_factor(
+    current: &crate::figure::Axis,
+    pinned: &crate::figure::Axis,
+    name: &str,
+) -> Result<f64, String> {
+    let unit = |u: &str| {
+        if u.is_empty() {
+            "no unit".to_string()
+        } else {
+            u.to_string()
+        }
+    };
+    if current.scale != pinned.scale {
+        let kind = |s: Scale| if s == Scale::Log { "logarithmic" } else { "linear" };
+        return Err(format!(
+            "{name} is {} here, {} in the pin",
+            kind(current.scale),
+            kind(pinned.scale)
+        ));
+    }
+    if current.label != pinned.label && current.unit == pinned.unit {
+        return Err(format!(
+            "{name} shows another quantity in the pin ({})",
+            pinned.label
+        ));
+    }
+    if current.unit == pinned.unit {
+        return Ok(1.0);
+    }
+    match (split_unit(&current.unit), split_unit(&pinned.unit)) {
+        (Some((a, base_a)), Some((b, base_b))) if base_a == base_b => Ok(10f64.powi(b - a)),
+        _ => Err(format!(
+            "{name} in {} here, {} in the pin",
+            unit(&current.unit),
+            unit(&pinned.unit)
+        )),
+    }
+}
+
+/// The factors (x, y) that draw panel `pinned` on the axes of `current` ([`axis_factor`]).
+///
+/// # Errors
+/// The first axis that cannot be converted, in words.
+pub fn axes_fit(current: &Panel, pinned: &Panel) -> Result<(f64, f64), String> {
+    Ok((
+        axis_factor(&current.x, &pinned.x, "x")?,
+        axis_factor(&current.y, &pinned.y, "y")?,
+    ))
 }
 
 /// Palette indices for pinned runs, in order of preference (away from the first colours that
@@ -103,9 +228,26 @@ pub struct Overlay {
     pub regions: Vec<Owner>,
     /// Index in `panel.series` of each pin's legend entry (a series with no points), by pin.
     pub entries: Vec<Option<usize>>,
+    /// Why each pin is not drawn, by pin (`None`: drawn, or hidden).
+    pub refused: Vec<Option<String>>,
 }
 
 impl Overlay {
+    /// The panel with the current run's curves moved after the pins' so that they are drawn on
+    /// top (the order of [`Overlay::panel`], which the cursor indexes, is kept there).
+    pub fn current_on_top(&self) -> Panel {
+        let mut panel = self.panel.clone();
+        let (current, pinned): (Vec<_>, Vec<_>) = self
+            .panel
+            .series
+            .iter()
+            .cloned()
+            .zip(&self.series)
+            .partition(|(_, o)| **o == Owner::Current);
+        panel.series = pinned.into_iter().chain(current).map(|(s, _)| s).collect();
+        panel
+    }
+
     /// The markers and regions of the current run: they come first, the pins' follow (what the
     /// terminal legend lists one by one; see [`Overlay::with_legend_symbols`]).
     pub fn current_counts(&self) -> (usize, usize) {
@@ -139,11 +281,14 @@ impl Overlay {
     }
 }
 
-/// Panel `k` of the current figure with the same panel of every pin drawn over it: the current
-/// curves keep their colours; each pin gets one legend entry (`labels[i]`, a series with no
+/// Panel `k` of the current figure (computed with `values`) with the same panel of every
+/// shown pin drawn over it in the current axes' units: the current curves keep their colours
+/// and are drawn last (on top); each pin gets one legend entry (`labels[i]`, a series with no
 /// points) and all its curves, markers and shaded regions in its colour under the names
 /// `label · curve`, `label · marker`, `label · region` (a pinned marker's letter is left out).
-pub fn overlay(current: &Panel, k: usize, pins: &[Pin], labels: &[String]) -> Overlay {
+/// A pin that cannot be drawn in these units keeps its legend entry, which says why
+/// ([`Overlay::refused`]); a hidden pin keeps its entry, marked hidden.
+pub fn overlay(current: &Panel, k: usize, values: &ParamValues, pins: &[Pin], labels: &[String]) -> Overlay {
     let mut panel = current.clone();
     for (s, c) in panel.series.iter_mut().zip(current.series_colors()) {
         s.color = Some(c);
@@ -156,18 +301,49 @@ pub fn overlay(current: &Panel, k: usize, pins: &[Pin], labels: &[String]) -> Ov
     let mut markers = vec![Owner::Current; panel.markers.len()];
     let mut regions = vec![Owner::Current; panel.regions.len()];
     let mut entries = vec![None; pins.len()];
+    let mut refused = vec![None; pins.len()];
     for (i, (pin, label)) in pins.iter().zip(labels).enumerate() {
-        let Some(p) = pin.figure.panels.get(k) else {
-            continue;
+        let drawn = pin.figure_for(values).and_then(|f| {
+            let p = f
+                .panels
+                .get(k)
+                .ok_or_else(|| "it has no such panel".to_string())?;
+            axes_fit(current, p).map(|fit| (p, fit))
+        });
+        // The note goes right after `#k`, where a legend cut to its width still shows it.
+        let note = match (&drawn, pin.hidden) {
+            (Err(why), _) => Some(format!("not drawn: {why} ·")),
+            (Ok(_), true) => Some("(hidden)".to_string()),
+            (Ok(_), false) if display_variant(&pin.values, values).is_some() => {
+                Some("(converted)".to_string())
+            }
+            _ => None,
+        };
+        let entry = match (&note, label.split_once(' ')) {
+            (Some(n), Some((tag, rest))) => format!("{tag} {} {rest}", crate::render::text::escape(n)),
+            (Some(n), None) => format!("{label} {}", crate::render::text::escape(n)),
+            (None, _) => label.clone(),
         };
         entries[i] = Some(panel.series.len());
-        panel.add(Series::new(label.clone(), crate::figure::Style::Stable, Vec::new()).with_color(pin.color));
+        panel.add(Series::new(entry, crate::figure::Style::Stable, Vec::new()).with_color(pin.color));
         series.push(Owner::Pin(i));
+        let (p, (fx, fy)) = match drawn {
+            Ok(d) => d,
+            Err(why) => {
+                refused[i] = Some(why);
+                continue;
+            }
+        };
+        if pin.hidden {
+            continue;
+        }
+        let at = |(x, y): (f64, f64)| (x * fx, y * fy);
         for s in &p.series {
             let mut s = s.clone();
             s.name = format!("{label} · {}", s.name);
             s.color = Some(pin.color);
             s.legend = false;
+            s.points.iter_mut().for_each(|q| *q = at(*q));
             panel.add(s);
             series.push(Owner::Pin(i));
         }
@@ -176,6 +352,7 @@ pub fn overlay(current: &Panel, k: usize, pins: &[Pin], labels: &[String]) -> Ov
             m.name = format!("{label} · {}", m.name);
             m.color = Some(pin.color);
             m.label = None;
+            (m.x, m.y) = at((m.x, m.y));
             panel.mark(m);
             markers.push(Owner::Pin(i));
         }
@@ -183,6 +360,7 @@ pub fn overlay(current: &Panel, k: usize, pins: &[Pin], labels: &[String]) -> Ov
             let mut r = r.clone();
             r.name = format!("{label} · {}", r.name);
             r.color = Some(pin.color);
+            r.points.iter_mut().for_each(|q| *q = at(*q));
             panel.regions.push(r);
             regions.push(Owner::Pin(i));
         }
@@ -193,18 +371,19 @@ pub fn overlay(current: &Panel, k: usize, pins: &[Pin], labels: &[String]) -> Ov
         markers,
         regions,
         entries,
+        refused,
     }
 }
 
 /// The current figure with every pin drawn over each of its panels (what an export writes when
-/// runs are pinned).
-pub fn overlay_figure(current: &Figure, pins: &[Pin], labels: &[String]) -> Figure {
+/// runs are pinned), in the current figure's units as on the screen.
+pub fn overlay_figure(current: &Figure, values: &ParamValues, pins: &[Pin], labels: &[String]) -> Figure {
     let mut fig = current.clone();
     fig.panels = current
         .panels
         .iter()
         .enumerate()
-        .map(|(k, p)| overlay(p, k, pins, labels).panel)
+        .map(|(k, p)| overlay(p, k, values, pins, labels).panel)
         .collect();
     fig
 }

@@ -9,7 +9,7 @@
 use ratatui::crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 
 use crate::error::Error;
-use crate::params::{ParamKind, ParamSpec, ParamValues, value_text};
+use crate::params::{ParamKind, ParamSpec, ParamValues, fmt_float, value_text};
 use crate::scenes::SceneDyn;
 
 /// A one-line text editor with a cursor (counted in characters).
@@ -123,6 +123,19 @@ impl std::fmt::Debug for Form {
             .field("selected", &self.selected)
             .finish()
     }
+}
+
+/// The factor a number is stepped by ([`Form::nudge`]).
+pub const NUDGE_FACTOR: f64 = 1.1;
+
+/// `x` rounded to `digits` significant digits (so that steps by 1.1 read `1.331e-5`, not
+/// `1.3310000000000003e-5`).
+fn round_significant(x: f64, digits: i32) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let scale = 10f64.powi(digits - 1 - x.abs().log10().floor() as i32);
+    (x * scale).round() / scale
 }
 
 impl Form {
@@ -284,6 +297,49 @@ impl Form {
             self.texts[self.selected] = value_text(&self.valid.values[self.selected]);
             self.revalidate();
         }
+    }
+
+    /// Step the selected field up or down, as a slider would: a number by the factor
+    /// [`NUDGE_FACTOR`] (its magnitude grows when `up` for a positive value, the value grows for
+    /// a negative one), an integer by about a tenth of it (at least 1), a choice or a flag to
+    /// its next option. Returns the new text, or why the field cannot be stepped (zero cannot
+    /// be scaled; a step out of the range is refused, the value kept).
+    ///
+    /// # Errors
+    /// One line naming the parameter.
+    pub fn nudge(&mut self, up: bool) -> std::result::Result<String, String> {
+        let Some(spec) = self.valid.specs.get(self.selected).cloned() else {
+            return Err("no parameter to step".into());
+        };
+        let value = &self.valid.values[self.selected];
+        let text = match (spec.kind, value) {
+            (ParamKind::Float, toml::Value::Float(x)) => {
+                if *x == 0.0 {
+                    return Err(format!("{} is 0: type a value to step from (Enter)", spec.name));
+                }
+                let factor = if up == (*x > 0.0) {
+                    NUDGE_FACTOR
+                } else {
+                    1.0 / NUDGE_FACTOR
+                };
+                fmt_float(round_significant(x * factor, 6))
+            }
+            (ParamKind::Int, toml::Value::Integer(i)) => {
+                let step = (i.abs() / 10).max(1);
+                (if up { i + step } else { i - step }).to_string()
+            }
+            (ParamKind::Bool | ParamKind::Choice(_), _) => {
+                self.cycle();
+                return Ok(self.texts[self.selected].clone());
+            }
+            _ => return Err(format!("{} is not a number: Enter edits it", spec.name)),
+        };
+        if let Err(e) = spec.parse(&text) {
+            return Err(format!("not stepped: {e}"));
+        }
+        self.edit = None;
+        self.set_text(self.selected, &text);
+        Ok(text)
     }
 
     /// For a choice or a flag: the next option of the selected field. Returns whether the

@@ -84,6 +84,16 @@ pub enum Action {
     SwitchPage,
     /// Type the tip radius of the file page's fits.
     TipRadius,
+    /// Show or hide pinned run #1-#9 (the digit says which).
+    TogglePin,
+    /// Step the selected parameter up (×1.1, or its declared step) and rerun after a pause.
+    NudgeUp,
+    /// Step the selected parameter down (÷1.1, or its declared step) and rerun after a pause.
+    NudgeDown,
+    /// Show or hide the chart's legend.
+    Legend,
+    /// Show or hide the results table.
+    Results,
 }
 
 /// One key binding: the keys, how the help writes them, the action, what it does.
@@ -117,25 +127,25 @@ pub const BINDINGS: &[Binding] = &[
         keys: &[KeyCode::Char('/')],
         label: "/",
         action: Action::Filter,
-        help: "filter the scene list by id or title words (Enter keeps, Esc clears)",
+        help: "filter the scenes by id or title words (Enter keeps, Esc clears)",
     },
     Binding {
         keys: &[KeyCode::Tab, KeyCode::BackTab],
         label: "Tab",
         action: Action::SwitchFocus,
-        help: "switch between scene list and parameters; file page: next segment fitted",
+        help: "scene list ⇄ parameters; file page: next segment fitted",
     },
     Binding {
         keys: &[KeyCode::Enter],
         label: "Enter",
         action: Action::Activate,
-        help: "open the scene's parameters / edit a value (Enter keeps, Esc reverts)",
+        help: "open the parameters / edit a value (Enter keeps, Esc reverts)",
     },
     Binding {
         keys: &[KeyCode::Char(' ')],
         label: "Space",
         action: Action::Cycle,
-        help: "next option of a choice or true/false parameter; file page: next model",
+        help: "next option of a choice or true/false; file page: next model",
     },
     Binding {
         keys: &[KeyCode::Char('r')],
@@ -213,7 +223,7 @@ pub const BINDINGS: &[Binding] = &[
         keys: &[KeyCode::Char('c')],
         label: "c",
         action: Action::Cursor,
-        help: "cursor on the chart: x, y with units and the curve of the nearest point",
+        help: "cursor on the chart: x, y with units, the curve of the point",
     },
     Binding {
         keys: &[KeyCode::Char(',')],
@@ -261,7 +271,7 @@ pub const BINDINGS: &[Binding] = &[
         keys: &[KeyCode::Char('z')],
         label: "z",
         action: Action::ZoomRect,
-        help: "zoom: z marks a corner at the cursor, z again zooms to the rectangle",
+        help: "zoom: z marks a corner at the cursor, z again zooms to it",
     },
     Binding {
         keys: &[KeyCode::Char('+'), KeyCode::Char('=')],
@@ -285,7 +295,7 @@ pub const BINDINGS: &[Binding] = &[
         keys: &[KeyCode::Char('h')],
         label: "h",
         action: Action::History,
-        help: "run history: reopen (Enter) or export (e) a past run without rerunning",
+        help: "run history: reopen (Enter) or export (e) a run, no rerun",
     },
     Binding {
         keys: &[KeyCode::Char('o')],
@@ -316,6 +326,46 @@ pub const BINDINGS: &[Binding] = &[
         label: "?",
         action: Action::Help,
         help: "this help",
+    },
+    Binding {
+        keys: &[
+            KeyCode::Char('1'),
+            KeyCode::Char('2'),
+            KeyCode::Char('3'),
+            KeyCode::Char('4'),
+            KeyCode::Char('5'),
+            KeyCode::Char('6'),
+            KeyCode::Char('7'),
+            KeyCode::Char('8'),
+            KeyCode::Char('9'),
+        ],
+        label: "1-9",
+        action: Action::TogglePin,
+        help: "hide / show pinned run #1-#9 (legend entry, table rows stay)",
+    },
+    Binding {
+        keys: &[KeyCode::Char('}')],
+        label: "}",
+        action: Action::NudgeUp,
+        help: "nudge the selected parameter up (×1.1), rerun after a pause",
+    },
+    Binding {
+        keys: &[KeyCode::Char('{')],
+        label: "{",
+        action: Action::NudgeDown,
+        help: "nudge the selected parameter down (÷1.1), rerun after a pause",
+    },
+    Binding {
+        keys: &[KeyCode::Char('L')],
+        label: "L",
+        action: Action::Legend,
+        help: "show or hide the chart's legend",
+    },
+    Binding {
+        keys: &[KeyCode::Char('R')],
+        label: "R",
+        action: Action::Results,
+        help: "show or hide the results table (current run, pins, differences)",
     },
     Binding {
         keys: &[KeyCode::Char('q')],

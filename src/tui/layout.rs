@@ -42,6 +42,8 @@ pub struct DrawnLayout {
     pub history_offset: usize,
     /// The history overlay's footer line (its actions).
     pub history_footer: Rect,
+    /// Whether the results were drawn beside (or under) the chart, not as an overlay.
+    pub results_beside: bool,
     /// Small areas with a meaning of their own (panel tabs, footer actions), topmost last.
     pub targets: Vec<(Rect, Target)>,
 }

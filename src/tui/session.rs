@@ -25,6 +25,7 @@ pub struct Session {
     app: App,
     worker: Worker,
     out_dir: PathBuf,
+    timer: Option<(Instant, u64)>,
 }
 
 impl Session {
@@ -38,6 +39,7 @@ impl Session {
             app: App::new(scenes, preset_dir),
             worker: Worker::new(),
             out_dir: out_dir.into(),
+            timer: None,
         }
     }
 
@@ -72,10 +74,12 @@ impl Session {
         }
     }
 
-    /// Take every message the worker has; returns whether there was any.
+    /// Take every message the worker has, and fire the timer when it is due; returns whether
+    /// anything happened.
     pub fn pump(&mut self) -> bool {
+        let fired = self.fire_timer();
         let msgs = self.worker.drain();
-        let any = !msgs.is_empty();
+        let any = fired || !msgs.is_empty();
         for m in msgs {
             for effect in self.app.on_job(m) {
                 self.apply(effect);
@@ -107,6 +111,20 @@ impl Session {
         }
     }
 
+    /// Hand a due timer to the state; returns whether one fired.
+    fn fire_timer(&mut self) -> bool {
+        match self.timer {
+            Some((due, token)) if Instant::now() >= due => {
+                self.timer = None;
+                for effect in self.app.on_timer(token) {
+                    self.apply(effect);
+                }
+                true
+            }
+            _ => false,
+        }
+    }
+
     /// Draw the state into a frame; the state keeps where the frame put what the mouse can hit.
     pub fn draw(&self, frame: &mut Frame<'_>) {
         let layout = view::draw(frame, &self.app);
@@ -131,6 +149,7 @@ impl Session {
             Effect::LoadPreset { scene, path } => self.load_preset(scene, &path),
             Effect::SavePreset { scene, path } => self.save_preset(scene, &path),
             Effect::Task { job, task } => self.worker.task(job, task),
+            Effect::Timer { token, after } => self.timer = Some((Instant::now() + after, token)),
         }
     }
 
@@ -153,7 +172,7 @@ impl Session {
             .enumerate()
             .map(|(i, p)| super::compare::pin_label(i + 1, p, &values, usize::MAX))
             .collect();
-        let figure = overlay_figure(&view.figure, pins, &labels);
+        let figure = overlay_figure(&view.figure, &values, pins, &labels);
         let pins = pins.to_vec();
         let runs: Vec<RunRecord<'_>> = pins
             .iter()
@@ -179,6 +198,12 @@ impl Session {
         let Some(scene) = self.app.scenes().get(k) else {
             return;
         };
+        // Files of an earlier export of this figure that this one replaces: said, not silent.
+        let replaced: Vec<String> = Format::ALL
+            .iter()
+            .map(|f| format!("{}.{}", figure.id, f.extension()))
+            .filter(|name| self.out_dir.join(name).exists())
+            .collect();
         let written = write_figure_with_runs(
             figure,
             scene.info().caption,
@@ -199,8 +224,13 @@ impl Session {
                 } else {
                     format!(" (with {} pinned run(s))", runs.len())
                 };
+                let replaced = if replaced.is_empty() {
+                    String::new()
+                } else {
+                    format!("; replaced the earlier {}", replaced.join(", "))
+                };
                 let text = format!(
-                    "exported to {}: {}{extra}",
+                    "exported to {}: {}{extra}{replaced}",
                     self.out_dir.display(),
                     names.join(", ")
                 );

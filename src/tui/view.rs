@@ -16,13 +16,15 @@ use ratatui::widgets::{Block, Clear, Gauge, Paragraph, Wrap};
 use super::app::{
     App, FigureState, FigureView, Focus, HistoryEntry, ListRow, Mode, Page, PromptKind, fmt_duration,
 };
-use super::compare::difference;
+use super::compare::{Overlay, Owner, difference};
 use super::curves::{FilePage, model_name, raw_panel, segment_name};
 use super::keymap::BINDINGS;
 use super::layout::{DrawnLayout, Target};
 use crate::params::{ParamKind, fmt_float};
 use crate::render::labels::{fmt_quantity, result_unit};
-use crate::render::terminal::{ChartOptions, render_chart};
+use crate::render::terminal::{
+    ChartGeometry, ChartOptions, REGION_SYMBOL, color as chart_color, marker_symbol, render_chart,
+};
 use crate::scenes::chapter_title;
 
 const ACCENT: Color = Color::Cyan;
@@ -248,7 +250,7 @@ fn draw_fit_results(frame: &mut Frame<'_>, page: &FilePage, area: Rect) {
 fn draw_overlays(frame: &mut Frame<'_>, app: &App, main: Rect, layout: &mut DrawnLayout) {
     match &app.mode {
         Mode::Normal | Mode::Filter { .. } => {}
-        Mode::Help => draw_help(frame, main),
+        Mode::Help => draw_help(frame, app, main),
         Mode::History { selected } => draw_history(frame, app, *selected, main, layout),
         Mode::Prompt { kind, edit } => {
             let area = Rect {
@@ -412,39 +414,18 @@ fn draw_form(frame: &mut Frame<'_>, app: &App, area: Rect, layout: &mut DrawnLay
     let [rows_area, help_area] =
         Layout::vertical([Constraint::Min(0), Constraint::Length(help_height)]).areas(inner);
 
-    let name_width = form
-        .specs()
-        .iter()
-        .map(|s| s.name.len())
-        .max()
-        .unwrap_or(4)
-        .min(24);
-    let unit_width = form
-        .specs()
-        .iter()
-        .map(|s| s.unit.chars().count())
-        .max()
-        .unwrap_or(0);
-    let value_width = (inner.width as usize)
-        .saturating_sub(name_width + unit_width + 4)
-        .max(4);
     let visible = rows_area.height as usize;
     let offset = scroll_offset(form.selected(), visible);
+    let (name_width, value_width, unit_width) = form_columns(form, offset, visible, inner.width as usize);
     layout.form = rows_area;
     layout.form_offset = offset;
     let mut lines = Vec::new();
     for k in offset..form.len().min(offset + visible) {
         let spec = &form.specs()[k];
         let text = form.text(k);
-        let shown: String = if text.chars().count() > value_width {
-            let tail: String = text
-                .chars()
-                .skip(text.chars().count() + 1 - value_width)
-                .collect();
-            format!("…{tail}")
-        } else {
-            text.to_string()
-        };
+        // A value is never cut from the left (its exponent or its end is what differs): the
+        // columns leave it room, and only a value longer than the whole row is cut, at the end.
+        let shown = clip(text, value_width);
         let mut style = Style::default();
         if form.error(k).is_some() {
             style = style.fg(ERROR).add_modifier(Modifier::BOLD);
@@ -470,8 +451,8 @@ fn draw_form(frame: &mut Frame<'_>, app: &App, area: Rect, layout: &mut DrawnLay
         lines.push(Line::styled(
             format!(
                 "{marker}{:<name_width$} {shown:<value_width$} {}",
-                spec.name,
-                spec.unit,
+                clip(spec.name, name_width),
+                clip(spec.unit, unit_width),
                 name_width = name_width,
                 value_width = value_width
             ),
@@ -480,8 +461,7 @@ fn draw_form(frame: &mut Frame<'_>, app: &App, area: Rect, layout: &mut DrawnLay
         if k == form.selected()
             && let Some(edit) = form.editor()
         {
-            let start = text.chars().count().saturating_sub(shown.chars().count());
-            let col = (1 + name_width + 1 + edit.cursor().saturating_sub(start)) as u16;
+            let col = (1 + name_width + 1 + edit.cursor()) as u16;
             let x = rows_area.x + col.min(rows_area.width.saturating_sub(1));
             frame.set_cursor_position(Position::new(x, rows_area.y + (k - offset) as u16));
         }
@@ -513,6 +493,28 @@ fn draw_form(frame: &mut Frame<'_>, app: &App, area: Rect, layout: &mut DrawnLay
     frame.render_widget(help.wrap(Wrap { trim: true }), help_area);
 }
 
+/// Widths of the name, value and unit columns of the form's rows `offset..offset + visible`
+/// in `width` cells: the values shown get the room they need first (up to 24 cells), the
+/// names what is left (at least 6, cut at the end), the units at most what remains.
+fn form_columns(
+    form: &super::form::Form,
+    offset: usize,
+    visible: usize,
+    width: usize,
+) -> (usize, usize, usize) {
+    let rows = offset..form.len().min(offset + visible);
+    let longest = |f: &dyn Fn(usize) -> usize| rows.clone().map(f).max().unwrap_or(0);
+    let values = longest(&|k| form.text(k).chars().count()).clamp(4, 24);
+    let units = longest(&|k| form.specs()[k].unit.chars().count());
+    let names = longest(&|k| form.specs()[k].name.len()).max(4);
+    // marker + name + space + value + space + unit
+    let room = width.saturating_sub(3);
+    let unit_width = units.min(room.saturating_sub(values + 6));
+    let name_width = names.min(room.saturating_sub(values + unit_width)).max(6);
+    let value_width = room.saturating_sub(name_width + unit_width).max(4);
+    (name_width, value_width, unit_width)
+}
+
 fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect, layout: &mut DrawnLayout) {
     let Some(scene) = app.scene() else {
         frame.render_widget(pane(" Figure ".into(), false), area);
@@ -520,7 +522,10 @@ fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect, layout: &mut DrawnL
     };
     let info = scene.info();
     let view = app.figure(app.selected);
+    let running_here = app.running.as_ref().is_some_and(|r| r.scene == app.selected);
     let state = view.map_or(String::new(), |v| match v.state {
+        // A finished figure shown while this scene runs again is the previous run's.
+        FigureState::Complete if running_here => " · PREVIOUS RUN (running a new one)".into(),
         FigureState::Complete => v
             .run_time_s
             .map_or(String::new(), |t| format!(" · computed in {}", fmt_duration(t))),
@@ -528,7 +533,8 @@ fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect, layout: &mut DrawnL
         FigureState::Cancelled => " · cancelled, partial".into(),
         FigureState::Failed => " · failed, partial".into(),
     });
-    let block = pane(format!(" {} — {}{state} ", info.id, info.title), false);
+    // The state first: a long title is cut at the end, never what the figure shows.
+    let block = pane(format!(" {}{state} — {} ", info.id, info.title), false);
     let inner = block.inner(area);
     frame.render_widget(block, area);
     let panels = view.map_or(0, |v| v.figure.panels.len());
@@ -574,17 +580,43 @@ fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect, layout: &mut DrawnL
     match view {
         Some(v) if !app.show_info && !v.figure.panels.is_empty() => {
             let (chart_area, results_area) = split_results(app, body);
+            layout.results_beside = results_area.is_some();
+            let results_wanted = app.results.unwrap_or(results_area.is_some());
+            let chart_area = match results_area {
+                Some(area) if results_wanted => {
+                    draw_results(frame, app, Some(v), area);
+                    chart_area
+                }
+                _ => body,
+            };
             if let Some(drawn) = app.drawn() {
                 let options = ChartOptions {
                     view: app.zoom(),
                     cursor: readout.as_ref().map(|r| r.point),
                     selection: app.selection(),
                     listed: Some(drawn.current_counts()),
+                    legend_off: true,
                 };
-                geometry = render_chart(&drawn.panel, &options, chart_area, frame.buffer_mut());
+                geometry = render_chart(&drawn.current_on_top(), &options, chart_area, frame.buffer_mut());
                 layout.chart_area = chart_area;
+                if let Some(g) = &geometry {
+                    draw_marker_shapes(frame, &drawn.panel, g);
+                    if app.legend {
+                        draw_legend(frame, &drawn, g);
+                    }
+                }
             }
-            if let Some(area) = results_area {
+            if results_area.is_none() && results_wanted {
+                // No room beside the chart: the results over it, bottom right.
+                let width = RESULTS_WIDTH.min(chart_area.width);
+                let height = (chart_area.height * 2 / 3).max(3).min(chart_area.height);
+                let area = Rect {
+                    x: chart_area.right().saturating_sub(width),
+                    y: chart_area.bottom().saturating_sub(height),
+                    width,
+                    height,
+                };
+                frame.render_widget(Clear, area);
                 draw_results(frame, app, Some(v), area);
             }
         }
@@ -594,11 +626,24 @@ fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect, layout: &mut DrawnL
     if readout_height > 0 {
         let mut spans = Vec::new();
         if let Some(r) = &readout {
+            // The values never cut: on a narrow chart the axes' labels give way to `x =`, `y =`.
+            let change = marker_change(app);
+            let change_len = change.as_ref().map_or(0, |(t, _)| t.chars().count() + 2);
+            let full = format!("◆ {}  {}  {}", r.name, r.x, r.y);
+            let value = |t: &str| t.rsplit(" = ").next().unwrap_or(t).to_string();
+            let (x, y) = if full.chars().count() + change_len <= usize::from(readout_area.width) {
+                (r.x.clone(), r.y.clone())
+            } else {
+                (format!("x = {}", value(&r.x)), format!("y = {}", value(&r.y)))
+            };
+            spans.push(Span::raw(format!("{x}  {y}  ")));
             spans.push(Span::styled(
                 format!("◆ {}", r.name),
                 Style::default().fg(Color::White),
             ));
-            spans.push(Span::raw(format!("  {}  {}", r.x, r.y)));
+            if let Some((text, color)) = change {
+                spans.push(Span::styled(format!("  {text}"), Style::default().fg(color)));
+            }
         }
         if app.zoom().is_some() {
             spans.push(Span::styled(
@@ -609,6 +654,39 @@ fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect, layout: &mut DrawnL
         frame.render_widget(Line::from(spans), readout_area);
     }
     draw_gauge(frame, app, view, gauge_area);
+}
+
+/// With the cursor on one of the current run's markers: how it moved against the same marker
+/// of the first shown pin (`Δ vs #1: x +0.1 µm, y −1.3 µN`), in that pin's colour.
+fn marker_change(app: &App) -> Option<(String, Color)> {
+    let Some(super::chart::CursorAt::Marker(m)) = app.cursor() else {
+        return None;
+    };
+    let drawn = app.drawn()?;
+    if drawn.markers.get(m) != Some(&Owner::Current) {
+        return None;
+    }
+    let mine = &drawn.panel.markers[m];
+    let suffix = format!(" · {}", mine.name);
+    let pins = app.pins(app.selected);
+    let (other, owner) = drawn
+        .panel
+        .markers
+        .iter()
+        .zip(&drawn.markers)
+        .find(|(mk, o)| matches!(o, Owner::Pin(i) if !pins[*i].hidden) && mk.name.ends_with(&suffix))?;
+    let Owner::Pin(i) = *owner else { return None };
+    let d = |a: f64, b: f64, unit: &str| {
+        let v = fmt_quantity(a - b, unit);
+        if a >= b { format!("+{v}") } else { v }
+    };
+    let text = format!(
+        "Δ vs #{}: x {}, y {}",
+        i + 1,
+        d(mine.x, other.x, &drawn.panel.x.unit),
+        d(mine.y, other.y, &drawn.panel.y.unit)
+    );
+    Some((text, chart_color(pins[i].color)))
 }
 
 /// What the panel tabs start with.
@@ -671,14 +749,17 @@ fn split_results(app: &App, body: Rect) -> (Rect, Option<Rect>) {
     }
 }
 
-/// The scene's results with units: the values of the shown run (partial while it runs), the
-/// declared names still to come dimmed.
+/// The scene's results as a table: each result by its label with its unit, the shown run's
+/// value (partial while it runs; the declared results still to come dimmed), and under it each
+/// pinned run's value with its difference to the shown run, in the pin's colour. The key
+/// results (pull-off, adhesive force, hysteresis, jumps) come first.
 fn draw_results(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, area: Rect) {
     let partial = view.is_some_and(|v| v.state != FigureState::Complete);
-    let title = if partial {
-        " Results (partial) "
-    } else {
-        " Results "
+    let pins = app.pins(app.selected);
+    let title = match (partial, pins.is_empty()) {
+        (true, _) => " Results (partial) ".to_string(),
+        (false, true) => " Results (R hides) ".to_string(),
+        (false, false) => format!(" Results: this run and {} pin(s) ", pins.len()),
     };
     let block = Block::bordered()
         .title(title)
@@ -701,25 +782,229 @@ fn draw_results(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, are
             }
         }
     }
+    rows.sort_by_key(|(name, _)| key_rank(name));
     let width = inner.width as usize;
-    let lines: Vec<Line<'_>> = rows
-        .iter()
-        .map(|(name, value)| {
-            let (short, unit) = result_unit(name);
-            let text = match value {
-                Some(v) if name.ends_with("_count") => format!("{v:.0}"),
-                Some(v) => fmt_quantity(*v, unit),
-                None => "…".into(),
+    let dim = Style::default().fg(Color::DarkGray);
+    let mut lines: Vec<Line<'_>> = Vec::new();
+    for (name, value) in &rows {
+        let (label, unit) = result_label(name);
+        let text = value.map_or("…".to_string(), |v| result_text(name, v, unit));
+        let name_width = width.saturating_sub(text.chars().count() + 1);
+        let line = format!("{:<name_width$} {text}", clip(&label, name_width));
+        lines.push(if value.is_some() {
+            Line::from(line)
+        } else {
+            Line::styled(line, dim)
+        });
+        for (i, pin) in pins.iter().enumerate() {
+            let Some(x) = pin.figure.result_value(name) else {
+                continue;
             };
-            let name_width = width.saturating_sub(text.chars().count() + 1);
-            let line = format!("{:<name_width$} {text}", clip(short, name_width));
-            if value.is_some() {
-                Line::from(line)
+            let diff = value.map_or(String::new(), |v| format!(" {}", difference_text(x, v)));
+            let text = format!("{}{diff}", result_text(name, x, unit));
+            let tag = format!("  #{}", i + 1);
+            let pad = width.saturating_sub(tag.chars().count() + 1);
+            let style = if pin.hidden {
+                dim
             } else {
-                Line::styled(line, Style::default().fg(Color::DarkGray))
-            }
-        })
+                Style::default().fg(chart_color(pin.color))
+            };
+            lines.push(Line::styled(format!("{tag} {:>pad$}", clip(&text, pad)), style));
+        }
+    }
+    frame.render_widget(Paragraph::new(lines), inner);
+}
+
+/// Where a result comes in the table: the scene's key results first.
+fn key_rank(name: &str) -> usize {
+    const KEYS: [&str; 6] = ["pull_off", "adhesive", "hysteresis", "jump", "pull_in", "loss"];
+    KEYS.iter().position(|k| name.contains(k)).unwrap_or(KEYS.len())
+}
+
+/// A result's label for people and its unit: `jkr_pull_off_force_N` reads `jkr pull-off
+/// force` in `N`, `hysteresis_norm` reads `hysteresis (normalised)` (the identifier is on
+/// the caption page, `i`).
+pub fn result_label(name: &str) -> (String, &'static str) {
+    let (short, unit) = result_unit(name);
+    let (short, note) = match short.strip_suffix("_norm") {
+        Some(s) => (s, " (norm.)"),
+        None => (short.strip_suffix("_count").unwrap_or(short), ""),
+    };
+    let words = short
+        .replace('_', " ")
+        .replace("pull off", "pull-off")
+        .replace("pull in", "pull-in")
+        .replace("jkr", "JKR")
+        .replace("dmt", "DMT")
+        .replace(" md ", " MD ");
+    let words = words
+        .strip_prefix("md ")
+        .map_or(words.clone(), |w| format!("MD {w}"));
+    let label = if unit.is_empty() {
+        format!("{words}{note}")
+    } else {
+        format!("{words} [{unit}]")
+    };
+    (label, unit)
+}
+
+/// A result's value as shown: counts whole, others with their unit's prefix.
+fn result_text(name: &str, v: f64, unit: &str) -> String {
+    if name.ends_with("_count") {
+        format!("{v:.0}")
+    } else {
+        fmt_quantity(v, unit)
+    }
+}
+
+/// The difference of a pinned run's value `pinned` to the shown run's `current`, relative
+/// where that means something: `+4.0 %`, `=`, or `Δ −0.5` when the current value is 0.
+pub fn difference_text(pinned: f64, current: f64) -> String {
+    let d = pinned - current;
+    if d == 0.0 {
+        "(=)".into()
+    } else if current != 0.0 && current.is_finite() {
+        format!("({:+.1} %)", 100.0 * d / current.abs()).replace('-', "−")
+    } else {
+        format!("(Δ {})", fmt_quantity(d, ""))
+    }
+}
+
+/// The shapes of the drawn markers (▲ pull-in, ■ pull-off, ● ○ ◆ ×) in their colours, over the
+/// chart's cells.
+fn draw_marker_shapes(frame: &mut Frame<'_>, panel: &crate::figure::Panel, g: &ChartGeometry) {
+    let colors = panel.series_colors();
+    let buf = frame.buffer_mut();
+    for m in &panel.markers {
+        let Some((x, y)) = cell_of(g, (m.x, m.y)) else {
+            continue;
+        };
+        let c = chart_color(panel.marker_color(m, &colors).unwrap_or(7));
+        if let Some(cell) = buf.cell_mut(Position::new(x, y)) {
+            cell.set_symbol(marker_symbol(m.shape)).set_fg(c);
+        }
+    }
+}
+
+/// The cell of a data point on a drawn chart, if it is inside the graph.
+fn cell_of(g: &ChartGeometry, p: (f64, f64)) -> Option<(u16, u16)> {
+    let (fx, fy) = g.fraction(p);
+    if g.graph.is_empty() || !((0.0..=1.0).contains(&fx) && (0.0..=1.0).contains(&fy)) {
+        return None;
+    }
+    let w = f64::from(g.graph.width.max(1));
+    let h = f64::from(g.graph.height.max(1));
+    let x = g.graph.x + ((fx * w) as u16).min(g.graph.width.saturating_sub(1));
+    let y = g.graph.bottom() - 1 - ((fy * h) as u16).min(g.graph.height.saturating_sub(1));
+    Some((x, y))
+}
+
+/// The legend entries of a drawn panel: the current run's named curves, markers and regions,
+/// then each pin's entry (which says when the pin is hidden or not drawn), with colours.
+pub fn legend_entries(drawn: &Overlay) -> Vec<(String, Color)> {
+    let panel = &drawn.panel;
+    let colors = panel.series_colors();
+    let (markers, regions) = drawn.current_counts();
+    let mut entries: Vec<(String, Color)> = Vec::new();
+    let mut push = |name: String, c: Color| {
+        if !entries.iter().any(|(n, _)| *n == name) {
+            entries.push((name, c));
+        }
+    };
+    for ((s, c), owner) in panel.series.iter().zip(&colors).zip(&drawn.series) {
+        if s.legend && (*owner == Owner::Current || s.points.is_empty()) {
+            push(crate::render::text::terminal(&s.name), chart_color(*c));
+        }
+    }
+    for m in panel.markers.iter().take(markers) {
+        let c = chart_color(panel.marker_color(m, &colors).unwrap_or(7));
+        push(
+            format!(
+                "{} {}",
+                marker_symbol(m.shape),
+                crate::render::text::terminal(&m.name)
+            ),
+            c,
+        );
+    }
+    for r in panel.regions.iter().take(regions) {
+        let c = chart_color(r.color.unwrap_or(8));
+        push(
+            format!("{REGION_SYMBOL} {}", crate::render::text::terminal(&r.name)),
+            c,
+        );
+    }
+    entries
+}
+
+/// The legend in the corner of the graph with the fewest drawn points (off the data), in a
+/// box at most two thirds of the graph wide; entries that do not fit are counted, never
+/// dropped silently, and the legend is drawn whatever the labels' length.
+fn draw_legend(frame: &mut Frame<'_>, drawn: &Overlay, g: &ChartGeometry) {
+    let entries = legend_entries(drawn);
+    // The graph without its top row (the y axis' title) and bottom row (the x axis' title).
+    let graph = Rect {
+        y: g.graph.y + 1,
+        height: g.graph.height.saturating_sub(2),
+        ..g.graph
+    };
+    if entries.is_empty() || graph.width < 8 || graph.height < 3 {
+        return;
+    }
+    let longest = entries.iter().map(|(n, _)| n.chars().count()).max().unwrap_or(0);
+    let width = (longest as u16 + 4)
+        .min(graph.width * 2 / 3)
+        .max(8.min(graph.width));
+    let rows = (graph.height.saturating_sub(2)).max(1);
+    let shown = entries.len().min(usize::from(rows));
+    let height = (shown as u16 + 2).min(graph.height);
+    // Count the points in each corner box; take the emptiest (top right on a tie).
+    let corners = [
+        (graph.right() - width, graph.y),
+        (graph.x, graph.y),
+        (graph.right() - width, graph.bottom() - height),
+        (graph.x, graph.bottom() - height),
+    ];
+    let count = |(x, y): (u16, u16)| {
+        let r = Rect { x, y, width, height };
+        drawn
+            .panel
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter().step_by((s.points.len() / 200).max(1)))
+            .filter_map(|p| cell_of(g, *p))
+            .filter(|(cx, cy)| crate::tui::layout::hit(r, *cx, *cy))
+            .count()
+    };
+    let (x, y) = corners
+        .iter()
+        .copied()
+        .min_by_key(|c| count(*c))
+        .unwrap_or(corners[0]);
+    let area = Rect { x, y, width, height };
+    frame.render_widget(Clear, area);
+    let block = Block::bordered()
+        .title(" L hides ")
+        .border_style(Style::default().fg(Color::DarkGray));
+    let inner = block.inner(area);
+    frame.render_widget(block, area);
+    let text_width = usize::from(inner.width);
+    let mut lines: Vec<Line<'_>> = entries
+        .iter()
+        .take(shown)
+        .map(|(n, c)| Line::styled(clip(n, text_width), Style::default().fg(*c)))
         .collect();
+    if shown < entries.len()
+        && let Some(last) = lines.last_mut()
+    {
+        *last = Line::styled(
+            clip(
+                &format!("+{} more entries", entries.len() - shown + 1),
+                text_width,
+            ),
+            Style::default().fg(Color::Gray),
+        );
+    }
     frame.render_widget(Paragraph::new(lines), inner);
 }
 
@@ -750,7 +1035,7 @@ fn draw_history(frame: &mut Frame<'_>, app: &App, selected: usize, area: Rect, l
         area,
         width,
         height,
-        format!(" Run history — last {n} runs "),
+        format!(" Run history — last {n} runs (times UTC) "),
     );
     let footer_height = 2.min(inner.height);
     let [rows_area, footer_area] =
@@ -808,8 +1093,9 @@ fn draw_history(frame: &mut Frame<'_>, app: &App, selected: usize, area: Rect, l
     layout.history_footer = footer_row;
 }
 
-/// Labels of the history entries for the list: scene, run time, the parameters that differ
-/// from the scene's defaults.
+/// Labels of the history entries for the list: time of day (UTC) the run ended, scene, run
+/// time (`cancelled` for a run stopped early), the parameters that differ from the scene's
+/// defaults.
 pub fn history_line(app: &App, entry: &HistoryEntry) -> String {
     let scene = app.scenes[entry.scene];
     let diff = difference(&entry.values, &scene.defaults());
@@ -818,11 +1104,26 @@ pub fn history_line(app: &App, entry: &HistoryEntry) -> String {
     } else {
         diff
     };
+    let ended = if entry.state == FigureState::Complete {
+        "".to_string()
+    } else {
+        " cancelled".to_string()
+    };
     format!(
-        "{:<16} {:>8}  {diff}",
+        "{} {:<16} {:>8}{ended:<10}  {diff}",
+        time_of_day(entry.finished_at),
         scene.info().id,
         fmt_duration(entry.run_time_s)
     )
+}
+
+/// `14:05:09` (UTC) of a moment.
+pub fn time_of_day(at: std::time::SystemTime) -> String {
+    let s = at
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs())
+        % 86_400;
+    format!("{:02}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60)
 }
 
 fn draw_info(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, area: Rect) {
@@ -830,6 +1131,10 @@ fn draw_info(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, area: 
     let info = scene.info();
     let mut lines = vec![Line::from(info.caption), Line::from("")];
     match view {
+        None if app.running.as_ref().is_some_and(|r| r.scene == app.selected) => lines.push(Line::styled(
+            "Running: the figure appears here as it is computed (Esc cancels).",
+            Style::default().fg(Color::DarkGray),
+        )),
         None => lines.push(Line::styled(
             "Not computed yet: press r to run, i to switch between chart and this page.",
             Style::default().fg(Color::DarkGray),
@@ -840,8 +1145,11 @@ fn draw_info(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, area: 
                 Style::default().add_modifier(Modifier::BOLD),
             ));
             for (name, value) in &v.figure.results {
-                let unit = result_unit(name).1;
-                lines.push(Line::from(format!("  {name:<36} {} {unit}", fmt_float(*value))));
+                let (label, unit) = result_label(name);
+                lines.push(Line::from(format!(
+                    "  {label:<40} {} {unit}  ({name})",
+                    fmt_float(*value)
+                )));
             }
             for note in &v.figure.notes {
                 lines.push(Line::styled(
@@ -923,7 +1231,10 @@ fn draw_status(frame: &mut Frame<'_>, app: &App, area: Rect) {
     );
 }
 
-fn draw_help(frame: &mut Frame<'_>, area: Rect) {
+/// The key help: every binding and notes on editing and the mouse. In two columns where two
+/// whole key lines fit side by side and one column is too long, else in one column with long
+/// lines wrapped (never cut) and scrolled with ↑ ↓ when it is taller than the terminal.
+fn draw_help(frame: &mut Frame<'_>, app: &App, area: Rect) {
     let keys: Vec<Line<'_>> = BINDINGS
         .iter()
         .map(|b| {
@@ -933,41 +1244,73 @@ fn draw_help(frame: &mut Frame<'_>, area: Rect) {
             ])
         })
         .collect();
-    let lines: Vec<Line> = std::iter::once(Line::from(""))
-        .chain(
-            [
-                " While editing a value: type, ← → Home End, Backspace Del, Ctrl-U clears;",
-                " invalid values turn red (✗) and block running; the last valid values are kept;",
-                " * marks a value changed from the dissertation's default.",
-                " Mouse: click a scene, a parameter, a panel tab or a point; drag on the chart zooms, right",
-                " click and 0 show it whole; the wheel scrolls the lists and zooms the chart. In the history",
-                " a click chooses a run, a click on the chosen run reopens it; click the footer's actions.",
-                " Each panel keeps its cursor and zoom until new results change its axes.",
-            ]
-            .into_iter()
-            .map(|t| Line::styled(t, Style::default().fg(Color::DarkGray))),
-        )
-        .collect();
-    // One column when it fits, else the keys in two columns side by side.
-    let one_column = keys.len() + lines.len() + 2 <= usize::from(area.height);
-    let width = if one_column { 86 } else { 172 }.min(area.width);
-    let key_rows = if one_column {
-        keys.len()
-    } else {
-        keys.len().div_ceil(2)
+    let notes: Vec<Line> = [
+        "While editing a value: type, ← → Home End, Backspace Del, Ctrl-U clears; invalid values turn \
+         red (✗) and block running; the last valid values are kept; * marks a value changed from the \
+         dissertation's default.",
+        "Mouse: click a scene, a parameter, a panel tab or a point; drag on the chart zooms, right click \
+         and 0 show it whole; the wheel scrolls the lists and zooms the chart. In the history a click \
+         chooses a run, a click on the chosen run reopens it; click the footer's actions.",
+        "Each panel keeps its cursor and zoom until new results change its axes. ↑ ↓ scroll this help; \
+         any other key closes it.",
+    ]
+    .into_iter()
+    .map(|t| Line::styled(t, Style::default().fg(Color::DarkGray)))
+    .collect();
+    let key_width = keys.iter().map(Line::width).max().unwrap_or(0) as u16;
+    // Rows a paragraph of `lines` takes at `width` when wrapped.
+    let rows = |lines: &[Line<'_>], width: u16| -> u16 {
+        lines
+            .iter()
+            .map(|l| (l.width() as u16).div_ceil(width.max(1)).max(1))
+            .sum()
     };
-    let height = ((key_rows + lines.len()) as u16 + 2).min(area.height);
-    let (_, inner) = overlay_box(frame, area, width, height, " Keys — any key closes ".to_string());
-    let [keys_area, notes_area] =
-        Layout::vertical([Constraint::Length(key_rows as u16), Constraint::Min(0)]).areas(inner);
-    if one_column {
-        frame.render_widget(Paragraph::new(keys), keys_area);
+    let two_columns = area.width >= 2 * key_width + 3
+        && rows(&keys, key_width) + rows(&notes, 2 * key_width) + 2 > area.height;
+    let width = if two_columns {
+        2 * key_width + 3
     } else {
-        let [a, b] = Layout::horizontal([Constraint::Ratio(1, 2), Constraint::Ratio(1, 2)]).areas(keys_area);
+        (key_width + 2).max(60)
+    }
+    .min(area.width);
+    let inner_width = width.saturating_sub(2);
+    let key_rows = if two_columns {
+        (keys.len() as u16).div_ceil(2)
+    } else {
+        rows(&keys, inner_width)
+    };
+    let note_rows = rows(&notes, inner_width);
+    let height = (key_rows + note_rows + 3).min(area.height);
+    let (_, inner) = overlay_box(
+        frame,
+        area,
+        width,
+        height,
+        " Keys — ↑ ↓ scroll, any other key closes ".to_string(),
+    );
+    if two_columns {
+        let [keys_area, notes_area] =
+            Layout::vertical([Constraint::Length(key_rows), Constraint::Min(0)]).areas(inner);
+        let [a, b] =
+            Layout::horizontal([Constraint::Length(key_width + 1), Constraint::Min(0)]).areas(keys_area);
         let mut keys = keys;
-        let second = keys.split_off(key_rows);
+        let second = keys.split_off(usize::from(key_rows));
         frame.render_widget(Paragraph::new(keys), a);
         frame.render_widget(Paragraph::new(second), b);
+        let mut lines = vec![Line::from("")];
+        lines.extend(notes);
+        frame.render_widget(Paragraph::new(lines).wrap(Wrap { trim: false }), notes_area);
+    } else {
+        let mut lines = keys;
+        lines.push(Line::from(""));
+        lines.extend(notes);
+        let most = (key_rows + note_rows + 1).saturating_sub(inner.height);
+        let scroll = app.help_scroll.min(most);
+        frame.render_widget(
+            Paragraph::new(lines)
+                .wrap(Wrap { trim: false })
+                .scroll((scroll, 0)),
+            inner,
+        );
     }
-    frame.render_widget(Paragraph::new(lines), notes_area);
 }

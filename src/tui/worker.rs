@@ -66,6 +66,23 @@ pub enum Task {
         /// The fit's settings.
         settings: FitSettings,
     },
+    /// Run a scene for a pinned run: its figure with other display parameters (units).
+    Convert {
+        /// The scene.
+        scene: SceneRef,
+        /// The pin's parameters with the display parameters of the current run.
+        values: ParamValues,
+    },
+}
+
+/// A scene, printed by its id.
+#[derive(Clone, Copy)]
+pub struct SceneRef(pub &'static dyn SceneDyn);
+
+impl std::fmt::Debug for SceneRef {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.0.info().id)
+    }
 }
 
 /// What a [`Task`] produced.
@@ -84,6 +101,13 @@ pub enum TaskDone {
         position: usize,
         /// The fit and its figure.
         fitted: Box<FittedCurve>,
+    },
+    /// A pinned run was recomputed with other display parameters.
+    Converted {
+        /// The parameters it was computed with.
+        values: ParamValues,
+        /// Its figure.
+        figure: Box<Figure>,
     },
 }
 
@@ -118,6 +142,13 @@ impl Task {
                         figure,
                         run_time_s: start.elapsed().as_secs_f64(),
                     }),
+                })
+            }
+            Task::Convert { scene, values } => {
+                let figure = scene.0.run(&values, &Job::quiet())?;
+                Ok(TaskDone::Converted {
+                    values,
+                    figure: Box::new(figure),
                 })
             }
         }
@@ -160,6 +191,8 @@ pub enum JobMsg {
         outcome: Outcome,
         /// Wall time of the run in seconds.
         run_time_s: f64,
+        /// When it ended.
+        finished_at: std::time::SystemTime,
     },
 }
 
@@ -264,6 +297,7 @@ impl Worker {
                     job,
                     outcome,
                     run_time_s: start.elapsed().as_secs_f64(),
+                    finished_at: std::time::SystemTime::now(),
                 });
             }
         });
@@ -272,6 +306,7 @@ impl Worker {
                 job,
                 outcome: Outcome::Failed(format!("cannot start a worker thread: {e}")),
                 run_time_s: 0.0,
+                finished_at: std::time::SystemTime::now(),
             });
         }
     }

@@ -344,6 +344,19 @@ fn escape_cancels_a_running_job_and_keeps_the_partial_chart() {
     let screen = text(&draw(&s));
     assert!(screen.contains("cancelled"), "{screen}");
     assert!(!std::fs::exists(dir.path().join("out")).unwrap_or(true));
+
+    // The history keeps the cancelled run, with the time of day it ended; it is not exported.
+    assert_eq!(s.app().history().len(), 1);
+    let entry = &s.app().history()[0];
+    assert_eq!(entry.state, FigureState::Cancelled);
+    let line = adhesion::tui::view::history_line(s.app(), entry);
+    let time = adhesion::tui::view::time_of_day(entry.finished_at);
+    assert!(line.starts_with(&time) && line.contains("cancelled"), "{line}");
+    assert_eq!(time.len(), 8, "{time}");
+    press(&mut s, KeyCode::Char('h'));
+    press(&mut s, KeyCode::Char('e'));
+    assert!(s.app().status().error, "{:?}", s.app().status());
+    assert!(!std::fs::exists(dir.path().join("out")).unwrap_or(true));
 }
 
 /// Number of points of the first series of scene 0's figure.
@@ -495,6 +508,18 @@ fn export_writes_png_svg_csv_and_json() {
     assert!(csv.starts_with("panel,series,style,x,y"));
     let json = std::fs::read_to_string(dir.path().join("out/fig1.1.json")).expect("json");
     assert!(json.contains("jkr_hysteresis_norm"));
+    assert!(
+        !s.app().status().text.contains("replaced"),
+        "{:?}",
+        s.app().status()
+    );
+    // A second export says which files it replaced.
+    press(&mut s, KeyCode::Char('e'));
+    let status = &s.app().status().text;
+    assert!(
+        status.contains("replaced the earlier fig1.1.png, fig1.1.svg, fig1.1.csv, fig1.1.json"),
+        "{status}"
+    );
 }
 
 #[test]
@@ -902,4 +927,315 @@ fn a_bad_file_or_radius_leaves_one_line_and_the_last_good_page() {
     assert!(s.app().file_page().expect("page").radius.is_none());
     let screen = text(&draw(&s));
     assert!(screen.contains("Map 10 × 10"), "{screen}");
+}
+
+/// A run pinned in normalised units is drawn on the axes of a later SI run converted with its
+/// own scales: its pull-off marker lands at its own P_D and h_D (Eq. 1.4, the SI results of the
+/// pinned run) in the axes' prefixed units, and its legend entry stays, saying so. The export
+/// draws the same converted pin.
+#[test]
+fn a_normalised_pin_on_an_si_run_is_converted_with_its_own_scales() {
+    use super::workbench::{at_scene, draw_at, run, set_param};
+    use adhesion::render::labels::split_unit;
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = at_scene(dir.path(), "fig1.1");
+    run(&mut s);
+    press(&mut s, KeyCode::Char('p'));
+    let k = s.app().selected();
+    let pinned = s.app().pins(k)[0].figure.clone();
+    set_param(&mut s, "units", "si");
+    set_param(&mut s, "radius", "2e-5");
+    run(&mut s);
+    assert!(
+        s.wait_until(WAIT, |a| a.pins(k)[0].converting.is_none()),
+        "the conversion ends"
+    );
+    assert_eq!(s.app().pins(k)[0].converted.len(), 1, "{:?}", s.app().status());
+    let drawn = s.app().drawn().expect("a chart");
+    assert_eq!(drawn.refused, vec![None], "the pin is drawn");
+    let marker = drawn
+        .panel
+        .markers
+        .iter()
+        .find(|m| m.name.starts_with("#1") && m.name.ends_with("· pull-off"))
+        .expect("the pinned pull-off marker");
+    let (ex, xu) = split_unit(&drawn.panel.x.unit).expect("an SI depth axis");
+    let (ey, yu) = split_unit(&drawn.panel.y.unit).expect("an SI force axis");
+    assert_eq!((xu, yu), ("m", "N"));
+    let h_d = pinned.result_value("jkr_pull_off_depth_m").expect("h_D") / 10f64.powi(ex);
+    let p_d = pinned.result_value("jkr_pull_off_force_N").expect("P_D") / 10f64.powi(ey);
+    assert!(
+        (marker.x - h_d).abs() < 1e-9 * h_d.abs().max(1.0),
+        "{} vs {h_d}",
+        marker.x
+    );
+    assert!(
+        (marker.y - p_d).abs() < 1e-9 * p_d.abs().max(1.0),
+        "{} vs {p_d}",
+        marker.y
+    );
+    // The current run's pull-off is twice the pin's (P_D = −(5/6)·πwR... ∝ R).
+    let current = drawn
+        .panel
+        .markers
+        .iter()
+        .find(|m| m.name == "pull-off")
+        .expect("the current pull-off");
+    assert!(
+        (current.y / marker.y - 2.0).abs() < 1e-9,
+        "{} / {}",
+        current.y,
+        marker.y
+    );
+    let screen = text(&draw_at(&s, 160, 48));
+    assert!(screen.contains("#1 "), "the pin's legend entry:\n{screen}");
+    assert!(screen.contains("(converted)"), "says it was converted:\n{screen}");
+    // The export writes the converted pin (its CSV rows in the SI axes).
+    press(&mut s, KeyCode::Char('e'));
+    let csv = std::fs::read_to_string(dir.path().join("out").join("fig1.1.csv")).expect("csv");
+    assert!(csv.contains("· pull-off"), "the pinned marker in the CSV");
+}
+
+/// An axis in another unit that no display parameter explains is refused, in words; a unit with
+/// another SI prefix is rescaled.
+#[test]
+fn pins_in_units_that_cannot_be_converted_are_refused_with_a_reason() {
+    use adhesion::tui::compare::{Pin, axes_fit, overlay};
+    let panel = |unit: &str| {
+        let mut p = Panel::new(Axis::linear("x", ""), Axis::linear("Contact force P", unit));
+        p.add(Series::new("curve", Style::Stable, vec![(0.0, 1.0), (1.0, 2.0)]));
+        p
+    };
+    let si = panel("µN");
+    assert_eq!(axes_fit(&si, &panel("nN")), Ok((1.0, 1e-3)));
+    let why = axes_fit(&si, &panel("")).expect_err("refused");
+    assert!(why.contains("µN") && why.contains("no unit"), "{why}");
+    let values = PROBE.defaults();
+    let pin = Pin::new(
+        Figure::new("probe", "p").with_panel(panel("")),
+        values.clone(),
+        0.0,
+        5,
+    );
+    let drawn = overlay(&si, 0, &values, &[pin], &["#1 run".to_string()]);
+    assert!(drawn.refused[0].is_some());
+    assert_eq!(
+        drawn.panel.series.len(),
+        2,
+        "the current curve and the pin's entry only"
+    );
+    assert!(
+        drawn.panel.series[1].name.contains("not drawn"),
+        "{}",
+        drawn.panel.series[1].name
+    );
+}
+
+/// A chapter 4 cycle (fig4.5) draws its P-h path as it is computed: the curve grows over at
+/// least 3 frames before the run ends, the title says partial.
+#[test]
+fn a_chapter_4_cycle_shows_a_growing_curve_while_it_runs() {
+    use super::workbench::at_scene;
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = at_scene(dir.path(), "fig4.5");
+    press(&mut s, KeyCode::Char('r'));
+    let mut counts: Vec<usize> = Vec::new();
+    let start = Instant::now();
+    while s.app().running().is_some() && start.elapsed() < Duration::from_secs(300) {
+        s.wait_until(Duration::from_millis(40), |_| false);
+        if s.app().running().is_none() {
+            break;
+        }
+        let k = s.app().selected();
+        if let Some(v) = s.app().figure(k)
+            && v.state == FigureState::Partial
+        {
+            let points: usize = v.figure.panels[0].series.iter().map(|x| x.points.len()).sum();
+            let screen = text(&draw(&s));
+            assert!(screen.contains("partial"), "{screen}");
+            if counts.last() != Some(&points) {
+                counts.push(points);
+            }
+        }
+    }
+    assert!(s.wait_until(Duration::from_secs(300), idle), "the run ends");
+    assert!(counts.len() >= 3, "frames with a growing curve: {counts:?}");
+    assert!(
+        counts.windows(2).all(|w| w[1] > w[0]),
+        "it only grows: {counts:?}"
+    );
+    let k = s.app().selected();
+    assert_eq!(s.app().figure(k).expect("a figure").state, FigureState::Complete);
+}
+
+/// The results table beside the chart lists the pinned run's pull-off force under the current
+/// run's, with the difference: P_D ∝ R (Eq. 1.4), so a pin at half the radius reads +50 %
+/// against the current run's (a negative force half as large).
+#[test]
+fn the_comparison_table_lists_a_pins_pull_off_and_the_difference() {
+    use super::workbench::{at_scene, draw_at, run, set_param};
+    use adhesion::render::labels::fmt_quantity;
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = at_scene(dir.path(), "fig1.1");
+    run(&mut s);
+    press(&mut s, KeyCode::Char('p'));
+    set_param(&mut s, "radius", "2e-5");
+    run(&mut s);
+    let k = s.app().selected();
+    let pinned = s.app().pins(k)[0]
+        .figure
+        .result_value("jkr_pull_off_force_N")
+        .expect("P_D");
+    let screen = text(&draw_at(&s, 160, 48));
+    let lines: Vec<&str> = screen.lines().collect();
+    let at = lines
+        .iter()
+        .position(|l| l.contains("JKR pull-off force [N]"))
+        .unwrap_or_else(|| panic!("the pull-off row:\n{screen}"));
+    let row = lines[at + 1];
+    assert!(row.contains("#1"), "the pin's row under it:\n{screen}");
+    assert!(
+        row.contains(&fmt_quantity(pinned, "N")),
+        "its value {pinned}:\n{row}"
+    );
+    assert!(row.contains("(+50.0 %)"), "the difference:\n{row}");
+    // Hiding the pin (1) keeps its row and legend entry.
+    press(&mut s, KeyCode::Char('1'));
+    assert!(s.app().pins(k)[0].hidden);
+    let screen = text(&draw_at(&s, 160, 48));
+    assert!(screen.contains("(hidden)"), "{screen}");
+    assert!(screen.contains("(+50.0 %)"), "{screen}");
+}
+
+/// Two nudges of a parameter in quick succession rerun the scene once, after the pause, with
+/// the value stepped twice (×1.1²).
+#[test]
+fn nudging_twice_reruns_once_after_the_pause() {
+    use adhesion::tui::app::{Effect, NUDGE_PAUSE};
+    // The state alone: each nudge asks for a timer; only the last one runs.
+    let mut app = App::new(vec![&PROBE], std::env::temp_dir());
+    app.update(key(KeyCode::Tab));
+    app.update(key(KeyCode::Down));
+    let first = app.update(key(KeyCode::Char('}')));
+    let second = app.update(key(KeyCode::Char('}')));
+    let token = |e: &[Effect]| match e {
+        [Effect::Timer { token, after }] => {
+            assert_eq!(*after, NUDGE_PAUSE);
+            *token
+        }
+        other => panic!("a timer, not {other:?}"),
+    };
+    let (t1, t2) = (token(&first), token(&second));
+    assert!(
+        app.on_timer(t1).is_empty(),
+        "the first nudge's timer does nothing"
+    );
+    let effects = app.on_timer(t2);
+    assert!(
+        matches!(effects.as_slice(), [Effect::Start { .. }]),
+        "{effects:?}"
+    );
+    assert!(app.on_timer(t2).is_empty(), "once");
+
+    // Through a session: nothing runs before the pause, one run after it.
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = session(dir.path(), vec![&PROBE]);
+    press(&mut s, KeyCode::Tab);
+    press(&mut s, KeyCode::Down);
+    press(&mut s, KeyCode::Char('}'));
+    press(&mut s, KeyCode::Char('}'));
+    assert!(s.app().running().is_none(), "no run before the pause");
+    assert!(s.wait_until(WAIT, |a| !a.history().is_empty()), "a run after it");
+    std::thread::sleep(NUDGE_PAUSE * 2);
+    s.pump();
+    assert_eq!(s.app().history().len(), 1, "one run");
+    let amplitude = s.app().history()[0]
+        .values
+        .get("amplitude")
+        .and_then(|v| v.as_float());
+    assert!(
+        amplitude.is_some_and(|a| (a - 1.21).abs() < 1e-12),
+        "{amplitude:?}"
+    );
+}
+
+/// At 80 × 24 every parameter value of fig1.1 shown is whole (never cut from the left), and
+/// the legend is drawn and toggled by L.
+#[test]
+fn at_80_by_24_values_are_whole_and_the_legend_toggles() {
+    use super::workbench::{at_scene, draw_at, run};
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = at_scene(dir.path(), "fig1.1");
+    press(&mut s, KeyCode::Tab);
+    run(&mut s);
+    let screen = text(&draw_at(&s, 80, 24));
+    let form = s.app().form().expect("a form");
+    let layout = s.app().layout().clone();
+    let first = layout.form_offset;
+    let shown = usize::from(layout.form.height).min(form.len() - first);
+    assert!(shown >= 3, "parameter rows at 80 × 24:\n{screen}");
+    let lines: Vec<&str> = screen.lines().collect();
+    for (row, k) in (first..first + shown).enumerate() {
+        let line = lines[usize::from(layout.form.y) + row];
+        let value = form.text(k);
+        assert!(
+            line.contains(&format!(" {value} ")),
+            "`{value}` whole in:\n{line}\n{screen}"
+        );
+    }
+    assert!(screen.contains("L hides"), "the legend at 80 × 24:\n{screen}");
+    assert!(screen.contains("Hertz"), "its entries:\n{screen}");
+    press(&mut s, KeyCode::Char('L'));
+    let hidden = text(&draw_at(&s, 80, 24));
+    assert!(!hidden.contains("L hides"), "{hidden}");
+    press(&mut s, KeyCode::Char('L'));
+    assert!(text(&draw_at(&s, 80, 24)).contains("L hides"));
+}
+
+/// Nudging as a slider over the pull-off: with the cursor on fig1.1's pull-off marker and a
+/// pin, a nudge of the radius (×1.1) reruns, the cursor stays on the pull-off of the new run,
+/// and the readout shows how it moved against the pin: P_D ∝ R (Eq. 1.4), so by a tenth of the
+/// pin's P_D.
+#[test]
+fn the_cursor_stays_on_the_pull_off_across_nudges_and_reads_the_change() {
+    use super::workbench::{at_scene, draw_at, run, set_param};
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = at_scene(dir.path(), "fig1.1");
+    set_param(&mut s, "units", "si");
+    run(&mut s);
+    press(&mut s, KeyCode::Char('p'));
+    for _ in 0..12 {
+        if s.app().readout().is_some_and(|r| r.name == "pull-off (D)") {
+            break;
+        }
+        press(&mut s, KeyCode::Char('m'));
+    }
+    assert_eq!(s.app().readout().expect("a readout").name, "pull-off (D)");
+    let before = s.app().readout().expect("a readout").point;
+    // The radius is the first parameter.
+    press(&mut s, KeyCode::Tab);
+    while s.app().form().expect("a form").selected() > 0 {
+        press(&mut s, KeyCode::Up);
+    }
+    press(&mut s, KeyCode::Char('}'));
+    assert!(
+        s.wait_until(WAIT, |a| a.history().len() == 2 && idle(a)),
+        "the nudge reruns"
+    );
+    let r = s.app().readout().expect("the cursor is kept");
+    assert_eq!(r.name, "pull-off (D)");
+    assert!(
+        (r.point.1 / before.1 - 1.1).abs() < 1e-9,
+        "{:?} vs {before:?}",
+        r.point
+    );
+    let screen = text(&draw_at(&s, 160, 48));
+    assert!(screen.contains("Δ vs #1: x "), "{screen}");
+    let k = s.app().selected();
+    let pinned = s.app().pins(k)[0]
+        .figure
+        .result_value("jkr_pull_off_force_N")
+        .expect("P_D");
+    let moved = adhesion::render::labels::fmt_quantity(0.1 * pinned, "N");
+    assert!(screen.contains(&format!("y {moved}")), "Δy = {moved}:\n{screen}");
 }

@@ -18,11 +18,11 @@ use adhesion::tui::app::{FigureState, Focus, Mode};
 use adhesion::tui::chart::CursorAt;
 use adhesion::tui::keymap::BINDINGS;
 use adhesion::tui::session::Session;
-use adhesion::tui::view::time_left;
+use adhesion::tui::view::{result_label, time_left};
 
 use super::tui::{PROBE, WAIT, braille_cells, clear_line, idle, press, session, text, type_text};
 
-fn scene(id: &str) -> &'static dyn SceneDyn {
+pub(crate) fn scene(id: &str) -> &'static dyn SceneDyn {
     scenes::all()
         .into_iter()
         .find(|s| s.info().id == id)
@@ -30,7 +30,7 @@ fn scene(id: &str) -> &'static dyn SceneDyn {
 }
 
 /// A session over every scene with `id` selected.
-fn at_scene(dir: &std::path::Path, id: &str) -> Session {
+pub(crate) fn at_scene(dir: &std::path::Path, id: &str) -> Session {
     let mut s = session(dir, scenes::all());
     while s.app().scene().is_some_and(|sc| sc.info().id != id) {
         press(&mut s, KeyCode::Down);
@@ -39,7 +39,7 @@ fn at_scene(dir: &std::path::Path, id: &str) -> Session {
     s
 }
 
-fn run(s: &mut Session) {
+pub(crate) fn run(s: &mut Session) {
     press(s, KeyCode::Char('r'));
     assert!(s.wait_until(WAIT, idle), "the run ends");
     let view = s.app().figure(s.app().selected()).expect("a figure");
@@ -47,7 +47,7 @@ fn run(s: &mut Session) {
 }
 
 /// Set parameter `name` of the selected scene to `value` through the form.
-fn set_param(s: &mut Session, name: &str, value: &str) {
+pub(crate) fn set_param(s: &mut Session, name: &str, value: &str) {
     if s.app().focus() != Focus::Form {
         press(s, KeyCode::Tab);
     }
@@ -86,7 +86,7 @@ fn mouse(s: &mut Session, kind: MouseEventKind, column: u16, row: u16) {
     });
 }
 
-fn draw_at(s: &Session, w: u16, h: u16) -> Buffer {
+pub(crate) fn draw_at(s: &Session, w: u16, h: u16) -> Buffer {
     let mut terminal = Terminal::new(TestBackend::new(w, h)).expect("test backend");
     terminal.draw(|f| s.draw(f)).expect("drawing into a test backend");
     terminal.backend().buffer().clone()
@@ -277,7 +277,8 @@ fn the_results_panel_lists_fig1_1_results_with_units() {
     ] {
         let v = fig.result_value(name).expect("the result");
         let shown = fmt_quantity(v, unit);
-        let short = name.rsplit_once('_').expect("suffix").0;
+        let (short, _) = result_label(name);
+        assert!(short.ends_with(&format!("[{unit}]")), "{short}");
         let line = screen
             .lines()
             .find(|l| l.contains(&format!("│{short} ")))

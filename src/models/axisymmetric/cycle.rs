@@ -215,7 +215,21 @@ pub fn run_cycle<M: CycleModel>(
     opts: &CycleOptions,
     progress: impl FnMut(f64) -> Result<()>,
 ) -> Result<TipCycle> {
-    walk(tip, opts, false, progress)
+    walk(tip, opts, false, progress, |_| {})
+}
+
+/// [`run_cycle`], showing the cycle as far as it goes to `on_state` after every accepted state
+/// (its jumps included), for a live figure.
+///
+/// # Errors
+/// As [`run_cycle`].
+pub fn run_cycle_watched<M: CycleModel>(
+    tip: &M,
+    opts: &CycleOptions,
+    progress: impl FnMut(f64) -> Result<()>,
+    on_state: impl FnMut(&TipCycle),
+) -> Result<TipCycle> {
+    walk(tip, opts, false, progress, on_state)
 }
 
 /// Press a tip whose energy is convex in its unknowns at every depth, such as a tip without
@@ -243,7 +257,7 @@ pub fn run_convex_loading<M: CycleModel>(
     opts: &CycleOptions,
     progress: impl FnMut(f64) -> Result<()>,
 ) -> Result<TipCycle> {
-    walk(tip, opts, true, progress)
+    walk(tip, opts, true, progress, |_| {})
 }
 
 /// [`run_cycle`], or with `convex` [`run_convex_loading`].
@@ -252,6 +266,7 @@ fn walk<M: CycleModel>(
     opts: &CycleOptions,
     convex: bool,
     progress: impl FnMut(f64) -> Result<()>,
+    mut on_state: impl FnMut(&TipCycle),
 ) -> Result<TipCycle> {
     if !(opts.h_min < opts.h_start && opts.h_min.is_finite() && opts.h_start.is_finite()) {
         return Err(Error::invalid(
@@ -400,6 +415,7 @@ fn walk<M: CycleModel>(
                 } else {
                     cycle.unloading.push(s);
                 }
+                on_state(&cycle);
                 done = done.max(v.target + 1 + if phase { 0 } else { loading.len() });
                 reported.set(done as f64 / total);
                 progress.borrow_mut()(reported.get())

@@ -30,7 +30,7 @@ impl App {
         self.opening.is_some()
     }
 
-    fn next_job(&mut self) -> u64 {
+    pub(super) fn next_job(&mut self) -> u64 {
         let job = self.next_job;
         self.next_job += 1;
         job
@@ -207,7 +207,7 @@ impl App {
                     self.set_status(text, false);
                     return self.fit_selected(false);
                 }
-                Ok(TaskDone::Fitted { .. }) => {}
+                Ok(TaskDone::Fitted { .. } | TaskDone::Converted { .. }) => {}
                 Err(message) => self.set_status(message, true),
             }
             return Vec::new();
@@ -227,7 +227,7 @@ impl App {
                 let warning = if warned { " (see the warnings)" } else { "" };
                 self.set_status(format!("{text}{warning}"), false);
             }
-            Ok(TaskDone::Opened { .. }) => {}
+            Ok(TaskDone::Opened { .. } | TaskDone::Converted { .. }) => {}
             Err(message) => {
                 page.fits.insert(curve, Err(message.clone()));
                 self.set_status(message, true);

@@ -4,16 +4,16 @@
 
 use ratatui::layout::Rect;
 
-use super::{App, FigureState, FigureView, HISTORY_LEN, HistoryEntry};
+use super::{App, Effect, FigureState, FigureView, HISTORY_LEN, HistoryEntry};
 use crate::figure::{Figure, Scale};
-use crate::params::ParamValues;
 use crate::render::terminal::{ChartGeometry, View, shown_range};
 use crate::tui::chart::{
     AxesKey, CursorAt, PanelView, Readout, cursor_point, first_point, nearest, nearest_in, readout,
     scale_about,
 };
-use crate::tui::compare::{Overlay, Pin, overlay, pin_color, pin_label};
+use crate::tui::compare::{Overlay, Pin, display_variant, overlay, pin_color, pin_label};
 use crate::tui::keymap::Action;
+use crate::tui::worker::{SceneRef, Task, TaskDone};
 
 /// Longest legend label of a pinned run, in characters.
 const PIN_LABEL_WIDTH: usize = 36;
@@ -44,7 +44,16 @@ impl App {
         let view = self.figure(self.selected)?;
         let k = self.panel();
         let panel = view.figure.panels.get(k)?;
-        Some(overlay(panel, k, self.pins(self.selected), &self.pin_labels()).with_legend_symbols())
+        Some(
+            overlay(
+                panel,
+                k,
+                &view.values,
+                self.pins(self.selected),
+                &self.pin_labels(),
+            )
+            .with_legend_symbols(),
+        )
     }
 
     /// Where the last frame drew the chart's graph and what it shows.
@@ -88,27 +97,19 @@ impl App {
         Some(((a.0, b.0), (a.1, b.1)))
     }
 
-    pub(crate) fn remember(&mut self, scene: usize, figure: &Figure, values: &ParamValues, run_time_s: f64) {
-        self.history.insert(
-            0,
-            HistoryEntry {
-                scene,
-                figure: figure.clone(),
-                values: values.clone(),
-                run_time_s,
-            },
-        );
+    pub(crate) fn remember(&mut self, entry: HistoryEntry) {
+        self.history.insert(0, entry);
         self.history.truncate(HISTORY_LEN);
     }
 
     /// Show history entry `k` as its scene's figure and put its parameters into the form.
-    pub(crate) fn reopen(&mut self, k: usize) {
+    pub(crate) fn reopen(&mut self, k: usize) -> Vec<Effect> {
         let Some(entry) = self.history.get(k).cloned() else {
-            return;
+            return Vec::new();
         };
         if self.running.as_ref().is_some_and(|r| r.scene == entry.scene) {
             self.set_status("a run of this scene is in progress: Esc cancels it first", true);
-            return;
+            return Vec::new();
         }
         self.select_index(entry.scene);
         self.filter.clear();
@@ -118,13 +119,14 @@ impl App {
             figure: entry.figure,
             values: entry.values,
             run_time_s: Some(entry.run_time_s),
-            state: FigureState::Complete,
+            state: entry.state,
         });
         let id = self.scenes[entry.scene].info().id;
         self.set_status(
             format!("reopened a run of {id} from the history (not rerun)"),
             false,
         );
+        self.convert_pins(entry.scene)
     }
 
     pub(crate) fn chart_action(&mut self, action: Action) {
@@ -183,18 +185,80 @@ impl App {
             self.set_status("only a finished run can be pinned", true);
             return;
         }
-        let pin = Pin {
-            color: pin_color(&view.figure, self.pins(k)),
-            figure: view.figure.clone(),
-            values: view.values.clone(),
-            run_time_s: view.run_time_s.unwrap_or(0.0),
-        };
+        let pin = Pin::new(
+            view.figure.clone(),
+            view.values.clone(),
+            view.run_time_s.unwrap_or(0.0),
+            pin_color(&view.figure, self.pins(k)),
+        );
         self.pins[k].push(pin);
         let n = self.pins[k].len();
         self.set_status(
             format!("pinned as #{n}: change a parameter and run (r) to compare; u unpins"),
             false,
         );
+    }
+
+    /// Pinned runs of scene `scene` computed with other display parameters (units) than its
+    /// shown run: each is recomputed with the shown run's, in the background (once).
+    pub(crate) fn convert_pins(&mut self, scene: usize) -> Vec<Effect> {
+        let Some(current) = self.figure(scene).map(|v| v.values.clone()) else {
+            return Vec::new();
+        };
+        let mut effects = Vec::new();
+        let scene_ref = SceneRef(self.scenes[scene]);
+        for i in 0..self.pins(scene).len() {
+            let pin = &self.pins[scene][i];
+            let Some(values) = display_variant(&pin.values, &current) else {
+                continue;
+            };
+            if pin.converting.is_some() || pin.converted.iter().any(|(v, _)| *v == values) {
+                continue;
+            }
+            let job = self.next_job();
+            self.pins[scene][i].converting = Some(job);
+            effects.push(Effect::Task {
+                job,
+                task: Task::Convert {
+                    scene: scene_ref,
+                    values,
+                },
+            });
+        }
+        effects
+    }
+
+    /// A pinned run recomputed in other units arrives (or why it could not be).
+    pub(crate) fn on_converted(&mut self, job: u64, outcome: Result<TaskDone, String>) {
+        let Some((k, pin)) = self
+            .pins
+            .iter_mut()
+            .enumerate()
+            .find_map(|(k, ps)| ps.iter_mut().find(|p| p.converting == Some(job)).map(|p| (k, p)))
+        else {
+            return;
+        };
+        pin.converting = None;
+        match outcome {
+            Ok(TaskDone::Converted { values, figure }) => pin.converted.push((values, *figure)),
+            Ok(_) => {}
+            Err(e) => {
+                let id = self.scenes[k].info().id;
+                self.set_status(format!("a pinned run of {id} could not be converted: {e}"), true);
+            }
+        }
+    }
+
+    /// Show or hide pinned run `i` (from 0) of the selected scene.
+    pub(crate) fn toggle_pin(&mut self, i: usize) {
+        let Some(pin) = self.pins.get_mut(self.selected).and_then(|p| p.get_mut(i)) else {
+            self.set_status(format!("no pinned run #{}", i + 1), false);
+            return;
+        };
+        pin.hidden = !pin.hidden;
+        let text = if pin.hidden { "hidden" } else { "shown" };
+        self.cursor = None;
+        self.set_status(format!("pinned run #{} {text}", i + 1), false);
     }
 
     fn move_cursor(&mut self, step: isize) {
@@ -374,6 +438,19 @@ impl App {
         self.drag = None;
     }
 
+    /// The name of the current run's marker under the cursor, kept when a run starts so that
+    /// the cursor finds the marker of that name in its results.
+    pub(crate) fn keep_marker(&mut self) {
+        self.kept_marker = match self.cursor {
+            Some(CursorAt::Marker(m)) => self
+                .figure(self.selected)
+                .and_then(|v| v.figure.panels.get(self.panel))
+                .and_then(|p| p.markers.get(m))
+                .map(|mk| mk.name.clone()),
+            _ => None,
+        };
+    }
+
     /// Complete results of scene `scene` arrive: the cursor and zoom of every panel whose axes
     /// they change are reset (those of the others are kept).
     pub(crate) fn on_results(&mut self, scene: usize, figure: &Figure) {
@@ -385,10 +462,24 @@ impl App {
             .filter(|k| old.get(*k) != new.get(*k))
             .collect();
         *old = new;
+        // A cursor on one of the current run's markers (the pull-off) stays on the marker of
+        // the same name in the new results, wherever it moved: nudging a parameter then reads
+        // how that marker moves.
+        let on_marker = if scene == self.selected {
+            self.kept_marker.take()
+        } else {
+            None
+        };
         for k in changed {
             self.views.remove(&(scene, k));
             if scene == self.selected && k == self.panel {
-                self.cursor = None;
+                self.cursor = on_marker.as_ref().and_then(|name| {
+                    let p = figure.panels.get(k)?;
+                    p.markers
+                        .iter()
+                        .position(|m| m.name == *name)
+                        .map(CursorAt::Marker)
+                });
                 self.zoom = None;
                 self.zoom_mark = None;
                 self.drag = None;

@@ -18,8 +18,11 @@ impl App {
         match self.mode {
             Mode::Normal | Mode::Filter { .. } => {}
             Mode::Help => {
-                if matches!(ev.kind, MouseEventKind::Down(_)) {
-                    self.mode = Mode::Normal;
+                match ev.kind {
+                    MouseEventKind::Down(_) => self.mode = Mode::Normal,
+                    MouseEventKind::ScrollDown => self.help_scroll = self.help_scroll.saturating_add(1),
+                    MouseEventKind::ScrollUp => self.help_scroll = self.help_scroll.saturating_sub(1),
+                    _ => {}
                 }
                 return Vec::new();
             }
