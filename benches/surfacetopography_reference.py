@@ -48,6 +48,15 @@ FILES = [
     ("mi-1.mi", "Topography"),
     ("mi-1.mi", "Deflection"),
     ("al3d-1.al3d", None),
+    ("nid-small.nid", "Scan forward (Z-Axis)"),
+    ("nid-small.nid", "Scan backward (Z-Axis)"),
+    ("plu-small.plu", "layer0"),
+    ("plu-small.plu", "layer1"),
+    ("metropro-small.dat", None),
+    ("opd-small.opd", "Raw"),
+    ("opd-small.opd", "OPD"),
+    ("opdx-small.opdx", None),
+    ("opdx-3.opdx", None),
 ]
 
 EXTRA = [
@@ -60,6 +69,11 @@ EXTRA = [
     ("di-5.di", None),
     ("di-6.di", None),
     ("matrix-3.txt", None),
+    ("nid-1.nid", "Scan forward (Z-Axis)"),
+    ("nid-1.nid", "Scan backward (Z-AxisSensor)"),
+    ("plu-1.plu", None),
+    ("metropro-1.dat", None),
+    ("opd-1.opd", None),
 ]
 
 SAMPLES = [(0, 0), (1, 0), (0, 1), (-1, -1), (3, 2), (-2, 1)]
@@ -137,6 +151,165 @@ def make_fixtures():
     mask[3, 5] = mask[3, 6] = mask[10, 0] = 1.0
     c["/2/mask"] = GwyDataField(mask, xreal=2e-6, yreal=1.6e-6)
     c.tofile(os.path.join(MAPS, "gwy-1.gwy"))
+    make_instrument_fixtures()
+
+
+def make_instrument_fixtures():
+    """Small files in the layouts of Nanosurf .nid, Sensofar .plu, Zygo MetroPro .dat, Bruker
+    Wyko .opd and Dektak .opdx (the example files are megabytes), each read back by
+    SurfaceTopography for reference.json. A generator of its own, so that the fixtures above do
+    not change."""
+    rng = np.random.default_rng(32)
+    nid(os.path.join(MAPS, "nid-small.nid"), rng)
+    plu(os.path.join(MAPS, "plu-small.plu"), rng)
+    metropro(os.path.join(MAPS, "metropro-small.dat"), rng)
+    opd(os.path.join(MAPS, "opd-small.opd"), rng)
+    opdx(os.path.join(MAPS, "opdx-small.opdx"), rng)
+
+
+def nid(path, rng):
+    """Nanosurf .nid: two groups (forward, backward); forward holds a deflection (N, int32) and a
+    height (m, int32), backward a height (m, uint16, channel index 1); 24 x 16 points."""
+    nx, ny = 24, 16
+    channels = [
+        (0, 0, "Scan forward", "Deflection", "N", 4.8e-6, 32, "Signed"),
+        (0, 2, "Scan forward", "Z-Axis", "m", 1.0152e-5, 32, "Signed"),
+        (1, 1, "Scan backward", "Z-Axis", "m", 2.5e-6, 16, "Unsigned"),
+    ]
+    lines = ["[DataSet]", "Version=2", "GroupCount=2", "Gr0-Name=Scan forward", "Gr0-ID=0",
+             "Gr0-Count=3", "Gr1-Name=Scan backward", "Gr1-ID=0", "Gr1-Count=2"]
+    lines += [f"Gr{g}-Ch{c}=DataSet-{g}:{c}" for g, c, *_ in channels]
+    lines += ["", "[DataSet-Info]", "Date=01-01-2026", "Time=00:00:00", "Image size=5µm"]
+    blocks = []
+    for g, c, frame, quantity, unit, rng_z, bits, sign in channels:
+        lines += ["", f"[DataSet-{g}:{c}]", "Version=2", f"Points={nx}", f"Lines={ny}",
+                  f"Frame={frame}", "Dim0Name=X*", "Dim0Unit=m", "Dim0Range=5e-06", "Dim0Min=0",
+                  "Dim1Name=Y*", "Dim1Unit=m", f"Dim1Range={5e-6 * ny / nx!r}", "Dim1Min=0",
+                  f"Dim2Name={quantity}", f"Dim2Unit={unit}", f"Dim2Range={rng_z!r}",
+                  f"Dim2Min={-rng_z / 2!r}", "SaveMode=Binary", f"SaveBits={bits}",
+                  f"SaveSign={sign}", "SaveOrder=Intel"]
+        top = 2 ** (bits - 1)
+        if sign == "Signed":
+            raw = rng.integers(-top // 4, top // 4, (ny, nx)).astype(f"<i{bits // 8}")
+        else:
+            raw = rng.integers(0, 2 * top, (ny, nx)).astype(f"<u{bits // 8}")
+        blocks.append(raw.tobytes())
+    # Two empty lines before the data, as the instrument writes them (SurfaceTopography reads
+    # the line after an empty line's two bytes with it).
+    text = "\r\n".join(lines) + "\r\n\r\n\r\n"
+    with open(path, "wb") as f:
+        f.write(text.encode("latin-1") + b"#!" + b"".join(blocks))
+
+
+def plu(path, rng):
+    """Sensofar .plu topography: two layers of 20 x 12 points at 1.66 um, the second with two
+    points not measured (1000001)."""
+    nx, ny = 20, 12
+    header = struct.pack("<128sI256s", b"Thu Jan  1 00:00:00 2026", 1767225600, b"synthetic")
+    header += struct.pack("<3I7f", ny, nx, nx, 28.22, 1.66, 1.66, 0.0, 0.0, 1.66, 0.0)
+    header += struct.pack("<5I", 3, 3, 0, 14, 3)
+    header += struct.pack("<5IdfII", ny, nx, ny, nx, 1, 0.06875, 55.6, 23, 0)
+    header += struct.pack("<8BI", 0, 2, 251, 6, 1, 0, 0, 0, 1)
+    assert len(header) == 500
+    out = [header]
+    for k in range(2):
+        z = (1000 + 5 * rng.standard_normal((ny, nx))).astype("<f4")
+        if k == 1:
+            z[2, 3] = z[7, 0] = 1000001.0
+        out.append(struct.pack("<2I", ny, nx) + z.tobytes() + struct.pack("<2f", z.min(), z.max()))
+    with open(path, "wb") as f:
+        f.write(b"".join(out))
+
+
+def metropro(path, rng):
+    """Zygo MetroPro .dat, header format 1 (834 bytes): an intensity block of 4 x 3 points, then
+    the phase map of 20 x 14 points (int32, big-endian), sign set, phase resolution 1."""
+    nx, ny, ax, ay = 20, 14, 4, 3
+    h = bytearray(834)
+
+    def put(at, fmt, *v):
+        struct.pack_into(">" + fmt, h, at, *v)
+
+    h[0:4] = b"\x88\x1b\x03\x6f"
+    put(4, "HI", 1, 834)
+    put(48, "hhHHHhI", 0, 0, ax, ay, 1, 255, 2 * ax * ay)
+    put(64, "hhHHI", 0, 0, nx, ny, 4 * nx * ny)
+    put(76, "i", 1767225600)
+    put(164, "ff", 0.5, 6.328e-7)
+    put(176, "f", 1.0)
+    put(184, "f", 2e-7)
+    put(218, "h", 1)
+    put(232, "h", 1)
+    intensity = rng.integers(0, 4000, (ay, ax)).astype(">u2").tobytes()
+    phase = rng.integers(-20000, 20000, (ny, nx)).astype(">i4").tobytes()
+    with open(path, "wb") as f:
+        f.write(bytes(h) + intensity + phase)
+
+
+def opd(path, rng):
+    """Bruker Wyko .opd: wavelength, mult, aspect, pixel size, a text block, and two rasters
+    ("Raw": f32, "OPD": int16) of 18 x 10 points stored with y fastest."""
+    nx, ny = 18, 10
+    blocks = [
+        ("Wavelength", 7, struct.pack("<f", 632.8)),
+        ("Mult", 6, struct.pack("<H", 2)),
+        ("Aspect", 7, struct.pack("<f", 1.25)),
+        ("Pixel_size", 7, struct.pack("<f", 1.5e-4)),
+        ("Title", 5, b"synthetc"),
+        ("Raw", 3, struct.pack("<3H", nx, ny, 4) + (40 * rng.standard_normal((nx, ny))).astype("<f4").tobytes()),
+        ("Empty", 5, b""),
+        ("OPD", 3, struct.pack("<3H", nx, ny, 2) + rng.integers(-3000, 3000, (nx, ny)).astype("<i2").tobytes()),
+    ]
+    n = len(blocks) + 1
+    directory = struct.pack("<16shlH", b"Directory", 1, 24 * n, 0xFFFF)
+    for name, kind, data in blocks:
+        directory += struct.pack("<16shlH", name.encode(), kind, len(data), 8)
+    with open(path, "wb") as f:
+        f.write(b"\0\0" + directory + b"".join(d for _, _, d in blocks))
+
+
+def opdx(path, rng):
+    """Bruker Dektak .opdx "Surface Height" map of 22 x 9 points (f32 times a data scale in um)."""
+    nx, ny = 22, 9
+
+    def name(s):
+        b = s.encode()
+        return struct.pack("<I", len(b)) + b
+
+    def varlen(n):
+        return struct.pack("<BI", 4, n)
+
+    def item(key, kind, payload):
+        return name(key) + bytes([kind]) + payload
+
+    def container(key, items):
+        body = b"".join(items) + name("") + b"\x7f" + b"\0\0"
+        return item(key, 0x7D, varlen(len(body)) + body)
+
+    def text(key, s):
+        b = s.encode()
+        return item(key, 0x12, varlen(len(b)) + b)
+
+    def quantity(key, value, unit, symbol):
+        body = struct.pack("<d", value) + name(unit) + name(symbol)
+        return item(key, 0x13, varlen(len(body)) + body)
+
+    z = (1000 * rng.standard_normal((ny, nx))).astype("<f4")
+    matrix = item("Matrix", 0x00, name("Matrix<float>") + struct.pack("<I", 1) + name("Height")
+                  + varlen(8 + z.nbytes) + struct.pack("<II", ny, nx) + z.tobytes())
+    data = container("2D_Data", [container("Height", [
+        item("Dimension1Points", 0x07, struct.pack("<I", ny)),
+        item("Dimension2Points", 0x07, struct.pack("<I", nx)),
+        quantity("Dimension1Extent", 45.0, "Micrometer", "µm"),
+        quantity("Dimension2Extent", 0.11, "Millimeter", "mm"),
+        quantity("DataScale", 1.5e-4, "Micrometer", "µm"),
+        text("DataKind", "Height"),
+        matrix,
+    ])])
+    meta = container("MetaData", [text("DataKind", "Surface Height"), text("PrimaryData2D", "Height"),
+                                  item("Version", 0x06, struct.pack("<i", 3))])
+    with open(path, "wb") as f:
+        f.write(b"VCA DATA\x01\x00\x00\x55" + meta + data + name("") + b"\x7f")
 
 
 def factor(unit):
@@ -179,14 +352,19 @@ def reference(path, channel):
         else [float(s) * f for s in t.physical_sizes],
         "missing": missing,
     }
+    if t.dim == 1:
+        # A line scan: one row (j = 0).
+        (nx,) = t.nb_grid_pts
+        out["nb_grid_pts"] = [int(nx), 1]
+        out["samples"] = [[i % nx, 0, finite_or_none(hf[i % nx] * scale)] for i, _ in SAMPLES]
     if t.dim == 2:
         nx, ny = t.nb_grid_pts
         out["samples"] = [
             [i % nx, j % ny, finite_or_none(hf[i % nx, j % ny] * scale)] for i, j in SAMPLES
         ]
-        if missing == 0:
-            out["sum"] = float(valid.sum())
-            out["rms"] = float(np.sqrt(np.mean((valid - valid.mean()) ** 2)))
+    if missing == 0:
+        out["sum"] = float(valid.sum())
+        out["rms"] = float(np.sqrt(np.mean((valid - valid.mean()) ** 2)))
     return out
 
 

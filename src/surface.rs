@@ -77,7 +77,8 @@ pub struct SurfaceArgs {
     #[arg(long, value_name = "SEED", default_value_t = 1)]
     pub seed: u64,
     /// Print the statistics of a height map as JSON (with --headless): text matrix or xyz,
-    /// .gsf, .gwy, .x3p, .sdf, .sur, Asylum .ibw, Nanoscope .di/.spm (format from the content).
+    /// .gsf, .gwy, .x3p, .sdf, .sur, Asylum .ibw, Nanoscope .di/.spm, .mi, .al3d, Nanosurf .nid,
+    /// Sensofar .plu, Zygo MetroPro .dat, Bruker .opd/.opdx (format from the content).
     #[arg(long, value_name = "FILE")]
     pub analyze_surface: Option<std::path::PathBuf>,
     /// Channel of a height-map file holding several (by name; see --list-channels), for

@@ -13,6 +13,11 @@
 //! | Bruker / Digital Instruments Nanoscope `.di`, `.spm` | `di` | one per image |
 //! | Agilent / Molecular Imaging PicoView `.mi` | `mi` | one per buffer |
 //! | Alicona Imaging `.al3d` | `al3d` | one (the depth image) |
+//! | Nanosurf easyScan `.nid`, `.ezd` | `nid` | one per data set (frame and quantity) |
+//! | Sensofar `.plu`, `.apx` | `plu` | one per layer |
+//! | Zygo MetroPro `.dat` | `metropro` | one (the phase map) |
+//! | Bruker Wyko `.opd` | `opd` | one per raster |
+//! | Bruker Dektak `.opdx` | `opdx` | the primary map, or each line scan |
 //!
 //! Each reader yields [`Channel`]s: name, grid, physical size and units as the file declares
 //! them, and the heights decoded on demand (only the chosen channel is decoded). Heights keep
@@ -35,7 +40,12 @@ mod di;
 pub(crate) mod gsf;
 mod gwy;
 mod ibw;
+mod metropro;
 mod mi;
+mod nid;
+mod opd;
+mod opdx;
+mod plu;
 mod sdf;
 mod sur;
 mod text;
@@ -238,6 +248,16 @@ pub enum Format {
     Mi,
     /// Alicona Imaging `.al3d`.
     Al3d,
+    /// Nanosurf easyScan `.nid`.
+    Nid,
+    /// Sensofar `.plu`.
+    Plu,
+    /// Zygo MetroPro `.dat`.
+    MetroPro,
+    /// Bruker Wyko `.opd`.
+    Opd,
+    /// Bruker Dektak `.opdx`.
+    Opdx,
 }
 
 impl Format {
@@ -254,6 +274,11 @@ impl Format {
             Format::Di => "Bruker/Digital Instruments Nanoscope (.di, .spm)",
             Format::Mi => "Agilent/Molecular Imaging (.mi)",
             Format::Al3d => "Alicona Imaging (.al3d)",
+            Format::Nid => "Nanosurf easyScan (.nid)",
+            Format::Plu => "Sensofar (.plu)",
+            Format::MetroPro => "Zygo MetroPro (.dat)",
+            Format::Opd => "Bruker Wyko (.opd)",
+            Format::Opdx => "Bruker Dektak (.opdx)",
         }
     }
 
@@ -292,8 +317,23 @@ pub fn detect(bytes: &[u8], path: &Path) -> Result<Format> {
     if bytes.starts_with(b"fileType      ") {
         return Ok(Format::Mi);
     }
+    if bytes.starts_with(nid::MAGIC) && matches!(bytes.get(nid::MAGIC.len()), Some(b'\r' | b'\n')) {
+        return Ok(Format::Nid);
+    }
+    if metropro::MAGICS.iter().any(|m| bytes.starts_with(m)) {
+        return Ok(Format::MetroPro);
+    }
+    if bytes.get(2..2 + opd::MAGIC.len()) == Some(opd::MAGIC) {
+        return Ok(Format::Opd);
+    }
+    if bytes.starts_with(opdx::MAGIC) {
+        return Ok(Format::Opdx);
+    }
     if bytes.len() >= 8 && crate::readers::igor_version(bytes).is_some() {
         return Ok(Format::Ibw);
+    }
+    if plu::looks_like(bytes) {
+        return Ok(Format::Plu);
     }
     let head = &bytes[..bytes.len().min(4096)];
     let binary = head.contains(&0)
@@ -310,7 +350,8 @@ pub fn detect(bytes: &[u8], path: &Path) -> Result<Format> {
             0,
             format!(
                 "not a height map this program reads (binary file starting `{shown}`); formats: \
-                 text matrix or xyz, .gsf, .gwy, .x3p, .sdf, .sur, .ibw, Nanoscope .di/.spm, .mi, .al3d"
+                 text matrix or xyz, .gsf, .gwy, .x3p, .sdf, .sur, .ibw, Nanoscope .di/.spm, .mi, .al3d, \
+                 .nid, .plu, MetroPro .dat, .opd, .opdx"
             ),
         ));
     }
@@ -342,6 +383,11 @@ fn channels<'a>(format: Format, bytes: &'a [u8], path: &'a Path) -> Result<Vec<C
         Format::Di => di::channels(bytes, path)?,
         Format::Mi => mi::channels(bytes, path)?,
         Format::Al3d => al3d::channels(bytes, path)?,
+        Format::Nid => nid::channels(bytes, path)?,
+        Format::Plu => plu::channels(bytes, path)?,
+        Format::MetroPro => metropro::channels(bytes, path)?,
+        Format::Opd => opd::channels(bytes, path)?,
+        Format::Opdx => opdx::channels(bytes, path)?,
     };
     if list.is_empty() {
         return Err(Error::data_file(

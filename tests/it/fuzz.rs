@@ -5,7 +5,8 @@
 //! that mutations reach the headers and channels past the zip's checksums; Asylum .ibw;
 //! afmformats .h5; AFM Workshop CSV and zip; NT-MDT, Chiaro, afmformats .tab text), and the
 //! height-map readers (`map …`: text matrix and xyz, .sdf, .x3p re-zipped from mutated entries,
-//! .gwy, .sur, .ibw images, Nanoscope). Each parser
+//! .gwy, .sur, .ibw images, Nanoscope, .mi, .al3d, .nid, .plu, MetroPro .dat, .opd, .opdx).
+//! Each parser
 //! gets valid seeds mutated (bytes flipped, inserted, deleted, duplicated; numbers such as
 //! 1e308, -0, nan spliced in) and must return `Ok` or `Err`, never panic. A short run is in CI;
 //! `ADHESION_FUZZ_ITERATIONS` sets the count of the `#[ignore]`d long run (default one million
@@ -179,7 +180,8 @@ fn seeds() -> Vec<(&'static str, Vec<u8>)> {
     out
 }
 
-/// The height-map readers' seeds: small fixtures, and small files built from the headers of
+/// The height-map readers' seeds: small fixtures (those of .nid, .plu, MetroPro, .opd and
+/// .opdx written by benches/surfacetopography_reference.py), and small files built from the headers of
 /// larger ones (a 4 x 4 Digital Surf object, a 4 x 4 Nanoscope image, a 4 x 4 .mi file of four
 /// buffers, a 4 x 4 Alicona depth image).
 fn map_seeds() -> Vec<(&'static str, Vec<u8>)> {
@@ -242,6 +244,11 @@ fn map_seeds() -> Vec<(&'static str, Vec<u8>)> {
         ("map .di", di),
         ("map .mi", mi),
         ("map .al3d", al3d),
+        ("map .nid", read("nid-small.nid")),
+        ("map .plu", read("plu-small.plu")),
+        ("map MetroPro .dat", read("metropro-small.dat")),
+        ("map .opd", read("opd-small.opd")),
+        ("map .opdx", read("opdx-small.opdx")),
     ]
 }
 

@@ -81,7 +81,8 @@ fn compare_with_reference(dir: &Path, reference: &str, at_least: usize) {
             .collect();
         let ours = m.info.size.unwrap();
         let f = m.info.xy_unit.metres.unwrap_or(1.0);
-        for k in 0..2 {
+        // A line scan has its length only.
+        for k in 0..st_size.len() {
             assert!(
                 rel(ours[k] * f, st_size[k]) < tol,
                 "{file} {channel}: size {} vs {}",
@@ -107,17 +108,25 @@ fn compare_with_reference(dir: &Path, reference: &str, at_least: usize) {
                 None => assert!(ours.is_nan(), "{file} {channel}: ({i}, {j}) should be missing"),
             }
         }
-        if missing > 0 {
+        // Missing points and line scans read as SurfaceTopography reads them, and are refused as
+        // height maps with one line naming the file and why.
+        let refusal = |why: &str| {
             let err = m
                 .clone()
                 .into_height_map(&path, None, false)
                 .unwrap_err()
                 .to_string();
             assert!(
-                err.contains(&format!("{missing} of")) && err.contains(file) && !err.contains('\n'),
+                err.contains(why) && err.contains(file) && !err.contains('\n'),
                 "{err}"
             );
+        };
+        if missing > 0 {
+            refusal(&format!("{missing} of"));
             continue;
+        }
+        if m.info.ny == 1 {
+            refusal("a line scan (1D profile)");
         }
         let n = z.len() as f64;
         let sum: f64 = z.iter().sum();
@@ -158,6 +167,11 @@ fn fixtures_with_units_become_height_maps() {
         ("xyz-1.txt", None),
         ("mi-1.mi", Some("Topography")),
         ("al3d-1.al3d", None),
+        ("nid-small.nid", None),
+        ("plu-small.plu", Some("layer0")),
+        ("metropro-small.dat", None),
+        ("opd-small.opd", Some("OPD")),
+        ("opdx-small.opdx", None),
     ] {
         let path = maps().join(file);
         let m = read_measured(&path, channel).unwrap();
@@ -296,6 +310,12 @@ fn truncated_and_corrupt_files_give_one_line_errors() {
         "sdf-1.sdf",
         "mi-1.mi",
         "al3d-1.al3d",
+        "nid-small.nid",
+        "plu-small.plu",
+        "metropro-small.dat",
+        "opd-small.opd",
+        "opdx-small.opdx",
+        "opdx-3.opdx",
     ] {
         let bytes = std::fs::read(maps().join(file)).unwrap();
         let path = Path::new(file);
@@ -304,6 +324,9 @@ fn truncated_and_corrupt_files_give_one_line_errors() {
         let last = match file {
             "sdf-1.sdf" => 100,
             "al3d-1.al3d" => 1261 + 296 * 800 - 1,
+            // The Dektak file's item tree ends 3 bytes before its end (a terminator's type and
+            // two bytes).
+            "opdx-3.opdx" => bytes.len() - 3,
             _ => bytes.len() - 1,
         };
         let cuts = [bytes.len() / 2, last, 100.min(bytes.len() - 1), 20, 5];
@@ -317,16 +340,12 @@ fn truncated_and_corrupt_files_give_one_line_errors() {
     // Corrupt: sizes in headers off.
     let mut sur = std::fs::read(maps().join("sur-3.sur")).unwrap();
     sur[116..120].copy_from_slice(&7u32.to_le_bytes());
-    let e = parse_bytes(&sur, Path::new("c.sur"), None)
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("c.sur") && e.contains("point count of 7"), "{e}");
+    let e = refused(&sur, "c.sur", None);
+    assert!(e.contains("point count of 7"), "{e}");
     let mut ibw = std::fs::read(maps().join("10x10-one_channel_without_name.ibw")).unwrap();
     ibw[64 + 12..64 + 16].copy_from_slice(&99i32.to_le_bytes());
-    let e = parse_bytes(&ibw, Path::new("c.ibw"), None)
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("c.ibw") && e.contains("99 points"), "{e}");
+    let e = refused(&ibw, "c.ibw", None);
+    assert!(e.contains("99 points"), "{e}");
 }
 
 trait ErrText {
@@ -345,6 +364,27 @@ impl ErrText for adhesion::error::Result<()> {
     }
 }
 
+/// The one-line error naming the file `file` that reading `bytes` gives.
+fn refused(bytes: &[u8], file: &str, channel: Option<&str>) -> String {
+    let e = parse_bytes(bytes, Path::new(file), channel)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains(file) && !e.contains('\n'), "{e}");
+    e
+}
+
+/// [`refused`] for a text header (read as Latin-1) whose lines `keys` (each a key and its
+/// number) are given the number 100000.
+fn refused_edited(text: &[u8], file: &str, keys: &[&str]) -> String {
+    let mut s: String = text.iter().map(|&b| b as char).collect();
+    for key in keys {
+        let to = format!("{}100000", key.trim_end_matches(|c: char| c.is_ascii_digit()));
+        s = s.replace(key, &to);
+    }
+    let bytes: Vec<u8> = s.chars().map(|c| c as u32 as u8).collect();
+    refused(&bytes, file, None)
+}
+
 /// Headers claiming a 100 000² map are refused before anything is allocated from them.
 #[test]
 fn a_header_claiming_a_huge_map_is_refused() {
@@ -353,10 +393,8 @@ fn a_header_claiming_a_huge_map_is_refused() {
     sur[108..112].copy_from_slice(&100_000i32.to_le_bytes());
     sur[112..116].copy_from_slice(&100_000i32.to_le_bytes());
     sur[116..120].copy_from_slice(&(100_000u32.wrapping_mul(100_000)).to_le_bytes());
-    let e = parse_bytes(&sur, Path::new("huge.sur"), None)
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("huge.sur") && e.contains("100000"), "{e}");
+    let e = refused(&sur, "huge.sur", None);
+    assert!(e.contains("100000"), "{e}");
     // .x3p: SizeX = SizeY = 100000 in main.xml.
     let x3p = std::fs::read(maps().join("x3p-f32.x3p")).unwrap();
     let mut z = zip::ZipArchive::new(std::io::Cursor::new(&x3p)).unwrap();
@@ -373,44 +411,142 @@ fn a_header_claiming_a_huge_map_is_refused() {
         .unwrap();
     std::io::Write::write_all(&mut out, &[0u8; 64]).unwrap();
     let bytes = out.finish().unwrap().into_inner();
-    let e = parse_bytes(&bytes, Path::new("huge.x3p"), None)
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("huge.x3p") && e.contains("100000 x 100000"), "{e}");
-    // Nanoscope: Samps/line and Number of lines 100000.
-    let di = std::fs::read(maps().join("di-3.di")).unwrap();
-    let text: Vec<u8> = String::from_utf8_lossy(&di[..40960])
-        .replace("\\Samps/line: 256", "\\Samps/line: 100000")
-        .replace("\\Number of lines: 256", "\\Number of lines: 100000")
-        .into_bytes();
-    let e = parse_bytes(&text, Path::new("huge.di"), None)
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("huge.di") && e.contains("100000"), "{e}");
-    // .mi: xPixels = yPixels = 100000.
-    let mi = std::fs::read(maps().join("mi-1.mi")).unwrap();
-    let mi: Vec<u8> = String::from_utf8_lossy(&mi[..8192])
-        .replace("xPixels       256", "xPixels       100000")
-        .replace("yPixels       256", "yPixels       100000")
-        .into_bytes();
-    let e = parse_bytes(&mi, Path::new("huge.mi"), None)
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("huge.mi") && e.contains("100000 x 100000"), "{e}");
+    let e = refused(&bytes, "huge.x3p", None);
+    assert!(e.contains("100000 x 100000"), "{e}");
+    // Text headers: Nanoscope (Samps/line, Number of lines), .mi (xPixels, yPixels) and .nid
+    // (Points, Lines) claiming 100000 x 100000 points.
+    for (file, head, keys, claim) in [
+        (
+            "di-3.di",
+            40960,
+            ["\\Samps/line: 256", "\\Number of lines: 256"],
+            "100000",
+        ),
+        (
+            "mi-1.mi",
+            8192,
+            ["xPixels       256", "yPixels       256"],
+            "100000 x 100000",
+        ),
+        (
+            "nid-small.nid",
+            5083,
+            ["Points=24", "Lines=16"],
+            "100000 x 100000",
+        ),
+    ] {
+        let bytes = std::fs::read(maps().join(file)).unwrap();
+        let e = refused_edited(&bytes[..head], &format!("huge-{file}"), &keys);
+        assert!(e.contains(claim), "{e}");
+    }
     // .al3d: Cols = Rows = 100000.
     let mut al3d = std::fs::read(maps().join("al3d-1.al3d")).unwrap();
     for key in [b"Cols".as_slice(), b"Rows"] {
         let at = (0..1261).find(|&k| al3d[k..].starts_with(key)).unwrap();
         al3d[at + 20..at + 26].copy_from_slice(b"100000");
     }
-    let e = parse_bytes(&al3d, Path::new("huge.al3d"), None)
+    let e = refused(&al3d, "huge.al3d", None);
+    assert!(e.contains("100000 x 100000"), "{e}");
+    // .plu: 100000 x 100000 points in the calibration and the layer.
+    let mut plu = std::fs::read(maps().join("plu-small.plu")).unwrap();
+    for at in [388, 392, 500, 504] {
+        plu[at..at + 4].copy_from_slice(&100_000u32.to_le_bytes());
+    }
+    let e = refused(&plu, "huge.plu", None);
+    assert!(e.contains("100000 x 100000"), "{e}");
+    // MetroPro and .opd count points in u16: 65535 x 65535 is above the limit.
+    let mut dat = std::fs::read(maps().join("metropro-small.dat")).unwrap();
+    dat[68..72].copy_from_slice(&[0xff; 4]);
+    let e = refused(&dat, "huge.dat", None);
+    assert!(e.contains("65535 x 65535"), "{e}");
+    let mut opd = std::fs::read(maps().join("opd-small.opd")).unwrap();
+    let raw = opd_raster(&opd, "Raw");
+    opd[raw..raw + 4].copy_from_slice(&[0xff; 4]);
+    let e = parse_bytes(&opd, Path::new("huge.opd"), Some("Raw"))
         .unwrap_err()
         .to_string();
-    assert!(e.contains("huge.al3d") && e.contains("100000 x 100000"), "{e}");
+    assert!(e.contains("huge.opd") && e.contains("65535 x 65535"), "{e}");
+    // .opdx: Dimension1Points = Dimension2Points = 100000.
+    let mut opdx = std::fs::read(maps().join("opdx-small.opdx")).unwrap();
+    for key in [b"Dimension1Points".as_slice(), b"Dimension2Points"] {
+        let at = opdx.windows(key.len()).position(|w| w == key).unwrap() + key.len() + 1;
+        opdx[at..at + 4].copy_from_slice(&100_000u32.to_le_bytes());
+    }
+    let e = refused(&opdx, "huge.opdx", None);
+    assert!(e.contains("100000 x 100000"), "{e}");
     // .gsf: XRes = YRes = 100000.
     let gsf = b"Gwyddion Simple Field 1.0\nXRes = 100000\nYRes = 100000\nXReal = 1\nYReal = 1\n\0\0\0";
-    let e = parse_bytes(gsf, Path::new("huge.gsf"), None)
+    let e = refused(gsf, "huge.gsf", None);
+    assert!(e.contains("100000"), "{e}");
+}
+
+/// Offset of the raster block `name` in a Wyko .opd file (its points in x, y and item size).
+fn opd_raster(opd: &[u8], name: &str) -> usize {
+    let entry = |k: usize| {
+        let e = &opd[2 + 24 * k..2 + 24 * (k + 1)];
+        let n = e[..16].iter().position(|&b| b == 0).unwrap_or(16);
+        (
+            String::from_utf8_lossy(&e[..n]).into_owned(),
+            i32::from_le_bytes(e[18..22].try_into().unwrap()) as usize,
+        )
+    };
+    let (_, dir) = entry(0);
+    let mut at = 2 + dir;
+    for k in 1..dir / 24 {
+        let (n, len) = entry(k);
+        if n == name {
+            return at;
+        }
+        at += len;
+    }
+    panic!("no block {name}")
+}
+
+/// Why the channel of a file's bytes that reads is not a height map.
+fn height_map_error(bytes: &[u8], file: &str, channel: Option<&str>) -> String {
+    let path = Path::new(file);
+    parse_bytes(bytes, path, channel)
+        .unwrap()
+        .into_height_map(path, None, false)
         .unwrap_err()
-        .to_string();
-    assert!(e.contains("huge.gsf") && e.contains("100000"), "{e}");
+        .to_string()
+}
+
+/// Points not measured in the new instrument formats become missing points, refused with
+/// their count; a Sensofar profile is refused as a line scan; the channels of a Nanosurf file
+/// are listed with their units.
+#[test]
+fn instrument_markers_of_points_not_measured_are_missing() {
+    // MetroPro: a phase of 2147483647 at x index 3, y index 1 (20 points per row).
+    let mut dat = std::fs::read(maps().join("metropro-small.dat")).unwrap();
+    let at = 834 + 2 * 4 * 3 + 4 * (20 + 3);
+    dat[at..at + 4].copy_from_slice(&i32::MAX.to_be_bytes());
+    let e = height_map_error(&dat, "bad.dat", None);
+    assert!(
+        e.contains("1 of 280 points are missing") && e.contains("x index 3, y index 1"),
+        "{e}"
+    );
+    // .opd: an f32 of 1e38 in the raster "Raw" (y fastest, from the top: stored index 0 is x
+    // index 0 at the last row, y index 9).
+    let mut opd = std::fs::read(maps().join("opd-small.opd")).unwrap();
+    let at = opd_raster(&opd, "Raw") + 6;
+    opd[at..at + 4].copy_from_slice(&1e38f32.to_le_bytes());
+    let e = height_map_error(&opd, "bad.opd", Some("Raw"));
+    assert!(
+        e.contains("1 of 180 points are missing") && e.contains("x index 0, y index 9"),
+        "{e}"
+    );
+    // Sensofar: measurement type 1, a profile.
+    let mut plu = std::fs::read(maps().join("plu-small.plu")).unwrap();
+    plu[428..432].copy_from_slice(&1u32.to_le_bytes());
+    let e = refused(&plu, "profile.plu", None);
+    assert!(e.contains("line scan"), "{e}");
+    // Nanosurf: every data set listed, the deflection in newtons.
+    let list = adhesion::surface::formats::list_channels(&maps().join("nid-small.nid")).unwrap();
+    assert!(
+        list.contains("Scan forward (Deflection): 24 x 16 points, 5e-6 x 3.33333e-6 m, heights in N")
+            && list.contains("Scan forward (Z-Axis)")
+            && list.contains("Scan backward (Z-Axis)"),
+        "{list}"
+    );
 }
