@@ -676,23 +676,31 @@ impl Num {
     }
 
     /// Decode `n` numbers from `data` (which must hold them: checked by the caller, again here).
+    /// One loop over whole chunks per type and byte order (no bounds check per number).
     pub(crate) fn decode(self, data: &[u8], n: usize, le: bool) -> Option<Vec<f64>> {
-        let e = self.size();
-        let data = data.get(..n.checked_mul(e)?)?;
-        let r = Bytes { b: data, le };
-        let mut out = Vec::with_capacity(n);
-        for k in 0..n {
-            let at = k * e;
-            out.push(match self {
-                Num::I16 => f64::from(r.i16(at)?),
-                Num::U16 => f64::from(r.u16(at)?),
-                Num::I32 => f64::from(r.i32(at)?),
-                Num::U32 => f64::from(r.u32(at)?),
-                Num::F32 => f64::from(r.f32(at)?),
-                Num::F64 => r.f64(at)?,
-            });
+        let data = data.get(..n.checked_mul(self.size())?)?;
+        fn all<const N: usize>(data: &[u8], f: impl Fn([u8; N]) -> f64) -> Vec<f64> {
+            data.chunks_exact(N)
+                .map(|c| f(c.try_into().expect("chunks_exact gives N bytes")))
+                .collect()
         }
-        Some(out)
+        macro_rules! of {
+            ($n:literal, $t:ty) => {
+                if le {
+                    all::<$n>(data, |b| <$t>::from_le_bytes(b) as f64)
+                } else {
+                    all::<$n>(data, |b| <$t>::from_be_bytes(b) as f64)
+                }
+            };
+        }
+        Some(match self {
+            Num::I16 => of!(2, i16),
+            Num::U16 => of!(2, u16),
+            Num::I32 => of!(4, i32),
+            Num::U32 => of!(4, u32),
+            Num::F32 => of!(4, f32),
+            Num::F64 => of!(8, f64),
+        })
     }
 }
 
