@@ -7,7 +7,7 @@ use super::draw::{
     Anchor, Baseline, Label, draw_hatched, draw_label, draw_marker, draw_pixel_line, draw_polyline,
     draw_ring, fill_polygon, pixel_runs,
 };
-use super::{Area, Draw, Frame, Metrics, PANEL_H, PANEL_W, err, ipt, palette, panel_frame, panel_slot, rgb};
+use super::{Area, Draw, Frame, Metrics, Print, err, ipt, palette, panel_frame, panel_slot, rgb};
 use crate::figure::{Figure, Legend, MarkerShape, Panel, Style};
 
 /// What a legend entry shows before its text.
@@ -115,6 +115,14 @@ fn legend_entries(panel: &Panel, colors: &[usize]) -> Vec<(String, Swatch)> {
         }
     }
     entries
+}
+
+/// The names of a panel's legend entries, in order (empty for a hidden legend).
+pub(super) fn entry_names(panel: &Panel) -> Vec<String> {
+    legend_entries(panel, &panel.series_colors())
+        .into_iter()
+        .map(|(n, _)| n)
+        .collect()
 }
 
 /// Pixel positions of everything a legend must not cover: the series drawn as lines (densified,
@@ -324,9 +332,9 @@ fn free_place(
 /// panel's own area at the PNG scale), with the pixel positions of every series point and
 /// marker inside the frame. `None` for a panel with nothing to draw.
 pub fn panel_layouts(fig: &Figure) -> Vec<Option<PanelLayout>> {
-    let m = Metrics::png(2.0);
-    let (pw, ph) = (m.px(PANEL_W), m.px(PANEL_H));
-    fig.panels
+    let m = Metrics::png(fig, &Print::default());
+    let (pw, ph) = (m.px(m.panel.0), m.px(m.panel.1));
+    super::shown_panels(fig)
         .iter()
         .enumerate()
         .map(|(k, panel)| {
@@ -405,6 +413,7 @@ pub(super) fn draw_legend<DB: DrawingBackend>(area: &Area<DB>, plan: &LegendPlan
                 let step = (x1 - x0) / k as f64;
                 let mm = Metrics {
                     s: if k > 1 { m.s * 0.75 } else { m.s },
+                    panel: m.panel,
                     images: None,
                     texts: None,
                     aa: m.aa,
@@ -475,7 +484,7 @@ fn densify(frame: &Frame, points: &[(f64, f64)]) -> Vec<(f64, f64)> {
 
 /// Split a note into lines of at most `limit` pixels at `font` px, at spaces (a word longer
 /// than the limit stays whole).
-fn wrap(note: &str, font: f64, limit: f64) -> Vec<String> {
+pub(super) fn wrap(note: &str, font: f64, limit: f64) -> Vec<String> {
     let mut lines: Vec<String> = Vec::new();
     let mut line = String::new();
     for word in note.split_whitespace() {
