@@ -46,10 +46,11 @@ pub fn from_svg(svg: &str) -> Result<Vec<u8>> {
         ..usvg::Options::default()
     };
     let tree = usvg::Tree::from_str(svg, &options).map_err(|e| render_error(e.to_string()))?;
+    // usvg gives sizes in CSS pixels (96 per inch): the page keeps the figure's width in mm.
     svg2pdf::to_pdf(
         &tree,
         svg2pdf::ConversionOptions::default(),
-        svg2pdf::PageOptions::default(),
+        svg2pdf::PageOptions { dpi: 96.0 },
     )
     .map_err(|e| render_error(e.to_string()))
 }

@@ -643,7 +643,7 @@ fn panel_frame(panel: &Panel, w: f64, h: f64, m: &Metrics) -> Option<(Frame, boo
         } else {
             38.0
         }) * m.s,
-        h - 66.0 * m.s,
+        h - 56.0 * m.s,
     );
     let ((xlo, xhi), (ylo, yhi)) = panel.data_bounds()?;
     // A colour map fills its frame (as far as its cells reach), unless something drawn over
@@ -950,7 +950,7 @@ fn draw_axes<DB: DrawingBackend>(
     ];
     draw_polyline(area, &frame_pts, black, (1.2 * m.s).round().max(1.0), m)?;
     let tick_len = 6.0 * m.s;
-    let tick_font = m.font(13.0);
+    let tick_font = m.font(TICK_TEXT);
     for (v, label) in xt.values.iter().zip(&xt.labels) {
         if let Some(px) = frame.tx(*v) {
             draw_polyline(area, &[(px, frame.y1), (px, frame.y1 - tick_len)], black, 1.0, m)?;
@@ -996,7 +996,7 @@ fn draw_axes<DB: DrawingBackend>(
     draw_label(
         area,
         Label::new(x_title, label_font),
-        (0.5 * (frame.x0 + frame.x1), frame.y1 + 58.0 * m.s),
+        (0.5 * (frame.x0 + frame.x1), frame.y1 + 46.0 * m.s),
         (Anchor::Middle, Baseline::Bottom),
         m,
     )?;
@@ -1064,23 +1064,28 @@ fn draw_colour_bar<DB: DrawingBackend>(
     ];
     draw_polyline(area, &outline, BLACK.to_rgba(), 1.0, m)?;
     let (bt, power) = common_power(ticks(lo, hi, Scale::Linear, 5));
+    let mut widest = 0.0f64;
     for (v, label) in bt.values.iter().zip(&bt.labels) {
         let y = frame.y1 - (v - lo) / (hi - lo).max(f64::MIN_POSITIVE) * (frame.y1 - frame.y0);
         draw_polyline(area, &[(bx1, y), (bx1 + 4.0 * m.s, y)], BLACK.to_rgba(), 1.0, m)?;
+        let text = tick_markup(label);
+        let label = Label::new(&text, m.font(SMALL_TEXT));
+        widest = widest.max(label.width());
         draw_label(
             area,
-            Label::new(&tick_markup(label), m.font(SMALL_TEXT)),
+            label,
             (bx1 + 6.0 * m.s, y),
             (Anchor::Start, Baseline::Center),
             m,
         )?;
     }
     let title = scaled_title(&field.name, &field.unit, power);
+    // Along the bar, right of its tick labels (above the frame it would meet the heading).
     draw_label(
         area,
-        Label::new(&title, m.font(SMALL_TEXT)),
-        (0.5 * (bx0 + bx1) + 10.0 * m.s, frame.y0 - 6.0 * m.s),
-        (Anchor::Middle, Baseline::Bottom),
+        Label::new(&title, m.font(SMALL_TEXT)).vertical(),
+        (bx1 + 10.0 * m.s + widest, 0.5 * (frame.y0 + frame.y1)),
+        (Anchor::Middle, Baseline::Top),
         m,
     )
 }
@@ -1133,6 +1138,9 @@ fn scaled_title(label: &str, unit: &str, power: Option<i32>) -> String {
         (false, Some(p)) => format!("{label} [{p} {unit}]"),
     }
 }
+
+/// Size of the tick labels (layout units): 7 pt.
+const TICK_TEXT: f64 = 7.0 / PT_PER_UNIT;
 
 /// Size of the panel letters (layout units): 9 pt.
 const PANEL_LETTER: f64 = 9.0 / PT_PER_UNIT;

@@ -148,7 +148,7 @@ pub fn numbers(src: &str) -> String {
             while k < chars.len() && chars[k].is_ascii_digit() {
                 k += 1;
             }
-            let free = k == chars.len() || !(chars[k].is_alphanumeric() || chars[k] == '.');
+            let free = ends_number(&chars, k);
             if k > d0 && free {
                 let digits: String = chars[d0..k].iter().collect();
                 let digits = digits.trim_start_matches('0');
@@ -161,7 +161,7 @@ pub fn numbers(src: &str) -> String {
                 });
             }
         }
-        let free = j == chars.len() || !(chars[j].is_alphanumeric() || chars[j] == '.');
+        let free = ends_number(&chars, j);
         match exponent {
             Some(e) if e == "0" => {
                 out.push_str(&mantissa);
@@ -186,6 +186,16 @@ pub fn numbers(src: &str) -> String {
         }
     }
     out
+}
+
+/// Whether a number ends before `chars[k]`: the end of the text, or a character that is not a
+/// letter, a digit, or a point before a digit (a full stop ends a number).
+fn ends_number(chars: &[char], k: usize) -> bool {
+    match chars.get(k) {
+        None => true,
+        Some('.') => !chars.get(k + 1).is_some_and(char::is_ascii_digit),
+        Some(c) => !c.is_alphanumeric(),
+    }
 }
 
 /// The kind of a character that may continue a bare sub- or superscript word: ASCII digits,
@@ -216,8 +226,9 @@ pub fn notation(src: &str) -> String {
         let prev = i.checked_sub(1).and_then(|k| chars.get(k));
         let next = chars.get(i + 1);
         match c {
-            '0' if matches!(prev, Some('ζ' | 'Z'))
-                && !alnum(i.checked_sub(2).and_then(|k| chars.get(k)))
+            // ζ after a letter is a product (`Rζ0`); Z after a letter is part of a word.
+            '0' if (prev == Some(&'ζ')
+                || (prev == Some(&'Z') && !alnum(i.checked_sub(2).and_then(|k| chars.get(k)))))
                 && !next.is_some_and(|n| n.is_ascii_digit() || n.is_alphabetic() || *n == '_') =>
             {
                 out.push_str("_0");
@@ -831,7 +842,7 @@ mod tests {
 
     #[test]
     fn notation_subscripts_zeta0_and_raises_the_asterisk() {
-        assert_eq!(notation("z_c/ζ0"), "z_c/ζ_0");
+        assert_eq!(notation("z_c/ζ0, √(2Rζ0)"), "z_c/ζ_0, √(2Rζ_0)");
         assert_eq!(notation("Z0 [nm]"), "Z_0 [nm]");
         assert_eq!(notation("ζ_0 and Z01 and fig3.Z0x"), "ζ_0 and Z01 and fig3.Z0x");
         assert_eq!(notation("H/(2E*R³)"), "ℋ/(2E^*R³)");

@@ -33,7 +33,7 @@ const NOTE_WIDTH: f64 = 0.5;
 
 /// Distance of notes written under a panel from the bottom of its frame, at scale 1 (below the
 /// tick labels and the x-axis title).
-pub(super) const FOOTER_OFFSET: f64 = 62.0;
+pub(super) const FOOTER_OFFSET: f64 = 52.0;
 
 /// A legend ready to draw: its entries and its box in pixels.
 pub(super) struct LegendPlan {
@@ -257,14 +257,23 @@ pub(super) fn plan_legend(
             return (frame, legend.into_iter().chain([footer]).collect());
         }
     }
-    // Outside on the right, beyond the colour bar if there is one; the notes, if any, under the
-    // panel, so that the frame narrows only by the legend's width.
+    // Outside on the right, beyond the colour bar if there is one, where the frame keeps most
+    // of its width; else under the panel, below the x-axis title (the panel grows to hold it).
+    let right_margin = if has_bar { 110.0 } else { 16.0 } * m.s;
+    let legend_w = boxed(entries.clone()).map_or(combined.w, |l| l.w);
+    if panel_w - legend_w - 6.0 * m.s - right_margin < frame.x0 + 0.55 * (frame.x1 - frame.x0) {
+        let mut plan = combined;
+        plan.footer = true;
+        plan.x = frame.x0 - pad;
+        plan.y = frame.y1 + FOOTER_OFFSET * m.s;
+        return (frame, vec![plan]);
+    }
+    // The notes, if any, under the panel, so that the frame narrows only by the legend's width.
     let (mut plan, footer) = match (boxed(entries), notes.is_empty()) {
         (Some(legend), false) => (legend, true),
         _ => (combined, false),
     };
     let x = panel_w - plan.w - 6.0 * m.s;
-    let right_margin = if has_bar { 110.0 } else { 16.0 } * m.s;
     let x1 = (x - right_margin).max(frame.x0 + 0.3 * (frame.x1 - frame.x0));
     let frame = Frame { x1, ..frame };
     plan.x = x;
