@@ -1097,7 +1097,7 @@ fn draw_colour_bar<DB: DrawingBackend>(
 fn common_power(t: super::axes::Ticks) -> (super::axes::Ticks, Option<i32>) {
     let sci = t.labels.iter().any(|l| l.contains('e'));
     let top = t.values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    if !sci || !(top > 0.0 && top.is_finite()) || !t.minor.is_empty() {
+    if !(sci && top > 0.0 && top.is_finite() && t.minor.is_empty()) {
         return (t, None);
     }
     let k = top.log10().floor() as i32;
