@@ -61,7 +61,7 @@ pub struct Cli {
     #[arg(long, value_name = "DIR", default_value = "output")]
     pub out: PathBuf,
 
-    /// Formats to write, comma-separated: png, svg, csv, json.
+    /// Formats to write, comma-separated: png, svg, csv, json, pdf.
     #[arg(
         long,
         value_name = "LIST",
@@ -69,6 +69,15 @@ pub struct Cli {
         default_value = "png,svg,csv,json"
     )]
     pub format: Vec<String>,
+
+    /// Width of the figures on the page in mm (default: 90 for one panel, 190 for more); text
+    /// keeps its size in points (axis titles 8 pt, tick labels 7 pt).
+    #[arg(long = "width-mm", value_name = "MM")]
+    pub width_mm: Option<f64>,
+
+    /// Resolution of the PNG figures in dots per inch (default 300).
+    #[arg(long, value_name = "DPI")]
+    pub dpi: Option<f64>,
 
     /// Compute only shard I of N of a sweep scene (the points whose id is I modulo N, I from 0),
     /// one file per point in a folder under --out; points already there are skipped, so a rerun
@@ -237,6 +246,8 @@ pub fn check_options(cli: &Cli) -> crate::error::Result<()> {
         &["--figure", "--all", "--merge"]
     };
     used(given("format"), "--format", by_format)?;
+    used(cli.width_mm.is_some(), "--width-mm", by_format)?;
+    used(cli.dpi.is_some(), "--dpi", by_format)?;
     used(
         given("out"),
         "--out",

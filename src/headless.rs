@@ -15,7 +15,8 @@ use crate::error::{Error, Result};
 use crate::figure::Figure;
 use crate::job::{Job, JobEvent};
 use crate::params::{ParamValues, fmt_float, value_text};
-use crate::render::{Format, data, plot, write_set};
+use crate::render::plot::Print;
+use crate::render::{Format, data, pdf, plot, write_set};
 use crate::reproduction;
 use crate::scenes::{self, SceneDyn, chapter_title};
 
@@ -40,6 +41,7 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
         return Ok(ExitCode::SUCCESS);
     }
     let formats = parse_formats(&cli.format)?;
+    let print = Print::new(cli.width_mm, cli.dpi)?;
     if cli.reproduce {
         return reproduce_command(&cli.out);
     }
@@ -95,7 +97,7 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
             }
             return Ok(ExitCode::SUCCESS);
         }
-        let written = export_scene(scene, &values, &cli.out, &formats, &progress_job(id))?;
+        let (_, written) = export_scene_at(scene, &values, &cli.out, &formats, &print, &progress_job(id))?;
         for p in written {
             emit_line(&p.display())?;
         }
@@ -109,37 +111,42 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
             let info = scene.info();
             // Sweeps and long runs (minutes each at their defaults) run in their quick form here.
             let quick = cli.quick || info.sweep || info.long;
-            let outcome = resolve_values(scene, None, &[], quick)
-                .and_then(|values| export_scene(scene, &values, &cli.out, &formats, &progress_job(id)));
-            let image = [Format::Png, Format::Svg]
-                .into_iter()
-                .find(|f| formats.contains(f))
-                .map(|f| format!("{id}.{}", f.extension()));
-            match outcome {
-                Ok(paths) => {
-                    for p in paths {
+            let outcome = resolve_values(scene, None, &[], quick).and_then(|values| {
+                export_scene_at(scene, &values, &cli.out, &formats, &print, &progress_job(id))
+            });
+            let mut entry = GalleryEntry {
+                id,
+                chapter: info.chapter,
+                title: info.title,
+                caption: info.caption,
+                thumbnail: None,
+                files: Vec::new(),
+                notes: Vec::new(),
+                quick,
+                error: None,
+            };
+            match outcome.and_then(|(fig, paths)| {
+                let thumb = write_thumbnail(&fig, &cli.out)?;
+                Ok((fig, paths, thumb))
+            }) {
+                Ok((fig, paths, thumb)) => {
+                    for p in &paths {
                         emit_line(&p.display())?;
                     }
-                    gallery.push(GalleryEntry {
-                        id,
-                        title: info.title,
-                        caption: info.caption,
-                        image,
-                        error: None,
-                    });
+                    entry.files = paths
+                        .iter()
+                        .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
+                        .collect();
+                    entry.thumbnail = Some(thumb);
+                    entry.notes = figure_notes(&fig);
                 }
                 Err(e) => {
                     failed += 1;
                     eprintln!("error: {id}: {e}");
-                    gallery.push(GalleryEntry {
-                        id,
-                        title: info.title,
-                        caption: info.caption,
-                        image: None,
-                        error: Some(format!("{e:#}")),
-                    });
+                    entry.error = Some(format!("{e:#}"));
                 }
             }
+            gallery.push(entry);
         }
         let index = cli.out.join("index.html");
         crate::render::write_atomic(&index, gallery_html(&gallery).as_bytes())?;
@@ -177,14 +184,63 @@ pub fn emit_line(line: &dyn std::fmt::Display) -> Result<()> {
 pub struct GalleryEntry {
     /// Scene id.
     pub id: &'static str,
+    /// Chapter key (the table of contents groups by it).
+    pub chapter: &'static str,
     /// Title.
     pub title: &'static str,
-    /// Caption.
+    /// Caption (math markup and Greek names, shown with Unicode letters and sub-/superscripts).
     pub caption: &'static str,
-    /// Image file name next to the page (PNG, else SVG), if one was written.
-    pub image: Option<String>,
+    /// The small PNG shown on the page (a path relative to the page), if one was written.
+    pub thumbnail: Option<String>,
+    /// The files written for the figure, next to the page (linked by their extension).
+    pub files: Vec<String>,
+    /// The figure's notes: what the workbench finds where it differs from the text.
+    pub notes: Vec<String>,
+    /// Whether the figure ran in its quick form (fewer points than the defaults).
+    pub quick: bool,
     /// Why the scene failed, if it did.
     pub error: Option<String>,
+}
+
+/// Width of a gallery thumbnail (pixels).
+const THUMBNAIL_PX: f64 = 480.0;
+
+/// Write the gallery's thumbnail of `fig`, `thumbs/<id>.png` under `out`, a PNG about
+/// [`THUMBNAIL_PX`] wide; returns its path relative to `out`.
+///
+/// # Errors
+/// Rendering and I/O errors.
+pub fn write_thumbnail(fig: &Figure, out: &Path) -> Result<String> {
+    let width_mm = Print::default().width_of(fig);
+    let dpi = (THUMBNAIL_PX / (width_mm / 25.4)).max(Print::MIN_DPI);
+    let bytes = plot::png_bytes_at(fig, &Print::new(Some(width_mm), Some(dpi))?)?;
+    let name = format!("thumbs/{}.png", fig.id);
+    create_folder(&out.join("thumbs"))?;
+    crate::render::write_atomic(&out.join(&name), &bytes)?;
+    Ok(name)
+}
+
+/// The notes of a figure and of its panels, each once (panel notes with the panel's letter).
+pub fn figure_notes(fig: &Figure) -> Vec<String> {
+    let mut notes: Vec<String> = Vec::new();
+    let mut add = |n: String| {
+        if !notes.contains(&n) {
+            notes.push(n);
+        }
+    };
+    for n in &fig.notes {
+        add(n.clone());
+    }
+    for p in &fig.panels {
+        for n in &p.notes {
+            add(if p.label.is_empty() {
+                n.clone()
+            } else {
+                format!("{} {n}", p.label)
+            });
+        }
+    }
+    notes
 }
 
 fn html_escape(s: &str) -> String {
@@ -194,43 +250,95 @@ fn html_escape(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
-/// The gallery page written by `--all`: every figure with its id, title and caption, so that a
-/// reader can check them all at once.
+/// The gallery page written by `--all`: a table of contents by chapter, then every figure as a
+/// thumbnail linking to its full-size image, with links to its files (SVG, PDF, CSV, JSON), its
+/// caption with Unicode math, whether it ran in quick form, and its notes.
 pub fn gallery_html(entries: &[GalleryEntry]) -> String {
+    let math = |s: &str| crate::render::text::html(&crate::render::text::greek_words(s));
     let mut out = String::from(
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n\
-         <title>adhesion: every figure</title>\n<style>body{font-family:sans-serif;max-width:1400px;\
+         <title>adhesion: every figure</title>\n<style>body{font-family:sans-serif;max-width:1100px;\
          margin:auto;padding:1em}figure{margin:2em 0;border-top:1px solid #ccc;padding-top:1em}\
-         img{max-width:100%}figcaption{max-width:60em}.error{color:#b00}</style></head><body>\n\
-         <h1>Figures of the adhesion workbench</h1>\n",
+         img{max-width:100%;border:1px solid #eee}figcaption{max-width:60em}.error{color:#b00}\
+         .files a{margin-right:.8em}.quick{color:#a60}.notes{font-size:90%;color:#333}</style>\
+         </head><body>\n<h1>Figures of the adhesion workbench</h1>\n<nav><h2>Contents</h2>\n",
     );
-    out.push_str("<ul>\n");
+    let mut chapter = None;
     for e in entries {
+        if chapter != Some(e.chapter) {
+            if chapter.is_some() {
+                out.push_str("</ul>\n");
+            }
+            chapter = Some(e.chapter);
+            out.push_str(&format!(
+                "<h3>Chapter {}: {}</h3>\n<ul>\n",
+                html_escape(e.chapter),
+                html_escape(chapter_title(e.chapter))
+            ));
+        }
         out.push_str(&format!(
             "<li><a href=\"#{id}\">{id}</a>: {t}</li>\n",
             id = html_escape(e.id),
-            t = html_escape(e.title)
+            t = math(e.title)
         ));
     }
-    out.push_str("</ul>\n");
+    if chapter.is_some() {
+        out.push_str("</ul>\n");
+    }
+    out.push_str("</nav>\n");
     for e in entries {
         out.push_str(&format!("<figure id=\"{}\">\n", html_escape(e.id)));
-        if let Some(img) = &e.image {
-            out.push_str(&format!(
-                "<a href=\"{img}\"><img src=\"{img}\" alt=\"{}\" loading=\"lazy\"></a>\n",
+        let full = ["png", "svg", "pdf"]
+            .iter()
+            .find_map(|ext| e.files.iter().find(|f| f.ends_with(&format!(".{ext}"))));
+        if let Some(thumb) = &e.thumbnail {
+            let img = format!(
+                "<img src=\"{}\" alt=\"{}\" loading=\"lazy\" width=\"{}\">",
+                html_escape(thumb),
                 html_escape(e.title),
-                img = html_escape(img)
-            ));
+                THUMBNAIL_PX
+            );
+            match full {
+                Some(f) => out.push_str(&format!("<a href=\"{}\">{img}</a>\n", html_escape(f))),
+                None => out.push_str(&format!("{img}\n")),
+            }
+        }
+        if !e.files.is_empty() {
+            out.push_str("<p class=\"files\">");
+            for ext in ["png", "svg", "pdf", "csv", "json"] {
+                if let Some(f) = e.files.iter().find(|f| f.ends_with(&format!(".{ext}"))) {
+                    out.push_str(&format!(
+                        "<a href=\"{}\">{}</a>",
+                        html_escape(f),
+                        ext.to_uppercase()
+                    ));
+                }
+            }
+            out.push_str("</p>\n");
         }
         if let Some(err) = &e.error {
             out.push_str(&format!("<p class=\"error\">failed: {}</p>\n", html_escape(err)));
         }
         out.push_str(&format!(
-            "<figcaption><b>{}</b> {}. {}</figcaption>\n</figure>\n",
+            "<figcaption><b>{}</b> {}. {}{}</figcaption>\n",
             html_escape(e.id),
-            html_escape(e.title),
-            html_escape(e.caption)
+            math(e.title),
+            math(e.caption),
+            if e.quick {
+                " <span class=\"quick\">(quick form: fewer points than the defaults; \
+                 export it with --figure for the full run)</span>"
+            } else {
+                ""
+            }
         ));
+        if !e.notes.is_empty() {
+            out.push_str("<ul class=\"notes\">\n");
+            for n in &e.notes {
+                out.push_str(&format!("<li>{}</li>\n", math(n)));
+            }
+            out.push_str("</ul>\n");
+        }
+        out.push_str("</figure>\n");
     }
     out.push_str("</body></html>\n");
     out
@@ -243,8 +351,8 @@ pub fn gallery_html(entries: &[GalleryEntry]) -> String {
 pub fn parse_formats(names: &[String]) -> anyhow::Result<Vec<Format>> {
     let mut formats = Vec::new();
     for n in names {
-        let f =
-            Format::parse(n).with_context(|| format!("unknown format `{n}`: use png, svg, csv or json"))?;
+        let f = Format::parse(n)
+            .with_context(|| format!("unknown format `{n}`: use png, svg, csv, json or pdf"))?;
         if !formats.contains(&f) {
             formats.push(f);
         }
@@ -373,7 +481,8 @@ pub fn resolve_values(
     Ok(values)
 }
 
-/// Run a scene and write its files. Nothing is written unless the run succeeds.
+/// Run a scene and write its files at the default print size. Nothing is written unless the
+/// run succeeds.
 ///
 /// # Errors
 /// Run errors, rendering errors, I/O errors.
@@ -384,11 +493,35 @@ pub fn export_scene(
     formats: &[Format],
     job: &Job,
 ) -> Result<Vec<PathBuf>> {
+    export_scene_at(scene, values, out, formats, &Print::default(), job).map(|(_, paths)| paths)
+}
+
+/// [`export_scene`] with the figures at the print size `print` (`--width-mm`, `--dpi`);
+/// returns the figure with the paths written.
+///
+/// # Errors
+/// Run errors, rendering errors, I/O errors.
+pub fn export_scene_at(
+    scene: &dyn SceneDyn,
+    values: &ParamValues,
+    out: &Path,
+    formats: &[Format],
+    print: &Print,
+    job: &Job,
+) -> Result<(Figure, Vec<PathBuf>)> {
     let start = Instant::now();
     let fig = scene.run(values, job)?;
     let run_time = start.elapsed().as_secs_f64();
     finish_progress();
-    write_figure(&fig, scene.info().caption, values, run_time, out, formats)
+    let record = FigureRecord {
+        fig: &fig,
+        caption: scene.info().caption,
+        values,
+        run_time_s: run_time,
+        runs: &[],
+    };
+    let paths = write_figure_at(&record, out, formats, print)?;
+    Ok((fig, paths))
 }
 
 /// Write a computed figure in the given formats as `<out>/<id>.<ext>`. All files are rendered
@@ -421,15 +554,55 @@ pub fn write_figure_with_runs(
     out: &Path,
     formats: &[Format],
 ) -> Result<Vec<PathBuf>> {
+    let record = FigureRecord {
+        fig,
+        caption,
+        values,
+        run_time_s,
+        runs,
+    };
+    write_figure_at(&record, out, formats, &Print::default())
+}
+
+/// A computed figure with what its JSON records beside it.
+pub struct FigureRecord<'a> {
+    /// The figure.
+    pub fig: &'a Figure,
+    /// The scene's caption.
+    pub caption: &'a str,
+    /// The parameters of the run.
+    pub values: &'a ParamValues,
+    /// Run time (s).
+    pub run_time_s: f64,
+    /// Earlier runs drawn in the figure (pinned in the terminal UI).
+    pub runs: &'a [data::RunRecord<'a>],
+}
+
+/// [`write_figure_with_runs`] at the print size `print`: `<out>/<id>.<ext>` per format, all
+/// rendered in memory first and written together.
+///
+/// # Errors
+/// Rendering and I/O errors; on error no new file is left behind.
+pub fn write_figure_at(
+    record: &FigureRecord<'_>,
+    out: &Path,
+    formats: &[Format],
+    print: &Print,
+) -> Result<Vec<PathBuf>> {
+    let fig = record.fig;
     let path = |f: Format| out.join(format!("{}.{}", fig.id, f.extension()));
     // Render every format in memory first: a failure there writes nothing.
     let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
     for &f in formats {
         let bytes = match f {
-            Format::Png => plot::png_bytes(fig)?,
-            Format::Svg => plot::svg_string(fig)?.into_bytes(),
+            Format::Png => plot::png_bytes_at(fig, print)?,
+            Format::Svg => plot::svg_string_at(fig, print)?.into_bytes(),
+            Format::Pdf => pdf::pdf_bytes_at(fig, print)?,
             Format::Csv => data::csv(fig).into_bytes(),
-            Format::Json => data::json_with_runs(fig, caption, values, run_time_s, runs).into_bytes(),
+            Format::Json => {
+                data::json_with_runs(fig, record.caption, record.values, record.run_time_s, record.runs)
+                    .into_bytes()
+            }
         };
         files.push((path(f), bytes));
     }
@@ -551,26 +724,46 @@ mod gallery_tests {
 
     #[test]
     fn gallery_shows_every_figure_with_its_caption_and_escapes_text() {
+        let entry = |id, title, caption| GalleryEntry {
+            id,
+            chapter: "1",
+            title,
+            caption,
+            thumbnail: None,
+            files: Vec::new(),
+            notes: Vec::new(),
+            quick: false,
+            error: None,
+        };
         let entries = vec![
             GalleryEntry {
-                id: "fig1.1",
-                title: "JKR",
-                caption: "P < 0 & pull-off",
-                image: Some("fig1.1.png".into()),
-                error: None,
+                thumbnail: Some("thumbs/fig1.1.png".into()),
+                files: vec!["fig1.1.png".into(), "fig1.1.csv".into(), "fig1.1.pdf".into()],
+                notes: vec!["mu_T = 2 differs".into()],
+                quick: true,
+                ..entry("fig1.1", "JKR", "P < 0 & pull-off at P_adh/(2E*R^2)")
             },
             GalleryEntry {
-                id: "fig9.9",
-                title: "broken",
-                caption: "c",
-                image: None,
                 error: Some("no bracket".into()),
+                ..entry("fig9.9", "broken", "c")
             },
         ];
         let html = gallery_html(&entries);
-        assert!(html.contains("<img src=\"fig1.1.png\""));
-        assert!(html.contains("P &lt; 0 &amp; pull-off"));
+        // The thumbnail links to the full-size PNG; the files by their kind.
+        assert!(html.contains("<a href=\"fig1.1.png\"><img src=\"thumbs/fig1.1.png\""));
+        assert!(html.contains("<a href=\"fig1.1.pdf\">PDF</a>"));
+        assert!(html.contains("<a href=\"fig1.1.csv\">CSV</a>"));
+        assert!(!html.contains("SVG</a>"));
+        // Captions and notes with Unicode math, escaped.
+        assert!(html.contains("P &lt; 0 &amp; pull-off"), "{html}");
+        assert!(
+            html.contains("P<sub>adh</sub>/(2E<sup>*</sup>R<sup>2</sup>)"),
+            "{html}"
+        );
+        assert!(html.contains("μ<sub>T</sub> = 2 differs"), "{html}");
+        assert!(html.contains("quick form"));
         assert!(html.contains("failed: no bracket"));
+        assert!(html.contains("<h3>Chapter 1"));
         assert_eq!(html.matches("<figure").count(), 2);
     }
 }

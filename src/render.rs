@@ -7,6 +7,7 @@
 pub mod axes;
 pub mod data;
 pub mod labels;
+pub mod pdf;
 pub mod plot;
 pub mod raster;
 pub mod terminal;
@@ -28,11 +29,17 @@ pub enum Format {
     Csv,
     /// Parameters, results, fields, version, run time.
     Json,
+    /// Vector figure for print and LaTeX: the SVG's drawing with the font embedded, labels as
+    /// text.
+    Pdf,
 }
 
 impl Format {
-    /// All formats.
+    /// The formats written unless `--format` says otherwise.
     pub const ALL: [Format; 4] = [Format::Png, Format::Svg, Format::Csv, Format::Json];
+
+    /// Every format there is.
+    pub const KNOWN: [Format; 5] = [Format::Png, Format::Svg, Format::Csv, Format::Json, Format::Pdf];
 
     /// File extension.
     pub fn extension(self) -> &'static str {
@@ -41,12 +48,13 @@ impl Format {
             Format::Svg => "svg",
             Format::Csv => "csv",
             Format::Json => "json",
+            Format::Pdf => "pdf",
         }
     }
 
-    /// Parse one name (`png`, `svg`, `csv`, `json`).
+    /// Parse one name (`png`, `svg`, `csv`, `json`, `pdf`).
     pub fn parse(name: &str) -> Option<Format> {
-        Format::ALL
+        Format::KNOWN
             .into_iter()
             .find(|f| f.extension() == name.trim().to_ascii_lowercase())
     }

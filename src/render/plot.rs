@@ -51,13 +51,119 @@ pub fn palette(k: usize) -> (u8, u8, u8) {
     PALETTE[k % PALETTE.len()]
 }
 
-/// Size of one panel in pixels at scale 1.
-const PANEL_W: f64 = 620.0;
-const PANEL_H: f64 = 460.0;
+/// Width of a figure in one journal column (mm).
+pub const COLUMN_MM: f64 = 90.0;
+/// Width of a figure across the page (mm).
+pub const FULL_WIDTH_MM: f64 = 190.0;
+/// Resolution of a PNG unless asked otherwise (dots per inch).
+pub const DEFAULT_DPI: f64 = 300.0;
 
-/// Layout constants at scale 1 (pixels), and for SVG output the raster images of the fields.
+/// Points per layout unit. A figure is laid out in units of 8/15 pt: axis titles (15 units)
+/// come out at 8 pt, tick labels (13 units) at 7 pt, panel letters (17 units, bold) at 9 pt,
+/// legends (12.5 units) at 6.7 pt and curves (2 units) 1.07 pt wide, whatever the figure's
+/// width; margins scale with the text.
+pub const PT_PER_UNIT: f64 = 8.0 / 15.0;
+
+/// Millimetres per point.
+pub const MM_PER_PT: f64 = 25.4 / 72.0;
+
+/// Height of a panel as a fraction of its width (at least [`PANEL_MIN_H`]).
+const PANEL_ASPECT: f64 = 460.0 / 620.0;
+/// The least height of a panel (layout units): a narrow panel keeps room for its data between
+/// the heading and the tick labels.
+const PANEL_MIN_H: f64 = 300.0;
+
+/// The physical size of an exported figure: its width on the page and the PNG's resolution.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Print {
+    /// Width on the page (mm); `None` chooses by the panel count ([`Print::width_of`]).
+    pub width_mm: Option<f64>,
+    /// Dots per inch of the PNG.
+    pub dpi: f64,
+}
+
+impl Default for Print {
+    fn default() -> Self {
+        Self {
+            width_mm: None,
+            dpi: DEFAULT_DPI,
+        }
+    }
+}
+
+impl Print {
+    /// The least width a figure may be given (mm): below it the frames have no room left.
+    pub const MIN_WIDTH_MM: f64 = 40.0;
+    /// The largest width (mm).
+    pub const MAX_WIDTH_MM: f64 = 500.0;
+    /// The least resolution (dpi).
+    pub const MIN_DPI: f64 = 30.0;
+    /// The largest resolution (dpi).
+    pub const MAX_DPI: f64 = 1200.0;
+
+    /// A print size with the given width (mm; `None`: by panel count) and resolution (`None`:
+    /// [`DEFAULT_DPI`]), checked.
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] for a width or a resolution outside its range (or not finite).
+    pub fn new(width_mm: Option<f64>, dpi: Option<f64>) -> Result<Self> {
+        if let Some(w) = width_mm
+            && !(Self::MIN_WIDTH_MM..=Self::MAX_WIDTH_MM).contains(&w)
+        {
+            return Err(Error::invalid(
+                "--width-mm",
+                w,
+                format!(
+                    "a figure is {}-{} mm wide",
+                    Self::MIN_WIDTH_MM,
+                    Self::MAX_WIDTH_MM
+                ),
+            ));
+        }
+        let dpi = dpi.unwrap_or(DEFAULT_DPI);
+        if !(Self::MIN_DPI..=Self::MAX_DPI).contains(&dpi) {
+            return Err(Error::invalid(
+                "--dpi",
+                dpi,
+                format!("the resolution is {}-{} dpi", Self::MIN_DPI, Self::MAX_DPI),
+            ));
+        }
+        Ok(Self { width_mm, dpi })
+    }
+
+    /// The figure's width (mm): the one given, else one column for a single panel and the full
+    /// page width for two or more.
+    pub fn width_of(&self, fig: &Figure) -> f64 {
+        self.width_mm.unwrap_or(if fig.panels.len() <= 1 {
+            COLUMN_MM
+        } else {
+            FULL_WIDTH_MM
+        })
+    }
+
+    /// PNG pixels per layout unit.
+    fn png_scale(&self) -> f64 {
+        self.dpi / 72.0 * PT_PER_UNIT
+    }
+}
+
+/// SVG (and PDF) user units per layout unit: the SVG backend writes whole numbers, so the
+/// drawing is made at a quarter point per user unit.
+const SVG_SCALE: f64 = 4.0 * PT_PER_UNIT;
+
+/// Width and height of one panel (layout units) of a figure `width_mm` wide.
+fn panel_size(fig: &Figure, width_mm: f64) -> (f64, f64) {
+    let (cols, _) = grid(fig.panels.len());
+    let w = width_mm / MM_PER_PT / PT_PER_UNIT / cols as f64;
+    (w, (PANEL_ASPECT * w).max(PANEL_MIN_H))
+}
+
+/// Layout of one drawing: pixels per layout unit, the panel size, and for SVG output the
+/// raster images of the fields and the texts.
 struct Metrics {
     s: f64,
+    /// Width and height of a panel (layout units).
+    panel: (f64, f64),
     /// `Some` when drawing SVG: the heat maps go in as embedded PNG images, collected here.
     images: Option<std::rc::Rc<std::cell::RefCell<Vec<String>>>>,
     /// `Some` when drawing SVG: the labels in math markup, as `<text>` elements with
@@ -69,10 +175,11 @@ struct Metrics {
 }
 
 impl Metrics {
-    /// The metrics of a PNG drawn at scale `s`.
-    fn png(s: f64) -> Self {
+    /// The metrics of a PNG of `fig` at the print size `print`.
+    fn png(fig: &Figure, print: &Print) -> Self {
         Self {
-            s,
+            s: print.png_scale(),
+            panel: panel_size(fig, print.width_of(fig)),
             images: None,
             texts: None,
             aa: true,
@@ -111,25 +218,24 @@ fn panel_slot(n: usize, k: usize, pw: i32) -> (i32, i32, i32) {
     }
 }
 
-/// Pixel size of a figure at scale `s`: the grid of panels, each row as tall as a panel plus
-/// the notes written under a panel of the row, if any, and the title.
-pub fn figure_size(fig: &Figure, s: f64) -> (u32, u32) {
+/// Pixel size of a figure drawn with the metrics `m`: the title, the grid of panels and the
+/// notes under them.
+fn figure_size(fig: &Figure, m: &Metrics) -> (u32, u32) {
     let (c, _) = grid(fig.panels.len());
-    let m = Metrics::png(s);
     let title_h = if fig.title.is_empty() { 0 } else { m.px(44.0) };
-    let rows: i32 = row_heights(fig, &m).iter().sum();
+    let rows: i32 = row_heights(fig, m).iter().sum();
     (
-        (PANEL_W * c as f64 * s).round() as u32,
-        (rows + title_h).max(1) as u32,
+        (m.panel.0 * c as f64 * m.s).round() as u32,
+        (rows + title_h + notes_height(fig, m)).max(1) as u32,
     )
 }
 
 /// The height of each row of panels in pixels: a panel's, plus the room the notes written
 /// under a panel of the row take beyond it.
 fn row_heights(fig: &Figure, m: &Metrics) -> Vec<i32> {
-    let (pw, ph) = (m.px(PANEL_W), m.px(PANEL_H));
+    let (pw, ph) = (m.px(m.panel.0), m.px(m.panel.1));
     let mut rows: Vec<i32> = Vec::new();
-    for (k, panel) in fig.panels.iter().enumerate() {
+    for (k, panel) in shown_panels(fig).iter().enumerate() {
         let (_, r, w) = panel_slot(fig.panels.len(), k, pw);
         let r = r as usize;
         if rows.len() <= r {
@@ -151,14 +257,22 @@ fn row_heights(fig: &Figure, m: &Metrics) -> Vec<i32> {
     rows
 }
 
-/// Render to PNG bytes at twice the nominal size (1240 × 1008 pixels for one panel: 300 dpi
-/// at about 10.5 cm wide), in memory.
+/// Render to PNG bytes at the default print size ([`png_bytes_at`] of [`Print::default`]).
 ///
 /// # Errors
 /// [`Error::Render`] when drawing or encoding fails.
 pub fn png_bytes(fig: &Figure) -> Result<Vec<u8>> {
-    let scale = 2.0;
-    let (w, h) = figure_size(fig, scale);
+    png_bytes_at(fig, &Print::default())
+}
+
+/// Render to PNG bytes in memory, `print.width_of(fig)` mm wide at `print.dpi` (2 244 pixels
+/// for a 190 mm figure at 300 dpi); the resolution is recorded in the PNG (`pHYs`).
+///
+/// # Errors
+/// [`Error::Render`] when drawing or encoding fails.
+pub fn png_bytes_at(fig: &Figure, print: &Print) -> Result<Vec<u8>> {
+    let m = Metrics::png(fig, print);
+    let (w, h) = figure_size(fig, &m);
     let render_error = |message: String| Error::Render {
         format: "png",
         message,
@@ -166,7 +280,7 @@ pub fn png_bytes(fig: &Figure) -> Result<Vec<u8>> {
     let mut rgb = vec![0u8; w as usize * h as usize * 3];
     {
         let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
-        draw_png(&root, fig, scale).map_err(render_error)?;
+        draw_with(&root, fig, m).map_err(render_error)?;
         root.present().map_err(|e| render_error(e.to_string()))?;
     }
     let mut out = Vec::new();
@@ -174,6 +288,12 @@ pub fn png_bytes(fig: &Figure) -> Result<Vec<u8>> {
         let mut enc = png::Encoder::new(&mut out, w, h);
         enc.set_color(png::ColorType::Rgb);
         enc.set_depth(png::BitDepth::Eight);
+        let per_metre = (print.dpi / 0.0254).round() as u32;
+        enc.set_pixel_dims(Some(png::PixelDimensions {
+            xppu: per_metre,
+            yppu: per_metre,
+            unit: png::Unit::Meter,
+        }));
         let mut writer = enc.write_header().map_err(|e| render_error(e.to_string()))?;
         writer
             .write_image_data(&rgb)
@@ -190,26 +310,33 @@ pub fn write_png(fig: &Figure, path: &Path) -> Result<()> {
     super::write_atomic(path, &png_bytes(fig)?)
 }
 
-/// Render to an SVG document in memory.
+/// Render to an SVG document in memory at the default print size ([`svg_string_at`]).
 ///
 /// # Errors
 /// [`Error::Render`] when drawing fails.
 pub fn svg_string(fig: &Figure) -> Result<String> {
+    svg_string_at(fig, &Print::default())
+}
+
+/// Render to an SVG document in memory, `print.width_of(fig)` mm wide: the root element gives
+/// its width and height in mm and a `viewBox` in user units of a quarter point.
+///
+/// # Errors
+/// [`Error::Render`] when drawing fails.
+pub fn svg_string_at(fig: &Figure, print: &Print) -> Result<String> {
     let mut out = String::new();
     let images = std::rc::Rc::new(std::cell::RefCell::new(Vec::new()));
     let texts = std::rc::Rc::new(std::cell::RefCell::new(Vec::<String>::new()));
+    let m = Metrics {
+        s: SVG_SCALE,
+        panel: panel_size(fig, print.width_of(fig)),
+        images: Some(std::rc::Rc::clone(&images)),
+        texts: Some(std::rc::Rc::clone(&texts)),
+        aa: false,
+    };
+    let size = figure_size(fig, &m);
     {
-        // Drawn at 2x so that the integer coordinates of the SVG backend resolve half a
-        // nominal pixel; viewers scale the vector image freely.
-        let scale = 2.0;
-        let size = figure_size(fig, scale);
         let root = SVGBackend::with_string(&mut out, size).into_drawing_area();
-        let m = Metrics {
-            s: scale,
-            images: Some(std::rc::Rc::clone(&images)),
-            texts: Some(std::rc::Rc::clone(&texts)),
-            aa: false,
-        };
         draw_with(&root, fig, m).map_err(|message| Error::Render {
             format: "svg",
             message,
@@ -220,11 +347,31 @@ pub fn svg_string(fig: &Figure) -> Result<String> {
         })?;
     }
     let out = embed_images(&out, &images.borrow());
+    let out = physical_size(&out, size);
     let labels: String = texts.borrow().iter().map(|t| format!("{t}\n")).collect();
     Ok(match out.rfind("</svg>") {
         Some(end) => format!("{}{labels}{}", &out[..end], &out[end..]),
         None => out,
     })
+}
+
+/// The SVG's root element with its size in mm (a user unit is a quarter point) and a
+/// `viewBox` of the drawing's user units.
+fn physical_size(svg: &str, (w, h): (u32, u32)) -> String {
+    let mm = |v: u32| f64::from(v) * PT_PER_UNIT / SVG_SCALE * MM_PER_PT;
+    let from = format!("width=\"{w}\" height=\"{h}\"");
+    let to = format!("width=\"{:.2}mm\" height=\"{:.2}mm\"", mm(w), mm(h));
+    match svg.find("<svg") {
+        Some(start) => {
+            let end = svg[start..].find('>').map_or(svg.len(), |e| start + e);
+            let mut head = svg[start..end].replacen(&from, &to, 1);
+            if !head.contains("viewBox") {
+                head.push_str(&format!(" viewBox=\"0 0 {w} {h}\""));
+            }
+            format!("{}{head}{}", &svg[..start], &svg[end..])
+        }
+        None => svg.to_string(),
+    }
 }
 
 /// Render to an SVG file, atomically.
@@ -247,18 +394,13 @@ fn rgb(c: (u8, u8, u8)) -> RGBColor {
     RGBColor(c.0, c.1, c.2)
 }
 
-/// Draw the whole figure onto `root` as a PNG at scale `s`.
-fn draw_png<DB: DrawingBackend>(root: &Area<DB>, fig: &Figure, s: f64) -> Draw<()> {
-    draw_with(root, fig, Metrics::png(s))
-}
-
 /// Draw the whole figure onto `root` with the given metrics.
 fn draw_with<DB: DrawingBackend>(root: &Area<DB>, fig: &Figure, m: Metrics) -> Draw<()> {
     root.fill(&WHITE).map_err(err)?;
     let (w, _) = root.dim_in_pixel();
     let mut top = 0;
     if !fig.title.is_empty() {
-        let size = fitting_size(&fig.title, m.font(19.0), true, f64::from(w) - 24.0 * m.s);
+        let size = fitting_size(&fig.title, m.font(19.0), true, f64::from(w) - 24.0 * m.s, &m);
         draw_label(
             root,
             Label::new(&fig.title, size).bold(),
@@ -268,9 +410,9 @@ fn draw_with<DB: DrawingBackend>(root: &Area<DB>, fig: &Figure, m: Metrics) -> D
         )?;
         top = m.px(44.0);
     }
-    let pw = m.px(PANEL_W);
+    let pw = m.px(m.panel.0);
     let rows = row_heights(fig, &m);
-    for (k, panel) in fig.panels.iter().enumerate() {
+    for (k, panel) in shown_panels(fig).iter().enumerate() {
         let (x, y, w) = panel_slot(fig.panels.len(), k, pw);
         let above: i32 = rows[..y as usize].iter().sum();
         let area = root
@@ -278,7 +420,125 @@ fn draw_with<DB: DrawingBackend>(root: &Area<DB>, fig: &Figure, m: Metrics) -> D
             .shrink((x, top + above), (w as u32, rows[y as usize] as u32));
         draw_panel(&area, panel, &m)?;
     }
+    let below = f64::from(top + rows.iter().sum::<i32>()) + NOTE_GAP * m.s;
+    let row = m.font(NOTE_TEXT) * 1.45;
+    for (k, line) in note_lines(fig, &m).iter().enumerate() {
+        draw_label(
+            root,
+            Label::new(line, m.font(NOTE_TEXT)),
+            (NOTE_INSET * m.s, below + row * k as f64),
+            (Anchor::Start, Baseline::Top),
+            &m,
+        )?;
+    }
     Ok(())
+}
+
+/// The most cells of a field drawn as vector rectangles in SVG and PDF.
+const VECTOR_CELLS: usize = 128 * 128;
+
+/// Size of the notes under a figure (layout units): 6.7 pt, as the legends.
+const NOTE_TEXT: f64 = 12.5;
+/// Gap between the panels and the notes under them (layout units).
+const NOTE_GAP: f64 = 6.0;
+/// Left and right inset of the notes under a figure (layout units).
+const NOTE_INSET: f64 = 16.0;
+
+/// The notes of the panels as written under the figure, a caption-like block: each note with
+/// its panel's letter (where the figure has several panels), wrapped to the figure's width.
+fn note_lines(fig: &Figure, m: &Metrics) -> Vec<String> {
+    let (cols, _) = grid(fig.panels.len());
+    let width = (m.panel.0 * cols as f64 - 2.0 * NOTE_INSET) * m.s;
+    let mut lines = Vec::new();
+    let mut seen: Vec<&str> = Vec::new();
+    for (p, letter) in fig.panels.iter().zip(panel_letters(fig)) {
+        for n in &p.notes {
+            if seen.contains(&n.as_str()) {
+                continue;
+            }
+            seen.push(n);
+            let text = if letter.is_empty() {
+                n.clone()
+            } else {
+                format!("{letter} {n}")
+            };
+            lines.extend(legend::wrap(&text, m.font(NOTE_TEXT), width));
+        }
+    }
+    lines
+}
+
+/// The letters of the panels as drawn: (a), (b), ... in order where the figure's panels are
+/// lettered with single letters that do not run from (a) (a figure drawing panels (b)-(d) of
+/// the dissertation's), none for a lone panel; other labels as they are.
+fn panel_letters(fig: &Figure) -> Vec<String> {
+    let single = |l: &str| {
+        let inner = l.strip_prefix('(').and_then(|r| r.strip_suffix(')'));
+        inner.is_some_and(|c| c.len() == 1 && c.chars().all(|c| c.is_ascii_lowercase()))
+    };
+    let labels: Vec<String> = fig.panels.iter().map(|p| p.label.clone()).collect();
+    if labels.len() == 1 && single(&labels[0]) {
+        return vec![String::new()];
+    }
+    if labels.len() > 1 && labels.iter().all(|l| single(l)) {
+        return (0..labels.len())
+            .map(|k| format!("({})", char::from(b'a' + (k % 26) as u8)))
+            .collect();
+    }
+    labels
+}
+
+/// The height of the notes under a figure (pixels; 0 without notes).
+fn notes_height(fig: &Figure, m: &Metrics) -> i32 {
+    let n = note_lines(fig, m).len();
+    if n == 0 {
+        0
+    } else {
+        m.px(NOTE_GAP + NOTE_TEXT * 1.45 * n as f64 + NOTE_GAP)
+    }
+}
+
+/// The panels as they are drawn: their notes moved under the figure ([`note_lines`]); the
+/// legend of a panel whose entries repeat those of an earlier panel left out (one legend for
+/// series the panels share); panels lettered in order ([`panel_letters`]); a map with one length unit on
+/// both axes drawn at equal aspect.
+fn shown_panels(fig: &Figure) -> Vec<std::borrow::Cow<'_, Panel>> {
+    use std::borrow::Cow;
+    let mut shown: Vec<Vec<String>> = Vec::new();
+    let letters = panel_letters(fig);
+    fig.panels
+        .iter()
+        .zip(letters)
+        .map(|(p, letter)| {
+            let names = legend::entry_names(p);
+            let repeated = !names.is_empty() && shown.contains(&names);
+            if !repeated {
+                shown.push(names);
+            }
+            let lone = letter != p.label;
+            // A map over lengths in one unit on both axes (a top view, a cross-section) keeps
+            // its aspect: square cells stay square, circles round.
+            let square = p.field.is_some()
+                && !p.equal_aspect
+                && p.x.scale == Scale::Linear
+                && p.y.scale == Scale::Linear
+                && !p.x.unit.is_empty()
+                && p.x.unit == p.y.unit;
+            if !repeated && !lone && !square && p.notes.is_empty() {
+                return Cow::Borrowed(p);
+            }
+            let mut q = p.clone();
+            q.notes.clear();
+            q.equal_aspect |= square;
+            if repeated {
+                q.legend = crate::figure::Legend::Hidden;
+            }
+            if lone {
+                q.label = letter;
+            }
+            Cow::Owned(q)
+        })
+        .collect()
 }
 
 /// Pixel mapping of a panel's plotting rectangle.
@@ -383,7 +643,7 @@ fn panel_frame(panel: &Panel, w: f64, h: f64, m: &Metrics) -> Option<(Frame, boo
         } else {
             38.0
         }) * m.s,
-        h - 66.0 * m.s,
+        h - 56.0 * m.s,
     );
     let ((xlo, xhi), (ylo, yhi)) = panel.data_bounds()?;
     // A colour map fills its frame (as far as its cells reach), unless something drawn over
@@ -438,7 +698,7 @@ fn panel_frame(panel: &Panel, w: f64, h: f64, m: &Metrics) -> Option<(Frame, boo
 
 fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -> Draw<()> {
     // The frame is laid out in a panel of the nominal height; notes under it extend the area.
-    let (w, h) = (f64::from(area.dim_in_pixel().0), f64::from(m.px(PANEL_H)));
+    let (w, h) = (f64::from(area.dim_in_pixel().0), f64::from(m.px(m.panel.1)));
     let Some((frame, has_bar, [xa, xb, ya, yb])) = panel_frame(panel, w, h, m) else {
         return draw_label(
             area,
@@ -463,7 +723,10 @@ fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -
             FieldKind::Contour { filled, .. } => *filled,
         };
         if filled && let Some(range) = field.value_range() {
-            if let Some(images) = &m.images {
+            // Vector cells for a grid of up to 128 × 128 (one rectangle each); a finer grid
+            // goes into the SVG as one image of the frame's resolution.
+            let fine = field.x.len() * field.y.len() > VECTOR_CELLS;
+            if let Some(images) = m.images.as_ref().filter(|_| fine) {
                 draw_heat_raster(area, &frame, field, range, images)?;
             } else {
                 draw_heat(area, &frame, field, range)?;
@@ -473,8 +736,8 @@ fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -
     }
 
     // Grid.
-    let xt = ticks(xa, xb, panel.x.scale, 6);
-    let yt = ticks(ya, yb, panel.y.scale, 6);
+    let (xt, x_power) = common_power(ticks(xa, xb, panel.x.scale, 6));
+    let (yt, y_power) = common_power(ticks(ya, yb, panel.y.scale, 6));
     if panel.field.is_none() {
         for &v in &xt.values {
             if let Some(px) = frame.tx(v) {
@@ -582,7 +845,11 @@ fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -
         }
     }
 
-    draw_axes(area, panel, &frame, (&xt, &yt), m)?;
+    let titles = (
+        scaled_title(&panel.x.label, &panel.x.unit, x_power),
+        scaled_title(&panel.y.label, &panel.y.unit, y_power),
+    );
+    draw_axes(area, panel, &frame, (&xt, &yt), &titles, m)?;
     if let (Some(range), Some(field)) = (bar_range, &panel.field) {
         draw_colour_bar(area, &frame, field, range, m)?;
     }
@@ -635,7 +902,7 @@ fn draw_contours<DB: DrawingBackend>(
             || tick_markup(&super::axes::format_number(level)),
             |(_, t)| t.clone(),
         );
-        let label = Label::new(&text, m.font(if emphasised { 13.0 } else { 11.0 })).color(color);
+        let label = Label::new(&text, m.font(if emphasised { 13.0 } else { SMALL_TEXT })).color(color);
         let label = if emphasised { label.bold() } else { label };
         // Right of the point, or left of it where the text would leave the frame.
         let x = (p.0 + 3.0 * m.s).min(frame.x1 - label.width() - 3.0 * m.s);
@@ -670,6 +937,7 @@ fn draw_axes<DB: DrawingBackend>(
     panel: &Panel,
     frame: &Frame,
     (xt, yt): (&super::axes::Ticks, &super::axes::Ticks),
+    (x_title, y_title): &(String, String),
     m: &Metrics,
 ) -> Draw<()> {
     let black = BLACK.to_rgba();
@@ -682,7 +950,7 @@ fn draw_axes<DB: DrawingBackend>(
     ];
     draw_polyline(area, &frame_pts, black, (1.2 * m.s).round().max(1.0), m)?;
     let tick_len = 6.0 * m.s;
-    let tick_font = m.font(13.0);
+    let tick_font = m.font(TICK_TEXT);
     for (v, label) in xt.values.iter().zip(&xt.labels) {
         if let Some(px) = frame.tx(*v) {
             draw_polyline(area, &[(px, frame.y1), (px, frame.y1 - tick_len)], black, 1.0, m)?;
@@ -727,32 +995,36 @@ fn draw_axes<DB: DrawingBackend>(
     // The x-axis title under the tick labels; notes written under the panel come after it.
     draw_label(
         area,
-        Label::new(&panel.x.title(), label_font),
-        (0.5 * (frame.x0 + frame.x1), frame.y1 + 58.0 * m.s),
+        Label::new(x_title, label_font),
+        (0.5 * (frame.x0 + frame.x1), frame.y1 + 46.0 * m.s),
         (Anchor::Middle, Baseline::Bottom),
         m,
     )?;
     let yl_x = (frame.x0 - widest - 12.0 * m.s - label_font).max(4.0 * m.s);
     draw_label(
         area,
-        Label::new(&panel.y.title(), label_font).vertical(),
+        Label::new(y_title, label_font).vertical(),
         (yl_x, 0.5 * (frame.y0 + frame.y1)),
         (Anchor::Middle, Baseline::Top),
         m,
     )?;
-    let heading = match (panel.label.is_empty(), panel.title.is_empty()) {
-        (true, true) => String::new(),
-        (false, true) => panel.label.clone(),
-        (true, false) => panel.title.clone(),
-        (false, false) => format!("{} {}", panel.label, panel.title),
-    };
-    if !heading.is_empty() {
-        let room = f64::from(area.dim_in_pixel().0) - frame.x0 - 4.0 * m.s;
-        let size = fitting_size(&heading, m.font(15.0), true, room);
+    // The panel letter in bold at 9 pt, the title after it in bold at 8 pt (smaller where it
+    // is too long for the panel, never below 6 pt).
+    let mut x = frame.x0;
+    let at_top = frame.y0 - 8.0 * m.s;
+    if !panel.label.is_empty() {
+        let letter = Label::new(&panel.label, m.font(PANEL_LETTER)).bold();
+        let w = letter.width();
+        draw_label(area, letter, (x, at_top), (Anchor::Start, Baseline::Bottom), m)?;
+        x += w + 0.35 * m.font(PANEL_LETTER);
+    }
+    if !panel.title.is_empty() {
+        let room = f64::from(area.dim_in_pixel().0) - x - 4.0 * m.s;
+        let size = fitting_size(&panel.title, m.font(15.0), true, room, m);
         draw_label(
             area,
-            Label::new(&heading, size).bold(),
-            (frame.x0, frame.y0 - 8.0 * m.s),
+            Label::new(&panel.title, size).bold(),
+            (x, at_top),
             (Anchor::Start, Baseline::Bottom),
             m,
         )?;
@@ -791,40 +1063,103 @@ fn draw_colour_bar<DB: DrawingBackend>(
         (bx0, frame.y0),
     ];
     draw_polyline(area, &outline, BLACK.to_rgba(), 1.0, m)?;
-    let bt = ticks(lo, hi, Scale::Linear, 5);
+    let (bt, power) = common_power(ticks(lo, hi, Scale::Linear, 5));
+    let mut widest = 0.0f64;
     for (v, label) in bt.values.iter().zip(&bt.labels) {
         let y = frame.y1 - (v - lo) / (hi - lo).max(f64::MIN_POSITIVE) * (frame.y1 - frame.y0);
         draw_polyline(area, &[(bx1, y), (bx1 + 4.0 * m.s, y)], BLACK.to_rgba(), 1.0, m)?;
+        let text = tick_markup(label);
+        let label = Label::new(&text, m.font(SMALL_TEXT));
+        widest = widest.max(label.width());
         draw_label(
             area,
-            Label::new(&tick_markup(label), m.font(11.0)),
+            label,
             (bx1 + 6.0 * m.s, y),
             (Anchor::Start, Baseline::Center),
             m,
         )?;
     }
-    let title = if field.unit.is_empty() {
-        field.name.clone()
-    } else {
-        format!("{} [{}]", field.name, field.unit)
-    };
+    let title = scaled_title(&field.name, &field.unit, power);
+    // Along the bar, right of its tick labels (above the frame it would meet the heading).
     draw_label(
         area,
-        Label::new(&title, m.font(11.0)),
-        (0.5 * (bx0 + bx1) + 10.0 * m.s, frame.y0 - 6.0 * m.s),
-        (Anchor::Middle, Baseline::Bottom),
+        Label::new(&title, m.font(SMALL_TEXT)).vertical(),
+        (bx1 + 10.0 * m.s + widest, 0.5 * (frame.y0 + frame.y1)),
+        (Anchor::Middle, Baseline::Top),
         m,
     )
 }
 
+/// Ticks of a linear axis whose labels would need powers of ten (`1.5e-5`, `2.0e-5`, ...)
+/// relabelled with one power of ten for the whole axis: the mantissas (`1.5`, `2.0`) and the
+/// exponent, which the axis title shows once ([`scaled_title`]). Other ticks are returned as
+/// they are, with `None`.
+fn common_power(t: super::axes::Ticks) -> (super::axes::Ticks, Option<i32>) {
+    let sci = t.labels.iter().any(|l| l.contains('e'));
+    let top = t.values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if !(sci && top > 0.0 && top.is_finite() && t.minor.is_empty()) {
+        return (t, None);
+    }
+    let k = top.log10().floor() as i32;
+    let step = t
+        .values
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .fold(f64::INFINITY, f64::min);
+    let decimals = if step.is_finite() && step > 0.0 {
+        (f64::from(k) - step.log10().floor()).clamp(0.0, 6.0) as usize
+    } else {
+        3
+    };
+    let f = 10f64.powi(k);
+    let labels = t
+        .values
+        .iter()
+        .map(|&v| {
+            let s = format!("{:.decimals$}", v / f);
+            if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') {
+                "0".into()
+            } else {
+                s.replace('-', "−")
+            }
+        })
+        .collect();
+    (super::axes::Ticks { labels, ..t }, Some(k))
+}
+
+/// An axis (or colour-bar) title with its unit and the common power of ten of its ticks:
+/// `label [10^{k} unit]`, `label ×10^{k}`, or `label [unit]` without one.
+fn scaled_title(label: &str, unit: &str, power: Option<i32>) -> String {
+    let power = power.map(|k| format!("10^{{{}}}", k.to_string().replace('-', "−")));
+    match (unit.is_empty(), power) {
+        (true, None) => label.to_string(),
+        (false, None) => format!("{label} [{unit}]"),
+        (true, Some(p)) => format!("{label} ×{p}"),
+        (false, Some(p)) => format!("{label} [{p} {unit}]"),
+    }
+}
+
+/// Size of the tick labels (layout units): 7 pt.
+const TICK_TEXT: f64 = 7.0 / PT_PER_UNIT;
+
+/// Size of the panel letters (layout units): 9 pt.
+const PANEL_LETTER: f64 = 9.0 / PT_PER_UNIT;
+
+/// The least size of any text (layout units): 6 pt at the figure's print size.
+pub const MIN_TEXT: f64 = 6.0 / PT_PER_UNIT;
+
+/// Size of the smallest texts, colour-bar ticks and contour labels (layout units): 6.1 pt.
+const SMALL_TEXT: f64 = 11.5;
+
 /// The text size, at most `size`, at which `text` is at most `room` pixels wide (never below
-/// 70 % of `size`: a longer text runs over rather than turning unreadable).
-fn fitting_size(text: &str, size: f64, bold: bool, room: f64) -> f64 {
+/// 70 % of `size` nor below [`MIN_TEXT`]: a longer text runs over rather than turning
+/// unreadable).
+fn fitting_size(text: &str, size: f64, bold: bool, room: f64, m: &Metrics) -> f64 {
     let w = crate::render::text::width(text, size, bold);
     if w <= room || w <= 0.0 {
         size
     } else {
-        (size * room / w).max(0.7 * size)
+        (size * room / w).max(0.7 * size).max(m.font(MIN_TEXT))
     }
 }
 
@@ -879,7 +1214,13 @@ mod tests {
         let mut rgb = vec![255u8; (w * h * 3) as usize];
         {
             let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
-            let m = Metrics::png(1.0);
+            let m = Metrics {
+                s: 1.0,
+                panel: (620.0, 460.0),
+                images: None,
+                texts: None,
+                aa: true,
+            };
             // Baseline at y = 60: anchor the top at 60 - ascent.
             draw_label(
                 &root,

@@ -107,8 +107,142 @@ const COMBINING_HAT: char = '\u{0302}';
 const COMBINING_BAR: char = '\u{0304}';
 const COMBINING_OVERLINE: char = '\u{0305}';
 
-fn is_word(c: char) -> bool {
-    c.is_alphanumeric()
+/// Numbers in a label written as in print: e-notation as a power of ten (`1.25e-4` →
+/// `1.25 × 10^{−4}`, `1e-5` → `10^{−5}`, the mantissa's digits kept) and a zero written with
+/// decimals (`0.0000`, `0.00`) as `0`. A number is a run of digits with an optional point,
+/// standing alone (not part of a word such as `fig4.5` or `2E*`).
+pub fn numbers(src: &str) -> String {
+    let chars: Vec<char> = src.chars().collect();
+    let mut out = String::with_capacity(src.len());
+    let mut i = 0;
+    let joined = |c: char| c.is_alphanumeric() || matches!(c, '_' | '.' | '^' | '{' | '\\');
+    while i < chars.len() {
+        let c = chars[i];
+        let starts = c.is_ascii_digit() && (i == 0 || !joined(chars[i - 1]));
+        if !starts {
+            out.push(c);
+            i += 1;
+            continue;
+        }
+        let mut j = i;
+        while j < chars.len() && chars[j].is_ascii_digit() {
+            j += 1;
+        }
+        if j + 1 < chars.len() && chars[j] == '.' && chars[j + 1].is_ascii_digit() {
+            j += 1;
+            while j < chars.len() && chars[j].is_ascii_digit() {
+                j += 1;
+            }
+        }
+        let mantissa: String = chars[i..j].iter().collect();
+        // An exponent: e or E, an optional sign, digits, then no letter or digit.
+        let mut k = j;
+        let mut exponent = None;
+        if k < chars.len() && matches!(chars[k], 'e' | 'E') {
+            k += 1;
+            let negative = k < chars.len() && matches!(chars[k], '-' | '−');
+            if k < chars.len() && matches!(chars[k], '-' | '−' | '+') {
+                k += 1;
+            }
+            let d0 = k;
+            while k < chars.len() && chars[k].is_ascii_digit() {
+                k += 1;
+            }
+            let free = ends_number(&chars, k);
+            if k > d0 && free {
+                let digits: String = chars[d0..k].iter().collect();
+                let digits = digits.trim_start_matches('0');
+                exponent = Some(if digits.is_empty() {
+                    "0".to_string()
+                } else if negative {
+                    format!("−{digits}")
+                } else {
+                    digits.to_string()
+                });
+            }
+        }
+        let free = ends_number(&chars, j);
+        match exponent {
+            Some(e) if e == "0" => {
+                out.push_str(&mantissa);
+                i = k;
+            }
+            Some(e) if mantissa == "1" => {
+                out.push_str(&format!("10^{{{e}}}"));
+                i = k;
+            }
+            Some(e) => {
+                out.push_str(&format!("{mantissa} × 10^{{{e}}}"));
+                i = k;
+            }
+            None if free && mantissa.contains('.') && mantissa.chars().all(|c| c == '0' || c == '.') => {
+                out.push('0');
+                i = j;
+            }
+            None => {
+                out.push_str(&mantissa);
+                i = j;
+            }
+        }
+    }
+    out
+}
+
+/// Whether a number ends before `chars[k]`: the end of the text, or a character that is not a
+/// letter, a digit, or a point before a digit (a full stop ends a number).
+fn ends_number(chars: &[char], k: usize) -> bool {
+    match chars.get(k) {
+        None => true,
+        Some('.') => !chars.get(k + 1).is_some_and(char::is_ascii_digit),
+        Some(c) => !c.is_alphanumeric(),
+    }
+}
+
+/// The kind of a character that may continue a bare sub- or superscript word: ASCII digits,
+/// Greek letters and other letters are three kinds; anything else (superscript digits, signs,
+/// brackets) ends the word.
+fn word_kind(c: char) -> Option<u8> {
+    if c.is_ascii_digit() {
+        Some(0)
+    } else if ('\u{0370}'..='\u{03FF}').contains(&c) {
+        Some(2)
+    } else if c.is_alphabetic() {
+        Some(1)
+    } else {
+        None
+    }
+}
+
+/// The project's notation applied to a label before it is laid out in a figure: numbers as
+/// [`numbers`] writes them, `ζ0` and `Z0` as ζ₀ and Z₀, the asterisk of an effective modulus (`E*`, `μ_T*`) as a superscript, and the
+/// energy loss `H` as ℋ, as the dissertation writes them (a standalone `H`: a letter of a
+/// longer word stays). Markup already explicit (`ζ_0`, `E^{*}`) is kept.
+pub fn notation(src: &str) -> String {
+    let src = numbers(src);
+    let chars: Vec<char> = src.chars().collect();
+    let mut out = String::with_capacity(src.len() + 8);
+    let alnum = |k: Option<&char>| k.is_some_and(|c| c.is_alphanumeric() || *c == '_');
+    for (i, &c) in chars.iter().enumerate() {
+        let prev = i.checked_sub(1).and_then(|k| chars.get(k));
+        let next = chars.get(i + 1);
+        match c {
+            // ζ after a letter is a product (`Rζ0`); Z after a letter is part of a word.
+            '0' if (prev == Some(&'ζ')
+                || (prev == Some(&'Z') && !alnum(i.checked_sub(2).and_then(|k| chars.get(k)))))
+                && !next.is_some_and(|n| n.is_ascii_digit() || n.is_alphabetic() || *n == '_') =>
+            {
+                out.push_str("_0");
+            }
+            '*' if prev.is_some_and(|p| p.is_alphabetic()) && !matches!(prev, Some('{' | '^')) => {
+                out.push_str("^*");
+            }
+            'H' if !alnum(prev) && prev != Some(&'\\') && !alnum(next) && next != Some(&'^') => {
+                out.push('ℋ');
+            }
+            _ => out.push(c),
+        }
+    }
+    out
 }
 
 /// Parse the markup into runs (adjacent runs of one kind merged).
@@ -177,9 +311,12 @@ fn parse_into(chars: &[char], script: Script, accent: Accent, runs: &mut Vec<Run
                     if c == '^' && matches!(chars[j], '-' | '+' | '−') {
                         j += 1;
                     }
-                    // A word, or a single non-space character (`E^*`).
+                    // A word of one kind (Latin letters, Greek letters or digits: `k_eσ²` is
+                    // k with the subscript e before σ², `ζ_0²` ζ₀ squared), or a single
+                    // non-space character (`E^*`).
                     let start = j;
-                    while j < chars.len() && is_word(chars[j]) {
+                    let kind = chars.get(j).copied().and_then(word_kind);
+                    while j < chars.len() && kind.is_some() && word_kind(chars[j]) == kind {
                         j += 1;
                     }
                     if j == start && j < chars.len() && !chars[j].is_whitespace() {
@@ -448,7 +585,7 @@ pub fn layout(src: &str, size: f64, bold: bool) -> Layout {
     let asc = f64::from(base.ascent());
     let mut ascent = ASCENT * size;
     let mut descent = DESCENT * size;
-    for run in parse(src) {
+    for run in parse(&notation(src)) {
         let (sz, dy) = match run.script {
             Script::Normal => (size, 0.0),
             Script::Sub => (size * SCRIPT_SIZE, SUB_SHIFT * size),
@@ -580,16 +717,20 @@ pub fn rasterize(l: &Layout, mut put: impl FnMut(f64, f64, f64)) {
     }
 }
 
-/// Escape text for SVG.
+/// Escape text for SVG and HTML.
 fn esc(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
 }
 
-/// The markup as SVG `<tspan>`s: sub- and superscripts with `baseline-shift` and a smaller
-/// size, accents as combining marks after each character (placed by the viewer's font).
-pub fn svg_tspans(src: &str) -> String {
+/// The markup in the project's notation ([`notation`]) as tagged text: each run's characters
+/// (accents as combining marks after each character), escaped for XML, wrapped by `tag`
+/// according to the run's position.
+fn tagged(src: &str, tag: impl Fn(Script, &str) -> String) -> String {
     let mut out = String::new();
-    for run in parse(src) {
+    for run in parse(&notation(src)) {
         let mut text = String::new();
         for c in run.text.chars() {
             text.push(c);
@@ -599,27 +740,141 @@ pub fn svg_tspans(src: &str) -> String {
                 Accent::None => {}
             }
         }
-        let text = esc(&text);
-        match run.script {
-            Script::Normal => out.push_str(&format!("<tspan>{text}</tspan>")),
-            Script::Sub => out.push_str(&format!(
-                "<tspan baseline-shift=\"-{:.0}%\" font-size=\"{:.0}%\">{text}</tspan>",
-                SUB_SHIFT * 100.0 / SCRIPT_SIZE,
-                SCRIPT_SIZE * 100.0
-            )),
-            Script::Super => out.push_str(&format!(
-                "<tspan baseline-shift=\"{:.0}%\" font-size=\"{:.0}%\">{text}</tspan>",
-                SUPER_SHIFT * 100.0 / SCRIPT_SIZE,
-                SCRIPT_SIZE * 100.0
-            )),
+        out.push_str(&tag(run.script, &esc(&text)));
+    }
+    out
+}
+
+/// The markup as SVG `<tspan>`s: sub- and superscripts with `baseline-shift` and a smaller
+/// size, accents as combining marks after each character (placed by the viewer's font).
+pub fn svg_tspans(src: &str) -> String {
+    tagged(src, |script, text| match script {
+        Script::Normal => format!("<tspan>{text}</tspan>"),
+        Script::Sub => format!(
+            "<tspan baseline-shift=\"-{:.0}%\" font-size=\"{:.0}%\">{text}</tspan>",
+            SUB_SHIFT * 100.0 / SCRIPT_SIZE,
+            SCRIPT_SIZE * 100.0
+        ),
+        Script::Super => format!(
+            "<tspan baseline-shift=\"{:.0}%\" font-size=\"{:.0}%\">{text}</tspan>",
+            SUPER_SHIFT * 100.0 / SCRIPT_SIZE,
+            SCRIPT_SIZE * 100.0
+        ),
+    })
+}
+
+/// The markup as HTML: sub- and superscripts as `<sub>` and `<sup>`, accents as combining
+/// marks, text escaped.
+pub fn html(src: &str) -> String {
+    tagged(src, |script, text| match script {
+        Script::Normal => text.to_string(),
+        Script::Sub => format!("<sub>{text}</sub>"),
+        Script::Super => format!("<sup>{text}</sup>"),
+    })
+}
+
+/// Greek letters written out in ASCII prose (`mu_T`, `pi w R`, `sigma`) as the letters, where
+/// the name stands alone (not part of a longer word).
+pub fn greek_words(src: &str) -> String {
+    const NAMES: [(&str, &str); 13] = [
+        ("alpha", "α"),
+        ("beta", "β"),
+        ("gamma", "γ"),
+        ("Delta", "Δ"),
+        ("zeta", "ζ"),
+        ("theta", "θ"),
+        ("lambda", "λ"),
+        ("mu", "μ"),
+        ("pi", "π"),
+        ("sigma", "σ"),
+        ("phi", "φ"),
+        ("chi", "χ"),
+        ("ell", "ℓ"),
+    ];
+    let mut out = String::with_capacity(src.len());
+    let mut word = String::new();
+    let flush = |word: &mut String, out: &mut String| {
+        match NAMES.iter().find(|(n, _)| *n == word.as_str()) {
+            Some((_, g)) => out.push_str(g),
+            None => out.push_str(word),
+        }
+        word.clear();
+    };
+    for c in src.chars() {
+        if c.is_ascii_alphabetic() {
+            word.push(c);
+        } else {
+            flush(&mut word, &mut out);
+            out.push(c);
         }
     }
+    flush(&mut word, &mut out);
     out
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn bare_script_words_stop_where_the_kind_of_character_changes() {
+        // The defects of the issue: "ζ₍₀²E₎*/w", "k₍eσ²₎", "R₍f²₎".
+        let scripts = |src: &str| -> Vec<(String, Script)> {
+            parse(&notation(src))
+                .into_iter()
+                .filter(|r| r.script != Script::Normal)
+                .map(|r| (r.text, r.script))
+                .collect()
+        };
+        assert_eq!(
+            scripts("b = ζ_0²E*/w"),
+            vec![("0".into(), Script::Sub), ("*".into(), Script::Super)]
+        );
+        assert_eq!(
+            scripts("k_eσ²/(cwA_e)"),
+            vec![("e".into(), Script::Sub), ("e".into(), Script::Sub)]
+        );
+        assert_eq!(scripts("k_f l_f/(π R_f² E)").len(), 3);
+        assert!(scripts("R_f²").iter().all(|(t, _)| t == "f"));
+        assert_eq!(scripts("σ_rms"), vec![("rms".into(), Script::Sub)]);
+        assert_eq!(terminal("k_eσ²"), "kₑσ²");
+    }
+
+    #[test]
+    fn notation_subscripts_zeta0_and_raises_the_asterisk() {
+        assert_eq!(notation("z_c/ζ0, √(2Rζ0)"), "z_c/ζ_0, √(2Rζ_0)");
+        assert_eq!(notation("Z0 [nm]"), "Z_0 [nm]");
+        assert_eq!(notation("ζ_0 and Z01 and fig3.Z0x"), "ζ_0 and Z01 and fig3.Z0x");
+        assert_eq!(notation("H/(2E*R³)"), "ℋ/(2E^*R³)");
+        assert_eq!(
+            notation("μ_T* = 2, E^{*} kept, HHV"),
+            "μ_T^* = 2, E^{*} kept, HHV"
+        );
+        assert_eq!(notation("2 * 3"), "2 * 3");
+    }
+
+    #[test]
+    fn numbers_drop_e_notation_and_empty_decimals() {
+        assert_eq!(
+            numbers("tol 1.25e-4 and 3e5"),
+            "tol 1.25 × 10^{−4} and 3 × 10^{5}"
+        );
+        assert_eq!(numbers("1e-5 ζ0"), "10^{−5} ζ0");
+        assert_eq!(numbers("A/λ = 0.0000, h = 0.00 nm"), "A/λ = 0, h = 0 nm");
+        // Not numbers of their own: ids, moduli, words.
+        assert_eq!(numbers("fig4.5 2E*R 1e5x k_e2"), "fig4.5 2E*R 1e5x k_e2");
+        assert_eq!(numbers("0.50 and 2.0e+00"), "0.50 and 2.0");
+        assert_eq!(plain(&notation("1.5e-3")), "1.5 × 10−3");
+    }
+
+    #[test]
+    fn captions_become_html_with_greek_letters() {
+        assert_eq!(
+            html(&greek_words("P_adh/(pi w R), mu_T < 1 & more")),
+            "P<sub>adh</sub>/(π w R), μ<sub>T</sub> &lt; 1 &amp; more"
+        );
+        assert_eq!(greek_words("mutual pi"), "mutual π");
+    }
 
     fn kinds(src: &str) -> Vec<(String, Script, Accent)> {
         parse(src)

@@ -171,9 +171,14 @@ fn invalid_values_are_rejected_with_the_parameter_named() {
         "must be below",
     );
     assert_rejected(
-        &["--headless", "--figure", "fig1.1", "--format", "pdf"],
-        "unknown format `pdf`",
+        &["--headless", "--figure", "fig1.1", "--format", "tiff"],
+        "unknown format `tiff`",
     );
+    assert_rejected(
+        &["--headless", "--figure", "fig1.1", "--width-mm", "10"],
+        "a figure is 40-500 mm wide",
+    );
+    assert_rejected(&["--headless", "--figure", "fig1.1", "--dpi", "0"], "--dpi");
 }
 
 #[test]

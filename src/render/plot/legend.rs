@@ -7,7 +7,7 @@ use super::draw::{
     Anchor, Baseline, Label, draw_hatched, draw_label, draw_marker, draw_pixel_line, draw_polyline,
     draw_ring, fill_polygon, pixel_runs,
 };
-use super::{Area, Draw, Frame, Metrics, PANEL_H, PANEL_W, err, ipt, palette, panel_frame, panel_slot, rgb};
+use super::{Area, Draw, Frame, Metrics, Print, err, ipt, palette, panel_frame, panel_slot, rgb};
 use crate::figure::{Figure, Legend, MarkerShape, Panel, Style};
 
 /// What a legend entry shows before its text.
@@ -33,7 +33,7 @@ const NOTE_WIDTH: f64 = 0.5;
 
 /// Distance of notes written under a panel from the bottom of its frame, at scale 1 (below the
 /// tick labels and the x-axis title).
-pub(super) const FOOTER_OFFSET: f64 = 62.0;
+pub(super) const FOOTER_OFFSET: f64 = 52.0;
 
 /// A legend ready to draw: its entries and its box in pixels.
 pub(super) struct LegendPlan {
@@ -115,6 +115,14 @@ fn legend_entries(panel: &Panel, colors: &[usize]) -> Vec<(String, Swatch)> {
         }
     }
     entries
+}
+
+/// The names of a panel's legend entries, in order (empty for a hidden legend).
+pub(super) fn entry_names(panel: &Panel) -> Vec<String> {
+    legend_entries(panel, &panel.series_colors())
+        .into_iter()
+        .map(|(n, _)| n)
+        .collect()
 }
 
 /// Pixel positions of everything a legend must not cover: the series drawn as lines (densified,
@@ -249,14 +257,23 @@ pub(super) fn plan_legend(
             return (frame, legend.into_iter().chain([footer]).collect());
         }
     }
-    // Outside on the right, beyond the colour bar if there is one; the notes, if any, under the
-    // panel, so that the frame narrows only by the legend's width.
+    // Outside on the right, beyond the colour bar if there is one, where the frame keeps most
+    // of its width; else under the panel, below the x-axis title (the panel grows to hold it).
+    let right_margin = if has_bar { 110.0 } else { 16.0 } * m.s;
+    let legend_w = boxed(entries.clone()).map_or(combined.w, |l| l.w);
+    if panel_w - legend_w - 6.0 * m.s - right_margin < frame.x0 + 0.55 * (frame.x1 - frame.x0) {
+        let mut plan = combined;
+        plan.footer = true;
+        plan.x = frame.x0 - pad;
+        plan.y = frame.y1 + FOOTER_OFFSET * m.s;
+        return (frame, vec![plan]);
+    }
+    // The notes, if any, under the panel, so that the frame narrows only by the legend's width.
     let (mut plan, footer) = match (boxed(entries), notes.is_empty()) {
         (Some(legend), false) => (legend, true),
         _ => (combined, false),
     };
     let x = panel_w - plan.w - 6.0 * m.s;
-    let right_margin = if has_bar { 110.0 } else { 16.0 } * m.s;
     let x1 = (x - right_margin).max(frame.x0 + 0.3 * (frame.x1 - frame.x0));
     let frame = Frame { x1, ..frame };
     plan.x = x;
@@ -324,9 +341,9 @@ fn free_place(
 /// panel's own area at the PNG scale), with the pixel positions of every series point and
 /// marker inside the frame. `None` for a panel with nothing to draw.
 pub fn panel_layouts(fig: &Figure) -> Vec<Option<PanelLayout>> {
-    let m = Metrics::png(2.0);
-    let (pw, ph) = (m.px(PANEL_W), m.px(PANEL_H));
-    fig.panels
+    let m = Metrics::png(fig, &Print::default());
+    let (pw, ph) = (m.px(m.panel.0), m.px(m.panel.1));
+    super::shown_panels(fig)
         .iter()
         .enumerate()
         .map(|(k, panel)| {
@@ -405,6 +422,7 @@ pub(super) fn draw_legend<DB: DrawingBackend>(area: &Area<DB>, plan: &LegendPlan
                 let step = (x1 - x0) / k as f64;
                 let mm = Metrics {
                     s: if k > 1 { m.s * 0.75 } else { m.s },
+                    panel: m.panel,
                     images: None,
                     texts: None,
                     aa: m.aa,
@@ -475,7 +493,7 @@ fn densify(frame: &Frame, points: &[(f64, f64)]) -> Vec<(f64, f64)> {
 
 /// Split a note into lines of at most `limit` pixels at `font` px, at spaces (a word longer
 /// than the limit stays whole).
-fn wrap(note: &str, font: f64, limit: f64) -> Vec<String> {
+pub(super) fn wrap(note: &str, font: f64, limit: f64) -> Vec<String> {
     let mut lines: Vec<String> = Vec::new();
     let mut line = String::new();
     for word in note.split_whitespace() {
