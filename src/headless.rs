@@ -109,7 +109,9 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
             let info = scene.info();
             // Sweeps and long runs (minutes each at their defaults) run in their quick form here.
             let quick = cli.quick || info.sweep || info.long;
-            let outcome = resolve_values(scene, None, &[], quick)
+            let values = resolve_values(scene, None, &[], quick);
+            let quick_form = values.as_ref().ok().and_then(|v| scenes::quick_form(scene, v));
+            let outcome = values
                 .and_then(|values| export_scene(scene, &values, &cli.out, &formats, &progress_job(id)));
             let image = [Format::Png, Format::Svg]
                 .into_iter()
@@ -126,6 +128,7 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
                         caption: info.caption,
                         image,
                         error: None,
+                        quick_form,
                     });
                 }
                 Err(e) => {
@@ -137,6 +140,7 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
                         caption: info.caption,
                         image: None,
                         error: Some(format!("{e:#}")),
+                        quick_form,
                     });
                 }
             }
@@ -185,6 +189,8 @@ pub struct GalleryEntry {
     pub image: Option<String>,
     /// Why the scene failed, if it did.
     pub error: Option<String>,
+    /// What its quick form computed more coarsely ([`scenes::quick_form`]), if it ran in one.
+    pub quick_form: Option<String>,
 }
 
 fn html_escape(s: &str) -> String {
@@ -224,6 +230,9 @@ pub fn gallery_html(entries: &[GalleryEntry]) -> String {
         }
         if let Some(err) = &e.error {
             out.push_str(&format!("<p class=\"error\">failed: {}</p>\n", html_escape(err)));
+        }
+        if let Some(q) = &e.quick_form {
+            out.push_str(&format!("<p class=\"quick\">quick form: {}</p>\n", html_escape(q)));
         }
         out.push_str(&format!(
             "<figcaption><b>{}</b> {}. {}</figcaption>\n</figure>\n",
@@ -558,6 +567,7 @@ mod gallery_tests {
                 caption: "P < 0 & pull-off",
                 image: Some("fig1.1.png".into()),
                 error: None,
+                quick_form: Some("steps = 100 (full: 1000)".into()),
             },
             GalleryEntry {
                 id: "fig9.9",
@@ -565,12 +575,15 @@ mod gallery_tests {
                 caption: "c",
                 image: None,
                 error: Some("no bracket".into()),
+                quick_form: None,
             },
         ];
         let html = gallery_html(&entries);
         assert!(html.contains("<img src=\"fig1.1.png\""));
         assert!(html.contains("P &lt; 0 &amp; pull-off"));
         assert!(html.contains("failed: no bracket"));
+        assert!(html.contains("quick form: steps = 100 (full: 1000)"));
+        assert_eq!(html.matches("quick form:").count(), 1);
         assert_eq!(html.matches("<figure").count(), 2);
     }
 }
