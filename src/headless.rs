@@ -111,8 +111,8 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
             let quick = cli.quick || info.sweep || info.long;
             let values = resolve_values(scene, None, &[], quick);
             let quick_form = values.as_ref().ok().and_then(|v| scenes::quick_form(scene, v));
-            let outcome = values
-                .and_then(|values| export_scene(scene, &values, &cli.out, &formats, &progress_job(id)));
+            let outcome =
+                values.and_then(|values| export_scene(scene, &values, &cli.out, &formats, &progress_job(id)));
             let image = [Format::Png, Format::Svg]
                 .into_iter()
                 .find(|f| formats.contains(f))
@@ -232,7 +232,10 @@ pub fn gallery_html(entries: &[GalleryEntry]) -> String {
             out.push_str(&format!("<p class=\"error\">failed: {}</p>\n", html_escape(err)));
         }
         if let Some(q) = &e.quick_form {
-            out.push_str(&format!("<p class=\"quick\">quick form: {}</p>\n", html_escape(q)));
+            out.push_str(&format!(
+                "<p class=\"quick\">quick form: {}</p>\n",
+                html_escape(q)
+            ));
         }
         out.push_str(&format!(
             "<figcaption><b>{}</b> {}. {}</figcaption>\n</figure>\n",

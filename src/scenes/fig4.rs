@@ -12,6 +12,7 @@ mod accuracy;
 pub mod criterion;
 pub mod fe;
 mod roughness;
+mod study;
 mod sweeps;
 
 use std::f64::consts::PI;
@@ -45,6 +46,7 @@ pub const SCENES: &[&dyn SceneDyn] = &[
     &Registered::<Fig4_8>::NEW,
     &Registered::<roughness::Fig4_9a>::NEW,
     &Swept::<sweeps::Fig4_9b>::NEW,
+    &Swept::<study::Fig4_9bModels>::NEW,
     &Swept::<sweeps::Fig4_10>::NEW,
     &Registered::<roughness::Fig4_11>::NEW,
     &Registered::<roughness::Fig4_12>::NEW,

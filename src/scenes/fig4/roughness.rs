@@ -24,8 +24,24 @@ use crate::scenes::groups::{
 
 /// The parameters shared by the roughness scenes (those of Fig. 4.7a with σ = 1.5 nm and
 /// |h_min|/R = 6e-4), with the scene's own amplitudes and extra fields appended.
+/// The scenes of one model take `model` (surface or fe, after the discretisation); the study
+/// of both models (`@fields`) takes the fields alone and names its model with `tip_model`.
 macro_rules! rough_tip_params {
     ($(#[$meta:meta])* $name:ident, youngs_modulus = $e:expr, { $($extra:tt)* }) => {
+        rough_tip_params! { @fields $(#[$meta])* $name, youngs_modulus = $e, {
+            /// Model of the tip: surface (the axisymmetric surface model, seconds per cycle) or fe (the dissertation's finite-element model with the body force (4.15): 7 086 unknowns at σ = 1.5 nm and more at smaller σ, b growing as σ⁴; about 2 minutes per cycle, fig4.9a's six cycles 14 minutes on 2 shared cores; quick form seconds per cycle).
+            model: TipModel = TipModel::Surface, unit = "", range = Range::any();
+            $($extra)*
+        } }
+
+        impl $name {
+            /// The model of the cycles.
+            fn tip_model(&self) -> TipModel {
+                self.model
+            }
+        }
+    };
+    (@fields $(#[$meta:meta])* $name:ident, youngs_modulus = $e:expr, { $($extra:tt)* }) => {
         crate::scene_params! {
             $(#[$meta])*
             pub struct $name {
@@ -47,8 +63,6 @@ macro_rules! rough_tip_params {
                     ring_width: "Ring width (surface model) or width of the surface elements (finite elements) in units of b = ζ0²E*/w.",
                     quadrature_points: "Gauss points per interval of the interaction energy (per chord interval in r near the substrate for finite elements).",
                 };
-                /// Model of the tip: surface (the axisymmetric surface model, seconds per cycle) or fe (the dissertation's finite-element model with the body force (4.15): about 10 000-30 000 unknowns and minutes per cycle on 2 cores at the defaults; quick form several seconds per cycle).
-                model: TipModel = TipModel::Surface, unit = "", range = Range::any();
                 /// The mesh of the finite-element model.
                 group mesh: FeMesh;
                 $($extra)*
@@ -90,7 +104,7 @@ macro_rules! rough_tip_params {
                     modulus,
                     elastic: tip,
                     choice: crate::scenes::fig4::ModelChoice {
-                        model: self.model,
+                        model: self.tip_model(),
                         mesh: self.mesh.clone(),
                     },
                     radius: self.tip.radius,
@@ -225,7 +239,12 @@ impl Setup {
     }
 
     /// One cycle of the tip with amplitude `amplitude`, to the set depth.
-    pub(super) fn cycle(&self, amplitude: f64, keep_profiles: bool, job: &Job) -> Result<(SceneTip, TipCycle)> {
+    pub(super) fn cycle(
+        &self,
+        amplitude: f64,
+        keep_profiles: bool,
+        job: &Job,
+    ) -> Result<(SceneTip, TipCycle)> {
         let tip = self.tip(amplitude)?;
         let cycle = self.cycle_of(&tip, keep_profiles, job)?;
         Ok((tip, cycle))
@@ -692,6 +711,14 @@ impl Scene for Fig4_12 {
                     p.contact.contact_gap,
                     3.0 * p.sigma * 1e9,
                 ));
+                if s.contact.area() <= 0.0 {
+                    let (_, gaps) = tip.profile(s.depth, &s.displacement);
+                    let least = gaps.iter().copied().fold(f64::INFINITY, f64::min) * setup.lj.zeta0();
+                    panel.annotate(format!(
+                        "Out of contact: the final pull-off has detached the tip (least gap {:.1} nm, above the 3σ clip).",
+                        least * 1e9
+                    ));
+                }
                 fig.panels.push(panel);
             }
         }

@@ -25,7 +25,7 @@ fn cycle_cost(b: f64, b_min: f64) -> f64 {
 }
 
 /// P_adh/(2E*R²) and H/(2E*R³) of one cycle.
-fn adhesion_of(setup: &Setup, amplitude: f64, job: &Job) -> Result<(f64, f64)> {
+pub(super) fn adhesion_of(setup: &Setup, amplitude: f64, job: &Job) -> Result<(f64, f64)> {
     let (tip_cycle, scale) = (setup.cycle(amplitude, false, job)?, setup.scale());
     let cycle = tip_cycle.1;
     Ok((
