@@ -24,6 +24,9 @@ pub struct Figure {
     pub results: Vec<(String, f64)>,
     /// Remarks worth keeping with the data (what differs from the dissertation and why).
     pub notes: Vec<String>,
+    /// What a run in quick form computed more coarsely than the full figure (the parameters
+    /// the quick form changed, with their full values); `None` for a run at full resolution.
+    pub quick_form: Option<String>,
 }
 
 impl Figure {
@@ -35,6 +38,18 @@ impl Figure {
             panels: Vec::new(),
             results: Vec::new(),
             notes: Vec::new(),
+            quick_form: None,
+        }
+    }
+
+    /// Mark the figure as computed in quick form: `coarser` says what is coarser than the full
+    /// figure. It is kept in [`Figure::quick_form`], as the first note ("quick form: ...") and
+    /// in the title, so that no copy of the figure passes for the full one.
+    pub fn mark_quick(&mut self, coarser: &str) {
+        self.quick_form = Some(coarser.to_string());
+        self.notes.insert(0, format!("quick form: {coarser}"));
+        if !self.title.ends_with("(quick form)") {
+            self.title.push_str(" (quick form)");
         }
     }
 

@@ -111,7 +111,9 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
             let info = scene.info();
             // Sweeps and long runs (minutes each at their defaults) run in their quick form here.
             let quick = cli.quick || info.sweep || info.long;
-            let outcome = resolve_values(scene, None, &[], quick).and_then(|values| {
+            let values = resolve_values(scene, None, &[], quick);
+            let quick_form = values.as_ref().ok().and_then(|v| scenes::quick_form(scene, v));
+            let outcome = values.and_then(|values| {
                 export_scene_at(scene, &values, &cli.out, &formats, &print, &progress_job(id))
             });
             let mut entry = GalleryEntry {
@@ -122,7 +124,7 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
                 thumbnail: None,
                 files: Vec::new(),
                 notes: Vec::new(),
-                quick,
+                quick_form,
                 error: None,
             };
             match outcome.and_then(|(fig, paths)| {
@@ -138,7 +140,11 @@ pub fn run(cli: &Cli) -> anyhow::Result<ExitCode> {
                         .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
                         .collect();
                     entry.thumbnail = Some(thumb);
-                    entry.notes = figure_notes(&fig);
+                    // The quick form has its own line on the page.
+                    entry.notes = figure_notes(&fig)
+                        .into_iter()
+                        .filter(|n| !n.starts_with("quick form:"))
+                        .collect();
                 }
                 Err(e) => {
                     failed += 1;
@@ -196,10 +202,10 @@ pub struct GalleryEntry {
     pub files: Vec<String>,
     /// The figure's notes: what the workbench finds where it differs from the text.
     pub notes: Vec<String>,
-    /// Whether the figure ran in its quick form (fewer points than the defaults).
-    pub quick: bool,
     /// Why the scene failed, if it did.
     pub error: Option<String>,
+    /// What its quick form computed more coarsely ([`scenes::quick_form`]), if it ran in one.
+    pub quick_form: Option<String>,
 }
 
 /// Width of a gallery thumbnail (pixels).
@@ -319,17 +325,17 @@ pub fn gallery_html(entries: &[GalleryEntry]) -> String {
         if let Some(err) = &e.error {
             out.push_str(&format!("<p class=\"error\">failed: {}</p>\n", html_escape(err)));
         }
+        if let Some(q) = &e.quick_form {
+            out.push_str(&format!(
+                "<p class=\"quick\">quick form: {} (export it with --figure for the full run)</p>\n",
+                html_escape(q)
+            ));
+        }
         out.push_str(&format!(
-            "<figcaption><b>{}</b> {}. {}{}</figcaption>\n",
+            "<figcaption><b>{}</b> {}. {}</figcaption>\n",
             html_escape(e.id),
             math(e.title),
             math(e.caption),
-            if e.quick {
-                " <span class=\"quick\">(quick form: fewer points than the defaults; \
-                 export it with --figure for the full run)</span>"
-            } else {
-                ""
-            }
         ));
         if !e.notes.is_empty() {
             out.push_str("<ul class=\"notes\">\n");
@@ -732,7 +738,7 @@ mod gallery_tests {
             thumbnail: None,
             files: Vec::new(),
             notes: Vec::new(),
-            quick: false,
+            quick_form: None,
             error: None,
         };
         let entries = vec![
@@ -740,7 +746,7 @@ mod gallery_tests {
                 thumbnail: Some("thumbs/fig1.1.png".into()),
                 files: vec!["fig1.1.png".into(), "fig1.1.csv".into(), "fig1.1.pdf".into()],
                 notes: vec!["mu_T = 2 differs".into()],
-                quick: true,
+                quick_form: Some("steps = 100 (full: 1000)".into()),
                 ..entry("fig1.1", "JKR", "P < 0 & pull-off at P_adh/(2E*R^2)")
             },
             GalleryEntry {
@@ -764,6 +770,8 @@ mod gallery_tests {
         assert!(html.contains("quick form"));
         assert!(html.contains("failed: no bracket"));
         assert!(html.contains("<h3>Chapter 1"));
+        assert!(html.contains("quick form: steps = 100 (full: 1000)"));
+        assert_eq!(html.matches("quick form:").count(), 1);
         assert_eq!(html.matches("<figure").count(), 2);
     }
 }

@@ -263,8 +263,44 @@ impl<S: Scene> SceneDyn for Registered<S> {
         if let Some(m) = S::memory_estimate(&p) {
             m.check(memory_limit())?;
         }
-        finish(S::ID, values, &self.baseline(values), S::run(&p, job))
+        let mut fig = finish(S::ID, values, &self.baseline(values), S::run(&p, job))?;
+        if let Some(coarser) = quick_form(self, values) {
+            fig.mark_quick(&coarser);
+        }
+        Ok(fig)
     }
+}
+
+/// What a run of `scene` with `values` computes more coarsely than the full figure, when the
+/// values are in quick form ([`ParamValues::quick`]): each parameter the scene's quick form
+/// changes from its defaults, as it ran and at full resolution ("sigma_points = 3 (full: 9)").
+/// `None` for a run at full resolution, and for a quick form that changes nothing (or whose
+/// every change the user set back).
+pub fn quick_form(scene: &dyn SceneDyn, values: &ParamValues) -> Option<String> {
+    if !values.quick {
+        return None;
+    }
+    let full = scene.defaults();
+    let quick = scene.quick(&full).ok()?;
+    let changed: Vec<String> = full
+        .specs
+        .iter()
+        .zip(full.values.iter().zip(&quick.values))
+        .filter(|(_, (f, q))| f != q)
+        .filter_map(|(spec, (f, _))| {
+            let ran = values.specs.iter().position(|s| s.name == spec.name)?;
+            let ran = &values.values[ran];
+            (ran != f).then(|| {
+                format!(
+                    "{} = {} (full: {})",
+                    spec.name,
+                    crate::params::value_text(ran),
+                    crate::params::value_text(f)
+                )
+            })
+        })
+        .collect();
+    (!changed.is_empty()).then(|| changed.join(", "))
 }
 
 /// The end of every run, sharded or not: a model's failure as [`attribute_failure`] makes it,

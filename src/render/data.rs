@@ -112,6 +112,9 @@ struct Record<'a> {
     parameters: Vec<ParamRecord>,
     results: serde_json::Map<String, serde_json::Value>,
     notes: &'a [String],
+    /// What the run computed more coarsely than the full figure (absent at full resolution).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    quick_form: Option<&'a str>,
     /// The notes drawn on the panels (what a panel finds against the text).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     panel_notes: Vec<PanelNotes<'a>>,
@@ -178,6 +181,7 @@ pub fn json(fig: &Figure, caption: &str, params: &ParamValues, run_time_s: f64) 
         parameters,
         results,
         notes: &fig.notes,
+        quick_form: fig.quick_form.as_deref(),
         panel_notes: fig
             .panels
             .iter()

@@ -43,6 +43,40 @@ fn check_list(name: &str, values: &[f64]) -> Result<()> {
 /// Draw one MD curve with its displacement-controlled cycle into `panel`: stable runs solid,
 /// unstable dashed, the free branch P = 0, the jumps, pull-in and pull-off markers and the
 /// shaded loss. Returns the loss.
+/// Draw a curve of `(stable, point)` pairs as runs of equal stability, stable solid and
+/// unstable dashed (neighbouring runs share their end point). The first point takes the
+/// stability of the second (an onset point belongs to both branches).
+pub(crate) fn draw_by_stability(
+    panel: &mut Panel,
+    name: &str,
+    color: usize,
+    points: impl IntoIterator<Item = (bool, (f64, f64))>,
+) {
+    let points: Vec<(bool, (f64, f64))> = points.into_iter().collect();
+    let Some(&(first, _)) = points.get(1).or(points.first()) else {
+        return;
+    };
+    let flush = |panel: &mut Panel, run: &mut Vec<(f64, f64)>, stable: bool| {
+        if run.len() > 1 {
+            let style = if stable { Style::Stable } else { Style::Unstable };
+            panel.add(Series::new(name, style, std::mem::take(run)).with_color(color));
+        }
+        run.clear();
+    };
+    let mut run: Vec<(f64, f64)> = Vec::new();
+    let mut stable = first;
+    for (s, pt) in points {
+        if s != stable && run.len() > 1 {
+            let last = *run.last().expect("non-empty run");
+            flush(panel, &mut run, stable);
+            run.push(last);
+            stable = s;
+        }
+        run.push(pt);
+    }
+    flush(panel, &mut run, stable);
+}
+
 pub(crate) fn draw_md(
     panel: &mut Panel,
     md: &MaugisDugdale,
@@ -53,31 +87,7 @@ pub(crate) fn draw_md(
 ) -> Result<f64> {
     let cycle = md.cycle()?;
     let curve = md.curve(a_max, n)?;
-    // Split into runs of equal stability (neighbouring runs share their end point).
-    let mut run: Vec<(f64, f64)> = Vec::new();
-    let mut stable = curve[0].stable;
-    let flush = |panel: &mut Panel, run: &mut Vec<(f64, f64)>, stable: bool| {
-        if run.len() > 1 {
-            let style = if stable { Style::Stable } else { Style::Unstable };
-            panel.add(Series::new(name, style, std::mem::take(run)).with_color(color));
-        }
-        run.clear();
-    };
-    // The onset point (c = 0) belongs to both the free branch and the curve; start with the
-    // stability of the first interior point.
-    if let Some(s) = curve.get(1) {
-        stable = s.stable;
-    }
-    for s in &curve {
-        if s.stable != stable && run.len() > 1 {
-            let last = *run.last().expect("non-empty run");
-            flush(panel, &mut run, stable);
-            run.push(last);
-            stable = s.stable;
-        }
-        run.push((s.h, s.p));
-    }
-    flush(panel, &mut run, stable);
+    draw_by_stability(panel, name, color, curve.iter().map(|s| (s.stable, (s.h, s.p))));
     let onset = md.onset_depth();
     let fold: MdState = cycle.pull_off_from;
     let land = cycle.pull_in_to;

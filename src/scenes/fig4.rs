@@ -12,11 +12,12 @@ mod accuracy;
 pub mod criterion;
 pub mod fe;
 mod roughness;
+mod study;
 mod sweeps;
 
 use std::f64::consts::PI;
 
-use super::fig3::draw_md;
+use super::fig3::{draw_by_stability, draw_md};
 use super::sweep::Swept;
 use super::{Registered, Scene, SceneDyn};
 use crate::error::{Error, Result};
@@ -45,6 +46,7 @@ pub const SCENES: &[&dyn SceneDyn] = &[
     &Registered::<Fig4_8>::NEW,
     &Registered::<roughness::Fig4_9a>::NEW,
     &Swept::<sweeps::Fig4_9b>::NEW,
+    &Swept::<study::Fig4_9bModels>::NEW,
     &Swept::<sweeps::Fig4_10>::NEW,
     &Registered::<roughness::Fig4_11>::NEW,
     &Registered::<roughness::Fig4_12>::NEW,
@@ -445,15 +447,17 @@ impl Scene for Fig4_5 {
             Axis::linear("Contact radius a/R", ""),
             Axis::linear("Contact force P/(2E*R²)", ""),
         )
-        .titled("(b)", "a: gap below σ (model), c (MD)");
+        .titled("(b)", "a: gap below σ (model), contact radius a (MD)");
         let md_curve = md.curve(a_max.max(1e-6), 300)?;
-        pa.add(
-            Series::new(
-                format!("MD (3.3), χ = {chi:.3}"),
-                Style::Reference,
-                md_curve.iter().map(|s| (s.c, s.p)).collect(),
-            )
-            .with_color(7),
+        // The MD contact branch (a > 0): stable solid, unstable dashed, as in panel (a).
+        draw_by_stability(
+            &mut pa,
+            &format!("MD (3.3), χ = {chi:.3}"),
+            7,
+            md_curve
+                .iter()
+                .filter(|s| s.a > 0.0)
+                .map(|s| (s.stable, (s.a, s.p))),
         );
         for (phase, states) in [("loading", &cycle.loading), ("unloading", &cycle.unloading)] {
             let pts: Vec<(f64, f64)> = states

@@ -242,11 +242,15 @@ impl<S: Sweep> SweepDyn for Swept<S> {
                 reason: format!("point {id} has {} values, not {}", v.len(), S::point_len(&p, id)),
             });
         }
-        crate::scenes::finish(
+        let mut fig = crate::scenes::finish(
             S::ID,
             values,
             &self.baseline(values),
             S::assemble(&p, points, job),
-        )
+        )?;
+        if let Some(coarser) = crate::scenes::quick_form(self, values) {
+            fig.mark_quick(&coarser);
+        }
+        Ok(fig)
     }
 }

@@ -252,7 +252,14 @@ const DECLARED_DIFFERENCES: &[(&str, &[&str], &str)] = &[
     // range are the group's, `scenes::groups`).
     (
         "youngs_modulus",
-        &["fig4.9a", "fig4.9b", "fig4.10", "fig4.11", "fig4.12"],
+        &[
+            "fig4.9a",
+            "fig4.9b",
+            "fig4.9b-models",
+            "fig4.10",
+            "fig4.11",
+            "fig4.12",
+        ],
         "the roughness scenes cite ERRATA on Fig. 4.9's modulus",
     ),
     ("c12", &["fig4.4"], "fig4.4 is adhesionless: C6 = 0"),
@@ -270,6 +277,7 @@ const DECLARED_DIFFERENCES: &[(&str, &[&str], &str)] = &[
             "fig4.8",
             "fig4.9a",
             "fig4.9b",
+            "fig4.9b-models",
             "fig4.10",
             "fig4.11",
             "fig4.12",

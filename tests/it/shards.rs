@@ -483,7 +483,7 @@ fn every_sweep_assembles_the_same_figure_from_any_grouping_of_points() {
         }
     }
     assert_eq!(
-        count, 7,
-        "sweep scenes: fig3.8, fig4.9b, fig4.10, fig5.8, fig5.9, fig6.3, fig6.5"
+        count, 8,
+        "sweep scenes: fig3.8, fig4.9b, fig4.9b-models, fig4.10, fig5.8, fig5.9, fig6.3, fig6.5"
     );
 }

@@ -366,7 +366,8 @@ impl Scene for Fig4_5Models {
     const CAPTION: &'static str = "The cycle of Fig. 4.5 (R = 5 um, E = 4.4 MPa, nu = 0.25, C6 = 3, C12 = 1, sigma = 1 nm, \
         A_H = 2e-21 J) computed with the dissertation's finite-element model (an axisymmetric tip with the body \
         force (4.15)) and with the surface model that draws the other chapter 4 figures (the body force \
-        integrated through a column, the traction (4.19)). (a) P-h cycles of both; the adhesive force of \
+        integrated through a column, the traction (4.19)). (a) P-h cycles of both; with convergence_study = 1 \
+        (the default; not in the quick form, which draws (a) alone) the adhesive force of \
         shallow finite-element cycles (to h = 0) (b) against the number of unknowns as the bulk mesh is refined \
         (grading) and (c) against the tip's size r0 = h0, with the surface model's value for reference. The two \
         models differ only through the strain of the surface layer (order p/E) and the finite tip.";
@@ -665,7 +666,9 @@ impl Scene for Fig4_6 {
         vertical displacement u_z in the tip near the contact (the neck-like profile of the contact zone), \
         (b) the normal stress sigma_zz along the interface, taken just above the interaction layer (the tip's \
         bottom face is traction free; the body force builds sigma_zz up through the layer): compressive in the \
-        centre, tensile with a concentration at the contact edge, as in the classical adhesive contact.";
+        centre, tensile with a concentration at the contact edge, as in the classical adhesive contact; (c) the \
+        gap of the deformed surface near the contact against the undeformed tip's at the same depth: the \
+        neck-like profile (also drawn in (a)).";
     const RESULTS: &'static [(&'static str, &'static str)] = &[
         ("contact_radius_m", "radius where the gap is below sigma"),
         ("depth_m", "depth h of the state"),
@@ -801,7 +804,55 @@ impl Scene for Fig4_6 {
             ys.iter().map(|y| y * l * 1e9).collect(),
             values,
         ));
+        // The deformed surface (nodes moved by (u_r, u_z)) over the field.
+        let surface_nodes: Vec<usize> = mesh
+            .surface
+            .iter()
+            .copied()
+            .filter(|&k| mesh.nodes[k][0] <= w_r)
+            .collect();
+        let deformed: Vec<(f64, f64)> = surface_nodes
+            .iter()
+            .map(|&k| {
+                let [ur, uz] = tip.node_displacement(u, k);
+                (
+                    (mesh.nodes[k][0] + ur) * l * 1e9,
+                    (mesh.nodes[k][1] + uz) * l * 1e9,
+                )
+            })
+            .collect();
+        pf.add(Series::new("deformed surface", Style::Stable, deformed).with_color(0));
         fig.panels.push(pf);
+        // (c) The neck: the gap of the deformed surface near the contact against the rigid
+        // tip's at the same depth.
+        let delta = tip.approach(state.depth);
+        let zero = vec![0.0; u.len()];
+        let window = |(r, g): (Vec<f64>, Vec<f64>)| -> Vec<(f64, f64)> {
+            r.iter()
+                .zip(g)
+                .filter(|(r, _)| **r <= 1.6 * a)
+                .map(|(r, g)| (r * 1e9, g * l * 1e9))
+                .collect()
+        };
+        let mut pn = Panel::new(Axis::linear("Radius r", "nm"), Axis::linear("Gap g", "nm"))
+            .titled("(c)", "deformed surface near the contact: the neck");
+        pn.add(Series::new("deformed tip", Style::Stable, window(tip.surface_gaps(delta, u))).with_color(0));
+        pn.add(
+            Series::new(
+                "undeformed tip, same depth",
+                Style::Reference,
+                window(tip.surface_gaps(delta, &zero)),
+            )
+            .with_color(7),
+        );
+        pn.add(
+            Series::new(
+                "contact threshold σ",
+                Style::Reference,
+                vec![(0.0, p.lj.sigma * 1e9), (1.6 * a * 1e9, p.lj.sigma * 1e9)],
+            )
+            .with_color(1),
+        );
 
         // (b) σ_zz at the element centroids nearest to the chosen depth below the surface.
         let stresses = tip.centroid_stresses(u);
@@ -862,6 +913,7 @@ impl Scene for Fig4_6 {
             .with_label("a"),
         );
         fig.panels.push(ps);
+        fig.panels.push(pn);
         fig.result("contact_radius_m", state.contact.radius());
         fig.result("depth_m", state.depth);
         fig.result("force_N", state.force);

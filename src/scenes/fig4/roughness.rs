@@ -10,21 +10,38 @@
 
 use rayon::prelude::*;
 
-use super::{draw_cycle, tip_for};
+use super::{ModelChoice, SceneTip, TipModel, draw_cycle};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Field, Figure, Panel};
 use crate::job::Job;
-use crate::models::axisymmetric::cycle::{CycleOptions, TipCycle, TipJump, TipState, run_cycle};
-use crate::models::axisymmetric::tip::Tip;
+use crate::models::axisymmetric::cycle::{CycleOptions, TipCycle, TipJump, TipState};
 use crate::models::lennard_jones::LennardJones;
 use crate::params::Range;
 use crate::scenes::Scene;
-use crate::scenes::groups::{ContactCriterion, DepthPath, ElasticTip, Interaction, SurfaceModel, Waviness};
+use crate::scenes::groups::{
+    ContactCriterion, DepthPath, ElasticTip, FeMesh, Interaction, SurfaceModel, Waviness,
+};
 
 /// The parameters shared by the roughness scenes (those of Fig. 4.7a with σ = 1.5 nm and
 /// |h_min|/R = 6e-4), with the scene's own amplitudes and extra fields appended.
+/// The scenes of one model take `model` (surface or fe, after the discretisation); the study
+/// of both models (`@fields`) takes the fields alone and names its model with `tip_model`.
 macro_rules! rough_tip_params {
     ($(#[$meta:meta])* $name:ident, youngs_modulus = $e:expr, { $($extra:tt)* }) => {
+        rough_tip_params! { @fields $(#[$meta])* $name, youngs_modulus = $e, {
+            /// Model of the tip: surface (the axisymmetric surface model, seconds per cycle) or fe (the dissertation's finite-element model with the body force (4.15): 7 086 unknowns at σ = 1.5 nm and more at smaller σ, b growing as σ⁴; about 2 minutes per cycle, fig4.9a's six cycles 14 minutes on 2 shared cores; quick form seconds per cycle).
+            model: TipModel = TipModel::Surface, unit = "", range = Range::any();
+            $($extra)*
+        } }
+
+        impl $name {
+            /// The model of the cycles.
+            fn tip_model(&self) -> TipModel {
+                self.model
+            }
+        }
+    };
+    (@fields $(#[$meta:meta])* $name:ident, youngs_modulus = $e:expr, { $($extra:tt)* }) => {
         crate::scene_params! {
             $(#[$meta])*
             pub struct $name {
@@ -43,14 +60,26 @@ macro_rules! rough_tip_params {
                 from DepthPath: step_over_zeta0: f64 = 0.25;
                 /// The discretisation of the surface model.
                 group surface: SurfaceModel help {
-                    ring_width: "Ring width in units of b = ζ0²E*/w.",
-                    quadrature_points: "Gauss points per interval of the interaction energy.",
+                    ring_width: "Ring width (surface model) or width of the surface elements (finite elements) in units of b = ζ0²E*/w.",
+                    quadrature_points: "Gauss points per interval of the interaction energy (per chord interval in r near the substrate for finite elements).",
                 };
+                /// The mesh of the finite-element model.
+                group mesh: FeMesh;
                 $($extra)*
             }
         }
 
         impl $name {
+            /// The quick form of the cycles: shallow (|h_min|/R at most 1e-4), started closer,
+            /// in steps of at least 0.5 ζ0, on the quick finite-element mesh.
+            #[allow(dead_code)]
+            fn shallow_quick(&mut self) {
+                self.depth_over_radius = self.depth_over_radius.min(1.0e-4);
+                self.step_over_zeta0 = self.step_over_zeta0.max(0.5);
+                self.h_start_over_zeta0 = self.h_start_over_zeta0.min(12.0);
+                self.mesh.quick();
+            }
+
             /// The material and cycle set-up at Young's modulus `youngs_modulus` [Pa], range
             /// `sigma` [m] of the potential and contact threshold `contact_gap` [m].
             fn setup(
@@ -73,6 +102,11 @@ macro_rules! rough_tip_params {
                 Ok(crate::scenes::fig4::roughness::Setup {
                     lj,
                     modulus,
+                    elastic: tip,
+                    choice: crate::scenes::fig4::ModelChoice {
+                        model: self.tip_model(),
+                        mesh: self.mesh.clone(),
+                    },
                     radius: self.tip.radius,
                     wavelength: self.wavelength,
                     depth: self.depth_over_radius * self.tip.radius,
@@ -146,6 +180,10 @@ rough_tip_params! {
 pub(super) struct Setup {
     pub(super) lj: LennardJones,
     pub(super) modulus: f64,
+    /// The tip's elastic constants (at the set modulus).
+    pub(super) elastic: ElasticTip,
+    /// The model of the cycles, with its finite-element mesh.
+    pub(super) choice: ModelChoice,
     pub(super) radius: f64,
     pub(super) wavelength: f64,
     pub(super) depth: f64,
@@ -165,10 +203,11 @@ impl Setup {
     ///
     /// # Errors
     /// A ring grid the model refuses, naming the parameter that set it.
-    pub(super) fn tip(&self, amplitude: f64) -> Result<Tip> {
-        tip_for(
+    pub(super) fn tip(&self, amplitude: f64) -> Result<SceneTip> {
+        SceneTip::new(
+            &self.choice,
             &self.lj,
-            (self.radius, self.modulus),
+            &self.elastic,
             (amplitude, self.wavelength),
             -self.depth,
             &self.surface,
@@ -177,12 +216,12 @@ impl Setup {
 
     /// The tips of several amplitudes, in the order given: built before any cycle runs, so
     /// that a grid the model refuses fails at once, not after the other cycles.
-    pub(super) fn tips(&self, amplitudes: &[f64]) -> Result<Vec<Tip>> {
+    pub(super) fn tips(&self, amplitudes: &[f64]) -> Result<Vec<SceneTip>> {
         amplitudes.par_iter().map(|&a| self.tip(a)).collect()
     }
 
     /// One cycle of `tip` to the set depth.
-    fn cycle_of(&self, tip: &Tip, keep_profiles: bool, job: &Job) -> Result<TipCycle> {
+    fn cycle_of(&self, tip: &SceneTip, keep_profiles: bool, job: &Job) -> Result<TipCycle> {
         let zeta0 = self.lj.zeta0();
         let opts = CycleOptions {
             h_start: self.h_start_over_zeta0 * zeta0,
@@ -193,14 +232,19 @@ impl Setup {
             keep_profiles,
             unload_to: None,
         };
-        run_cycle(tip, &opts, |f| {
+        tip.cycle(&opts, |f| {
             job.progress(f, "cycle");
             job.check()
         })
     }
 
     /// One cycle of the tip with amplitude `amplitude`, to the set depth.
-    pub(super) fn cycle(&self, amplitude: f64, keep_profiles: bool, job: &Job) -> Result<(Tip, TipCycle)> {
+    pub(super) fn cycle(
+        &self,
+        amplitude: f64,
+        keep_profiles: bool,
+        job: &Job,
+    ) -> Result<(SceneTip, TipCycle)> {
         let tip = self.tip(amplitude)?;
         let cycle = self.cycle_of(&tip, keep_profiles, job)?;
         Ok((tip, cycle))
@@ -210,11 +254,11 @@ impl Setup {
     /// equal part of `job`'s progress step by step.
     fn cycles(
         &self,
-        tips: Vec<Tip>,
+        tips: Vec<SceneTip>,
         keep_profiles: bool,
         job: &Job,
         what: &str,
-    ) -> Result<Vec<(Tip, TipCycle)>> {
+    ) -> Result<Vec<(SceneTip, TipCycle)>> {
         let weights = vec![1.0; tips.len()];
         let cycles = job.map_parallel_parts(&tips, &weights, what, (0.0, 1.0), |tip, part| {
             self.cycle_of(tip, keep_profiles, part)
@@ -228,20 +272,15 @@ impl Setup {
 /// highlighted contour: the axisymmetric contact set (a disc, or a disc and annuli) as the
 /// dissertation's configuration snapshots show it.
 fn top_view(
-    tip: &Tip,
+    (tip, zeta0): (&SceneTip, f64),
     state: &TipState,
     half_width: f64,
     points: usize,
     contact_gap: f64,
     clip: f64,
 ) -> Field {
-    let zeta0 = tip.scales().length;
-    let radii = tip.radii();
-    let gaps: Vec<f64> = tip
-        .gaps(tip.approach(state.depth), &state.displacement)
-        .iter()
-        .map(|g| g * zeta0 * 1e9)
-        .collect();
+    let (radii, gaps) = tip.profile(state.depth, &state.displacement);
+    let gaps: Vec<f64> = gaps.iter().map(|g| g * zeta0 * 1e9).collect();
     // Linear interpolation in r between ring mid-radii (flat inside the first).
     let gap_at = |r: f64| -> f64 {
         let k = radii.partition_point(|&ri| ri < r);
@@ -287,7 +326,8 @@ impl Scene for Fig4_9a {
     const ID: &'static str = "fig4.9a";
     const CHAPTER: &'static str = "4";
     const TITLE: &'static str = "Roughness and adhesion: P-h cycles of three amplitudes";
-    const CAPTION: &'static str = "Force against depth of a wavy tip (surface model) cycled to |h_min|/R = 6e-4 for \
+    const CAPTION: &'static str = "Force against depth of a wavy tip (surface model, or with model = fe the dissertation's \
+        finite-element model) cycled to |h_min|/R = 6e-4 (the figure's notes give the depth that ran) for \
         A/lambda = 0, 0.0075 and 0.02 (A = 0, 0.9375, 2.5 nm; sigma = 1.5 nm, the other parameters of Fig. 4.7a). \
         (a) at the caption's E = 2.2 MPa, (b) at E = 1.1 MPa (ERRATA: the printed smooth-tip force exceeds the DMT \
         bound at 2.2 MPa). The dissertation: P_adh/(2E*R^2) = 1.54e-5, 3.06e-5, 1.93e-5 and H/(2E*R^3) = 2.93e-9, \
@@ -316,9 +356,7 @@ impl Scene for Fig4_9a {
 
     /// A shallow cycle (the loop and its jumps, not the caption's depth) with coarser steps.
     fn quick(p: &mut Self::Params) {
-        p.depth_over_radius = p.depth_over_radius.min(1.0e-4);
-        p.step_over_zeta0 = p.step_over_zeta0.max(0.5);
-        p.h_start_over_zeta0 = p.h_start_over_zeta0.min(12.0);
+        p.shallow_quick();
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
@@ -375,7 +413,17 @@ impl Scene for Fig4_9a {
                 },
                 Axis::linear("Force P/(2E*R²)", ""),
             )
-            .titled(label, format!("E = {:.2} MPa", e * 1e-6));
+            .titled(label, format!("E = {:.2} MPa, {}", e * 1e-6, cycles[0].0.label()));
+            if k == 0 {
+                fig.note(format!(
+                    "{}; cycles to |h_min|/R = {:.2e} in steps of {} ζ0.",
+                    cycles[0]
+                        .0
+                        .describe(setup.surface.ring_width, setup.surface.quadrature_points),
+                    setup.depth / setup.radius,
+                    setup.step_over_zeta0
+                ));
+            }
             let scale = setup.scale();
             let suffix = if k == 0 { "" } else { "_b" };
             let mut summary = Vec::new();
@@ -422,7 +470,8 @@ impl Scene for Fig4_11 {
     const CHAPTER: &'static str = "4";
     const TITLE: &'static str = "Roughness and the topology of the contact at the adhesive force";
     const CAPTION: &'static str = "Top views of the gap (nm, clipped at 3 sigma) between the deformed wavy tip and the \
-        substrate at the state of the adhesive force P_adh of a cycle to |h_min|/R = 6e-4 (surface model), for \
+        substrate at the state of the adhesive force P_adh of a cycle to |h_min|/R = 6e-4 (surface model, or with \
+        model = fe the finite-element model), for \
         A = 0, 1.25, 2.5, 3.75 nm (sigma = 1.5 nm, the other parameters of Fig. 4.7a); the highlighted line is the \
         contact edge (gap = sigma). The dissertation: P_adh is largest at A/lambda = 0.01, where the contact is \
         still simply connected; beyond, the contact becomes multiply connected and the real contact area falls.";
@@ -441,9 +490,11 @@ impl Scene for Fig4_11 {
         ("parts_4_count", "contact regions (disc + annuli) at P_adh, (d)"),
     ];
 
-    /// The cycles are cheap at σ = 1.5 nm (a coarse ring grid): quick only coarsens the maps.
+    /// The cycles are cheap at σ = 1.5 nm (a coarse ring grid): quick only coarsens the maps
+    /// (and the finite-element mesh).
     fn quick(p: &mut Self::Params) {
         p.map_points = p.map_points.min(21);
+        p.mesh.quick();
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
@@ -470,12 +521,14 @@ impl Scene for Fig4_11 {
             let padh = -cycle.adhesive_force() / scale.1;
             let area = state.contact.area();
             let parts = state.contact.intervals.len();
-            let mut panel = Panel::new(Axis::linear("x", "nm"), Axis::linear("y", "nm")).titled(
-                ["(a)", "(b)", "(c)", "(d)"][i],
-                format!("A/λ = {:.3}: P_adh/(2E*R²) = {padh:.2e}", a / p.wavelength),
-            );
+            let mut panel = Panel::new(Axis::linear("x", "nm"), Axis::linear("y", "nm"))
+                .titled(
+                    ["(a)", "(b)", "(c)", "(d)"][i],
+                    format!("A/λ = {:.3}: P_adh/(2E*R²) = {padh:.2e}", a / p.wavelength),
+                )
+                .with_equal_aspect();
             panel.field = Some(top_view(
-                tip,
+                (tip, setup.lj.zeta0()),
                 state,
                 half,
                 p.map_points,
@@ -547,8 +600,11 @@ impl Scene for Fig4_12 {
     const ID: &'static str = "fig4.12";
     const CHAPTER: &'static str = "4";
     const TITLE: &'static str = "Consecutive pull-off instabilities: cascade and one-by-one detachment";
-    const CAPTION: &'static str = "Top views of the gap (nm, clipped at 3 sigma) at the last two pull-off \
-        instabilities on unloading (surface model, parameters of Fig. 4.9a at E = 1.1 MPa): (a)-(c) A = 1.25 nm, \
+    const CAPTION: &'static str = "Top views of the gap (nm, clipped at 3 sigma) at two consecutive pull-off \
+        instabilities on unloading, the last two that leave the tip in contact (surface model, or with model = fe \
+        the finite-element model; parameters of Fig. 4.9a at E = 1.1 MPa: the caption refers to Fig. 4.9a, whose \
+        printed smooth-tip force the caption's 2.2 MPa cannot give (ERRATA), while Fig. 4.11 refers to Fig. 4.7a, \
+        whose 2.2 MPa Fig. 4.7 reproduces): (a)-(c) A = 1.25 nm, \
         (d)-(f) A = 3.125 nm; before the first of the two jumps, before the second, after the second. The \
         dissertation: at small roughness the detachment of an asperity triggers its neighbour at once (strong \
         coupling); at large roughness the asperities detach one by one (crack arrest and reinitiation).";
@@ -579,9 +635,11 @@ impl Scene for Fig4_12 {
         ),
     ];
 
-    /// The cycles are cheap at σ = 1.5 nm (a coarse ring grid): quick only coarsens the maps.
+    /// The cycles are cheap at σ = 1.5 nm (a coarse ring grid): quick only coarsens the maps
+    /// (and the finite-element mesh).
     fn quick(p: &mut Self::Params) {
         p.map_points = p.map_points.min(21);
+        p.mesh.quick();
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
@@ -619,30 +677,48 @@ impl Scene for Fig4_12 {
                 offs.len(),
                 list.join(", ")
             ));
-            if offs.len() < 2 {
+            // The last two consecutive pull-offs after which the tip is still in contact (the
+            // final pull-off leaves no contact to draw); the last two when fewer remain.
+            let in_contact: Vec<&TipJump> = offs
+                .iter()
+                .copied()
+                .filter(|j| j.after.contact.area() > 0.0)
+                .collect();
+            let pair = if in_contact.len() >= 2 { &in_contact } else { &offs };
+            if pair.len() < 2 {
                 continue;
             }
-            let (first, second) = (offs[offs.len() - 2], offs[offs.len() - 1]);
+            let (first, second) = (pair[pair.len() - 2], pair[pair.len() - 1]);
             let states = [&first.before, &second.before, &second.after];
             let half = 1.2 * first.before.contact.radius().max(p.wavelength);
             for (n, s) in states.iter().enumerate() {
-                let mut panel = Panel::new(Axis::linear("x", "nm"), Axis::linear("y", "nm")).titled(
-                    labels[k][n],
-                    format!(
-                        "A = {:.3} nm, h/R = {:.2e}, a = {:.0} nm",
-                        a * 1e9,
-                        s.depth / setup.radius,
-                        s.contact.radius() * 1e9
-                    ),
-                );
+                let mut panel = Panel::new(Axis::linear("x", "nm"), Axis::linear("y", "nm"))
+                    .titled(
+                        labels[k][n],
+                        format!(
+                            "A = {:.3} nm, h/R = {:.2e}, a = {:.0} nm",
+                            a * 1e9,
+                            s.depth / setup.radius,
+                            s.contact.radius() * 1e9
+                        ),
+                    )
+                    .with_equal_aspect();
                 panel.field = Some(top_view(
-                    tip,
+                    (tip, setup.lj.zeta0()),
                     s,
                     half,
                     p.map_points,
                     p.contact.contact_gap,
                     3.0 * p.sigma * 1e9,
                 ));
+                if s.contact.area() <= 0.0 {
+                    let (_, gaps) = tip.profile(s.depth, &s.displacement);
+                    let least = gaps.iter().copied().fold(f64::INFINITY, f64::min) * setup.lj.zeta0();
+                    panel.annotate(format!(
+                        "Out of contact: the final pull-off has detached the tip (least gap {:.1} nm, above the 3σ clip).",
+                        least * 1e9
+                    ));
+                }
                 fig.panels.push(panel);
             }
         }

@@ -10,7 +10,8 @@ use crate::figure::{Axis, Field, Figure, Marker, MarkerShape, Panel, Series, Sty
 use crate::job::Job;
 use crate::params::Range;
 use crate::scenes::Scene;
-use crate::scenes::groups::{DepthPath, ElasticTip, Interaction, SurfaceModel, Waviness};
+use crate::scenes::fig4::TipModel;
+use crate::scenes::groups::{DepthPath, ElasticTip, FeMesh, Interaction, SurfaceModel, Waviness};
 use crate::scenes::sweep::Sweep;
 use crate::text::fmt_sig;
 
@@ -24,13 +25,31 @@ fn cycle_cost(b: f64, b_min: f64) -> f64 {
 }
 
 /// P_adh/(2E*R²) and H/(2E*R³) of one cycle.
-fn adhesion_of(setup: &Setup, amplitude: f64, job: &Job) -> Result<(f64, f64)> {
+pub(super) fn adhesion_of(setup: &Setup, amplitude: f64, job: &Job) -> Result<(f64, f64)> {
     let (tip_cycle, scale) = (setup.cycle(amplitude, false, job)?, setup.scale());
     let cycle = tip_cycle.1;
     Ok((
         -cycle.adhesive_force() / scale.1,
         cycle.hysteresis() / (scale.1 * setup.radius),
     ))
+}
+
+/// What a roughness sweep ran: the depth, step and discretisation of its cycles (the caption
+/// gives the defaults).
+fn ran_note(setup: &Setup, grid: &str) -> String {
+    format!(
+        "Ran: {grid}; one cycle per point to |h_min|/R = {:.2e} from {} ζ0 in steps of {} ζ0; {} with {} b surface \
+         elements (b ∝ σ⁴) and {} Gauss points.",
+        setup.depth / setup.radius,
+        setup.h_start_over_zeta0,
+        setup.step_over_zeta0,
+        match setup.choice.model {
+            TipModel::Surface => "surface model",
+            TipModel::Fe => "finite elements",
+        },
+        setup.surface.ring_width,
+        setup.surface.quadrature_points
+    )
 }
 
 /// `n` values from `lo` to `hi`, geometric.
@@ -71,8 +90,9 @@ impl Scene for Fig4_9b {
     const CHAPTER: &'static str = "4";
     const TITLE: &'static str = "Adhesive force and loss against the interaction range";
     const SWEEP: bool = true;
-    const CAPTION: &'static str = "P_adh/(2E*R^2) (a) and H/(2E*R^3) (b) of a wavy tip (surface model, one cycle to \
-        |h_min|/R = 6e-4 per point) against the range sigma of the LJ potential for A/lambda = 0, 0.0075 and 0.02 \
+    const CAPTION: &'static str = "P_adh/(2E*R^2) (a) and H/(2E*R^3) (b) of a wavy tip (surface model, or with model = fe \
+        the finite-element model; one cycle per point to |h_min|/R = 6e-4 at the defaults, the figure's notes give \
+        what ran) against the range sigma of the LJ potential for A/lambda = 0, 0.0075 and 0.02 \
         (the other parameters of Fig. 4.7a; E = 2.2 MPa, ERRATA on Fig. 4.9). A sweep: sigma_points x 3 cycles. \
         The dissertation: for the smooth tip both fall monotonically with sigma (the instabilities vanish as mu_T \
         falls); for the rough tips they first rise, peak and then fall.";
@@ -89,12 +109,11 @@ impl Scene for Fig4_9b {
         ("points_count", "cycles computed"),
     ];
 
-    /// Three values of σ from 1.5 nm up, a shallow depth.
+    /// Three values of σ over the whole range (from 1 nm: where the text's rise would be), a
+    /// shallow cycle in coarser steps.
     fn quick(p: &mut Self::Params) {
         p.sigma_points = p.sigma_points.min(3);
-        p.sigma_min = p.sigma_min.max(1.5e-9);
-        p.sigma_max = p.sigma_max.max(p.sigma_min);
-        p.depth_over_radius = p.depth_over_radius.min(2.0e-4);
+        p.shallow_quick();
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
@@ -226,6 +245,14 @@ impl Sweep for Fig4_9b {
             ));
         }
         fig.result("points_count", (3 * n) as f64);
+        fig.note(ran_note(
+            &p.setup(p.tip.youngs_modulus, p.sigma_min, p.sigma_min)?,
+            &format!(
+                "{n} values of σ from {} to {} nm",
+                fmt_sig(p.sigma_min * 1e9),
+                fmt_sig(p.sigma_max * 1e9)
+            ),
+        ));
         fig.note(format!("{}.", notes.join("; ")));
         let rough_rise = (1..3).any(|c| {
             ratios[c] > 0.0
@@ -296,8 +323,9 @@ impl Scene for Fig4_10 {
     const CHAPTER: &'static str = "4";
     const TITLE: &'static str = "Adhesive force and loss over roughness and interaction range";
     const SWEEP: bool = true;
-    const CAPTION: &'static str = "P_adh/(2E*R^2) (a) and H/(2E*R^3) (b) of a wavy tip (surface model, one cycle to \
-        |h_min|/R = 6e-4 per point) over alpha = A^2/(lambda w/E*) and beta = sigma^2/(lambda w/E*) of (4.27) (the \
+    const CAPTION: &'static str = "P_adh/(2E*R^2) (a) and H/(2E*R^3) (b) of a wavy tip (surface model, or with model = fe \
+        the finite-element model; one cycle per point to |h_min|/R = 6e-4 at the defaults, the figure's notes give \
+        what ran) over alpha = A^2/(lambda w/E*) and beta = sigma^2/(lambda w/E*) of (4.27) (the \
         other parameters of Fig. 4.7a, E = 2.2 MPa). A sweep of alpha_points x beta_points cycles; the default \
         6 x 6 grid is coarse (about a minute on 2 cores): refine it for a paper figure. The diamond marks the \
         grid's largest value, the cross the dissertation's optimum (0.1741, 0.4457) for both.";
@@ -311,13 +339,12 @@ impl Scene for Fig4_10 {
         ("points_count", "cycles computed"),
     ];
 
-    /// A 3 x 3 grid at large β (σ above 1.3 nm: few rings) and a shallow depth.
+    /// A 3 x 3 grid over the whole range (β from the default's smallest, where the printed
+    /// optimum's neighbourhood starts), a shallow cycle in coarser steps.
     fn quick(p: &mut Self::Params) {
         p.alpha_points = p.alpha_points.min(3);
         p.beta_points = p.beta_points.min(3);
-        p.beta_min = p.beta_min.max(0.4);
-        p.beta_max = p.beta_max.max(p.beta_min);
-        p.depth_over_radius = p.depth_over_radius.min(2.0e-4);
+        p.shallow_quick();
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
@@ -433,6 +460,16 @@ impl Sweep for Fig4_10 {
             fig.result(format!("{key}_max_norm"), field_values[best]);
         }
         fig.result("points_count", (na * nb) as f64);
+        let (sigma_lo, _) = p.point(0.0, p.beta_min)?;
+        fig.note(ran_note(
+            &p.setup(p.tip.youngs_modulus, sigma_lo, sigma_lo)?,
+            &format!(
+                "{na} x {nb} grid, α from 0 to {}, β from {} to {}",
+                fmt_sig(p.alpha_max),
+                fmt_sig(p.beta_min),
+                fmt_sig(p.beta_max)
+            ),
+        ));
         let r = |n: &str| fig.result_value(n).unwrap_or(0.0);
         let on_edge = |a: f64, b: f64| {
             a <= 0.0
