@@ -639,6 +639,7 @@ mod tests {
             );
             let printed_max = TractionLaw::AsPrinted.traction(&lj, gp).unwrap();
             let c3 = lj.work_of_adhesion() / (z0 * printed_max);
+            let (c6, c12) = (lj.params().c6, lj.params().c12);
             assert!((c3 - c3_as_printed(c6, c12)).abs() < 1e-12 * c3, "{c6} {c12}");
         }
     }
