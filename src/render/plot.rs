@@ -444,13 +444,21 @@ const NOTE_GAP: f64 = 6.0;
 /// Left and right inset of the notes under a figure (layout units).
 const NOTE_INSET: f64 = 16.0;
 
-/// The notes of the panels as written under the figure, a caption-like block: each note with
-/// its panel's letter (where the figure has several panels), wrapped to the figure's width.
+/// The notes of the figure as written under it, a caption-like block: the figure's own notes
+/// first (its quick form, what the workbench finds otherwise than the text, a fit's warnings),
+/// then each panel's with the panel's letter (where the figure has several panels), wrapped to
+/// the figure's width.
 fn note_lines(fig: &Figure, m: &Metrics) -> Vec<String> {
     let (cols, _) = grid(fig.panels.len());
     let width = (m.panel.0 * cols as f64 - 2.0 * NOTE_INSET) * m.s;
     let mut lines = Vec::new();
     let mut seen: Vec<&str> = Vec::new();
+    for n in &fig.notes {
+        if !seen.contains(&n.as_str()) {
+            seen.push(n);
+            lines.extend(legend::wrap(n, m.font(NOTE_TEXT), width));
+        }
+    }
     for (p, letter) in fig.panels.iter().zip(panel_letters(fig)) {
         for n in &p.notes {
             if seen.contains(&n.as_str()) {

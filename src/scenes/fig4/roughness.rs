@@ -428,7 +428,7 @@ impl Scene for Fig4_9a {
             let suffix = if k == 0 { "" } else { "_b" };
             let mut summary = Vec::new();
             for (i, ((_, cycle), a)) in cycles.iter().zip(amplitudes).enumerate() {
-                let name = format!("A/λ = {:.4}", a / p.wavelength);
+                let name = format!("A/λ = {}", crate::params::fmt_sig(a / p.wavelength));
                 draw_cycle(&mut panel, cycle, &name, [0, 3, 2][i], scale);
                 let padh = -cycle.adhesive_force() / scale.1;
                 let h = cycle.hysteresis() / (scale.1 * setup.radius);
