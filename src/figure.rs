@@ -43,11 +43,14 @@ impl Figure {
     }
 
     /// Mark the figure as computed in quick form: `coarser` says what is coarser than the full
-    /// figure. It is kept in [`Figure::quick_form`], as the first note ("quick form: ...") and
-    /// in the title, so that no copy of the figure passes for the full one.
+    /// figure. It is kept in [`Figure::quick_form`], as the first note ("quick form: ...", its
+    /// parameter names escaped for the markup) and in the title, so that no copy of the figure
+    /// passes for the full one.
     pub fn mark_quick(&mut self, coarser: &str) {
         self.quick_form = Some(coarser.to_string());
-        self.notes.insert(0, format!("quick form: {coarser}"));
+        // The note is markup, and parameter names hold underscores: escaped, they read as typed.
+        self.notes
+            .insert(0, format!("quick form: {}", crate::render::text::escape(coarser)));
         if !self.title.ends_with("(quick form)") {
             self.title.push_str(" (quick form)");
         }

@@ -101,7 +101,10 @@ fn fig4_9b_smooth_adhesion_falls_with_the_interaction_range() {
         coarser.contains("depth_over_radius = 1e-4 (full: 6e-4)"),
         "{coarser}"
     );
-    assert_eq!(fig.notes[0], format!("quick form: {coarser}"));
+    assert_eq!(
+        fig.notes[0],
+        format!("quick form: {}", adhesion::render::text::escape(coarser))
+    );
     assert!(fig.title.ends_with("(quick form)"));
     assert!(
         fig.notes
