@@ -424,15 +424,8 @@ fn efficiency_falls_with_roughness_rises_with_softness_and_follows_the_fit_5_37(
     use adhesion::scenes::Scene;
     use adhesion::scenes::fig5::{Fig5_8, Fig5_8Params};
     let p = Fig5_8Params {
-        surfaces: adhesion::scenes::groups::SurfaceSamples {
-            springs: 64,
-            samples: 4,
-            ..Default::default()
-        },
-        cycle: adhesion::scenes::groups::ArrayCycle {
-            steps: 300,
-            ..Default::default()
-        },
+        surfaces: small_surfaces(),
+        cycle: short_cycle(),
         roughness_points: 5,
         ..Default::default()
     };
@@ -459,6 +452,23 @@ fn efficiency_falls_with_roughness_rises_with_softness_and_follows_the_fit_5_37(
     assert!(max_dev < 0.04, "RMS deviation from (5.37): {max_dev}");
 }
 
+/// The arrays of the efficiency tests (Figs. 5.8, 5.9): 64 × 64 springs, 4 surfaces averaged.
+fn small_surfaces() -> adhesion::scenes::groups::SurfaceSamples {
+    adhesion::scenes::groups::SurfaceSamples {
+        springs: 64,
+        samples: 4,
+        ..Default::default()
+    }
+}
+
+/// The cycle of the efficiency tests: 300 displacement steps.
+fn short_cycle() -> adhesion::scenes::groups::ArrayCycle {
+    adhesion::scenes::groups::ArrayCycle {
+        steps: 300,
+        ..Default::default()
+    }
+}
+
 // Fig. 5.9: the uncoupled efficiency depends on the height distribution only, so the
 // correlation length changes it little (the text: "no appreciable dependence").
 #[test]
@@ -467,15 +477,8 @@ fn efficiency_barely_depends_on_the_correlation_length_fig_5_9() {
     use adhesion::scenes::Scene;
     use adhesion::scenes::fig5::{Fig5_9, Fig5_9Params};
     let p = Fig5_9Params {
-        surfaces: adhesion::scenes::groups::SurfaceSamples {
-            springs: 64,
-            samples: 4,
-            ..Default::default()
-        },
-        cycle: adhesion::scenes::groups::ArrayCycle {
-            steps: 300,
-            ..Default::default()
-        },
+        surfaces: small_surfaces(),
+        cycle: short_cycle(),
         correlation_lengths: vec![0.01, 0.05, 0.1],
         ..Default::default()
     };
