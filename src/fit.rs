@@ -36,7 +36,7 @@ pub mod predictions;
 
 pub use engine::ContactModel;
 
-pub use predictions::{Predictions, ph_panel, predictions};
+pub use predictions::{JkrPredictions, Predictions, jkr_predictions, ph_panel, predictions};
 
 /// Options of the `--fit` command (flattened into [`crate::cli::Cli`]).
 #[derive(Debug, Clone, Default, clap::Args)]
@@ -949,13 +949,13 @@ pub fn fit_with(curve: &Curve, path: &Path, settings: &FitSettings) -> Result<Fi
     };
     let (jkr, alpha, machine) = if adhesive {
         let x_for = |k: f64| Experiment::new(TipGeometry::Sphere { radius }, e, w, k);
-        let jkr_pred = predictions(&x_for(1.0)?)?;
+        let jkr_pred = jkr_predictions(&x_for(1.0)?)?;
         let jkr = InstabilityReport {
-            pull_in_force_n: jkr_pred.jkr_pull_in_force,
+            pull_in_force_n: jkr_pred.pull_in_force,
             pull_in_depth_jump_m: 0.0,
-            pull_off_force_n: jkr_pred.jkr_pull_off_force,
+            pull_off_force_n: jkr_pred.pull_off_force,
             pull_off_depth_jump_m: 0.0,
-            pull_off_depth_m: jkr_pred.jkr_pull_off_depth,
+            pull_off_depth_m: jkr_pred.pull_off_depth,
         };
         let (alpha, machine) = match settings.spring_constant {
             Some(k) if matches!(model, FitModel::Jkr | FitModel::MachineStiffness) => {

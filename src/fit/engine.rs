@@ -28,7 +28,9 @@ use serde::Serialize;
 
 use crate::error::{Error, Result};
 use crate::models::machine_stiffness::{sphere_depth_minimum_radius, sphere_radius_at_depth};
-use crate::numerics::least_squares::{LmOptions, LmSolution, levenberg_marquardt};
+use nalgebra::{DMatrix, DVector};
+
+use crate::numerics::least_squares::{LeastSquares, LmOptions, LmSolution, levenberg_marquardt, minimize};
 
 /// The contact model of a fit.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize)]
@@ -288,16 +290,13 @@ impl Model {
                 // P = P̂(ā³ − 2ā^(3/2)), δ = ĥ(ā² − (4/3)√ā) on the stable branch (Sec. 2.3),
                 // in s = √ā: P̄ = s³(s³ − 2), h̄ = s⁴ − (4/3)s.
                 let hb = delta * self.inv_h_hat;
-                let (s, on_branch) = jkr_root_radius_at_depth(hb);
+                let root = jkr_root_radius_at_depth(hb);
+                let s = root.s;
                 let s3 = s * s * s;
                 let pb = s3 * (s3 - 2.0);
-                // dP̄/dh̄ = (dP̄/ds)/(dh̄/ds) = 9s²(s³ − 1)/(6s³ − 2) along the branch; zero
-                // where the depth is below the branch (clamped at the fold, where it diverges).
-                let slope = if on_branch {
-                    9.0 * s * s * (s3 - 1.0) / (6.0 * s3 - 2.0)
-                } else {
-                    0.0
-                };
+                // dP̄/dh̄ = (dP̄/ds)(ds/dh̄) = 6s²(s³ − 1)·ds/dh̄ along the branch; zero where
+                // the depth is below the branch (clamped at the fold, where it diverges).
+                let slope = 6.0 * s * s * (s3 - 1.0) * root.ds_dh;
                 // P̂ ∝ w, ĥ ∝ (w/ℰ)^(2/3): ∂h̄/∂ln w = −(2/3)h̄ = −∂h̄/∂ln ℰ.
                 let p = self.p_hat * pb;
                 let d_e = self.p_hat * slope * (2.0 / 3.0) * hb;
@@ -327,40 +326,73 @@ impl Model {
     }
 }
 
-/// s = √ā on the stable JKR branch at normalised depth h̄ = ā² − (4/3)√ā (Sec. 2.3.1), and
-/// whether h̄ lies past the fold h̄_D; as [`sphere_radius_at_depth`] but fast: s from a cubic
-/// Hermite table in u = √(h̄ − h̄_D) (where s is smooth: s − s_D ∝ u at the fold) and one Newton
-/// step on s⁴ − (4/3)s = h̄; beyond the table from s⁴ ≈ h̄ + (4/3)h̄^(1/4) and two Newton steps.
-/// Depths at or below the fold give s_D = √ā_D (the clamp of the residuals). Agrees with
+/// A point of the stable JKR branch found from its depth: s = √ā, ds/dh̄ there, and whether
+/// the depth lies past the fold (else s is clamped at the fold s_D and ds/dh̄ = 0).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct JkrRoot {
+    s: f64,
+    ds_dh: f64,
+    on_branch: bool,
+}
+
+/// s = √ā on the stable JKR branch at normalised depth h̄ = ā² − (4/3)√ā (Sec. 2.3.1), with
+/// ds/dh̄; as [`sphere_radius_at_depth`] but fast: s and ds/du from a cubic Hermite table in
+/// u = √(h̄ − h̄_D) (where s is smooth: s − s_D ∝ u at the fold), then one Newton step on
+/// s⁴ − (4/3)s = h̄ with the tabulated ds/dh̄ = (ds/du)/(2u) as the inverse slope (its error,
+/// about 1e-6 relative, multiplies the table's 1e-9: one division per depth, not three); beyond
+/// the table from s⁴ ≈ h̄ + (4/3)h̄^(1/4) and two exact Newton steps. Depths at or below the
+/// fold h̄_D give s_D = √ā_D (the clamp of the residuals). Agrees with
 /// [`sphere_radius_at_depth`] to 1e-13 relative away from the fold, where the depth's
 /// round-off dominates both (unit test).
-fn jkr_root_radius_at_depth(hb: f64) -> (f64, bool) {
+#[inline]
+fn jkr_root_radius_at_depth(hb: f64) -> JkrRoot {
     static TABLE: std::sync::OnceLock<JkrTable> = std::sync::OnceLock::new();
     let t = TABLE.get_or_init(JkrTable::new);
     let f = |s: f64| s * s * s * s - 4.0 / 3.0 * s - hb;
-    let df = |s: f64| 4.0 * s * s * s - 4.0 / 3.0;
     let dh = hb - t.h_d;
     if dh.is_nan() || dh <= 0.0 {
-        return (t.s_d, false);
+        return JkrRoot {
+            s: t.s_d,
+            ds_dh: 0.0,
+            on_branch: false,
+        };
     }
     let u = dh.sqrt();
-    let mut s = if u < t.u_max {
-        let x = u / t.du;
+    let (s, ds_dh) = if u < t.u_max {
+        let x = u * t.inv_du;
         let i = (x as usize).min(t.s.len() - 2);
         let r = x - i as f64;
         let (s0, s1) = (t.s[i], t.s[i + 1]);
         let (m0, m1) = (t.ds[i] * t.du, t.ds[i + 1] * t.du);
         let (r2, r3) = (r * r, r * r * r);
-        (2.0 * r3 - 3.0 * r2 + 1.0) * s0
+        let s = (2.0 * r3 - 3.0 * r2 + 1.0) * s0
             + (r3 - 2.0 * r2 + r) * m0
             + (-2.0 * r3 + 3.0 * r2) * s1
-            + (r3 - r2) * m1
+            + (r3 - r2) * m1;
+        // ds/du from the same cubic; ds/dh̄ = (ds/du)/(2u).
+        let ds_dr = 6.0 * (r2 - r) * (s0 - s1) + (3.0 * r2 - 4.0 * r + 1.0) * m0 + (3.0 * r2 - 2.0 * r) * m1;
+        let ds_dh = ds_dr * t.inv_du * 0.5 / u;
+        (s - f(s) * ds_dh, ds_dh)
     } else {
-        let s = (hb + 4.0 / 3.0 * hb.powf(0.25)).powf(0.25);
-        s - f(s) / df(s)
+        let df = |s: f64| 4.0 * s * s * s - 4.0 / 3.0;
+        let mut s = (hb + 4.0 / 3.0 * hb.powf(0.25)).powf(0.25);
+        s -= f(s) / df(s);
+        s -= f(s) / df(s);
+        (s, 1.0 / df(s))
     };
-    s -= f(s) / df(s);
-    if s > t.s_d { (s, true) } else { (t.s_d, false) }
+    if s > t.s_d {
+        JkrRoot {
+            s,
+            ds_dh,
+            on_branch: true,
+        }
+    } else {
+        JkrRoot {
+            s: t.s_d,
+            ds_dh: 0.0,
+            on_branch: false,
+        }
+    }
 }
 
 /// The table of [`jkr_root_radius_at_depth`]: s and ds/du at u = k·du.
@@ -368,6 +400,7 @@ struct JkrTable {
     h_d: f64,
     s_d: f64,
     du: f64,
+    inv_du: f64,
     u_max: f64,
     s: Vec<f64>,
     ds: Vec<f64>,
@@ -398,6 +431,7 @@ impl JkrTable {
             h_d,
             s_d,
             du,
+            inv_du: 1.0 / du,
             u_max,
             s,
             ds,
@@ -439,61 +473,124 @@ fn unpack(model: ContactModel, x: &[f64], s: Scales) -> (Params, f64) {
     }
 }
 
-/// The residuals (model − measured)/force scale at `x`; the model's derivatives of each row
-/// are written into `grads`.
-fn evaluate(
-    model: ContactModel,
-    radius: f64,
-    data: &FitData,
+/// The model at `x` and its baseline F₀ [N].
+fn model_at(model: ContactModel, radius: f64, s: Scales, x: &[f64]) -> (Model, f64) {
+    let (p, f0) = unpack(model, x, s);
+    (Model::new(model, radius, &p, s.reach - p.dc), f0)
+}
+
+/// Every `stride`-th row's residual (model − measured)/force scale, with the model's derivatives
+/// of the row (∂P/∂ln w, ∂P/∂ln ℰ, ∂P/∂d_c): the one residual formula of the fit.
+fn rows<'a>(
+    m: &'a Model,
+    f0: f64,
+    data: &'a FitData,
     s: Scales,
-    x: &[f64],
-    grads: &mut Vec<[f64; 3]>,
-) -> Vec<f64> {
-    let (p, f0) = unpack(model, x, s);
-    let m = Model::new(model, radius, &p, s.reach - p.dc);
+    stride: usize,
+) -> impl Iterator<Item = (f64, [f64; 3])> + 'a {
     let inv = 1.0 / s.force;
-    grads.clear();
-    let mut r = Vec::with_capacity(data.depth.len());
-    for ((&d, &f), &c) in data.depth.iter().zip(data.force).zip(data.in_contact) {
-        let (force, grad) = m.force(d, c);
-        r.push((force + f0 - f) * inv);
-        grads.push(grad);
-    }
-    r
-}
-
-fn residuals(model: ContactModel, radius: f64, data: &FitData, s: Scales, x: &[f64]) -> Vec<f64> {
-    evaluate(model, radius, data, s, x, &mut Vec::new())
-}
-
-/// The Jacobian of the residuals in the fitted parameters from the rows' model derivatives.
-fn jacobian(model: ContactModel, grads: &[[f64; 3]], s: Scales) -> nalgebra::DMatrix<f64> {
-    let n = model.parameter_names().len();
-    // The rows' derivatives used by the parameters in order (Hertz has no ln w), and their scales.
-    let first = usize::from(model == ContactModel::Hertz);
-    let scale = [1.0 / s.force, 1.0 / s.force, s.length / s.force];
-    let mut j = nalgebra::DMatrix::from_element(grads.len(), n, 1.0);
-    for (col, k) in (first..3).enumerate() {
-        for (out, g) in j.column_mut(col).iter_mut().zip(grads) {
-            *out = g[k] * scale[k];
-        }
-    }
-    j
-}
-
-/// The cost Σr² at `x` over every `stride`-th row (infinite where a residual is not finite).
-fn cost(model: ContactModel, radius: f64, data: &FitData, s: Scales, x: &[f64], stride: usize) -> f64 {
-    let (p, f0) = unpack(model, x, s);
-    let m = Model::new(model, radius, &p, s.reach - p.dc);
-    let sum: f64 = data
-        .depth
+    data.depth
         .iter()
         .zip(data.force)
         .zip(data.in_contact)
         .step_by(stride.max(1))
-        .map(|((&d, &f), &c)| ((m.force(d, c).0 + f0 - f) / s.force).powi(2))
-        .sum();
+        .map(move |((&d, &f), &c)| {
+            let (force, grad) = m.force(d, c);
+            ((force + f0 - f) * inv, grad)
+        })
+}
+
+fn residuals(model: ContactModel, radius: f64, data: &FitData, s: Scales, x: &[f64]) -> Vec<f64> {
+    let (m, f0) = model_at(model, radius, s, x);
+    rows(&m, f0, data, s, 1).map(|(r, _)| r).collect()
+}
+
+/// The cost Σr² at `x` over every `stride`-th row (infinite where a residual is not finite).
+fn cost(model: ContactModel, radius: f64, data: &FitData, s: Scales, x: &[f64], stride: usize) -> f64 {
+    let (m, f0) = model_at(model, radius, s, x);
+    let sum: f64 = rows(&m, f0, data, s, stride).map(|(r, _)| r * r).sum();
     if sum.is_finite() { sum } else { f64::INFINITY }
+}
+
+/// Curves of at least this many rows are fitted coarse to fine (see [`fit_to`]).
+const COARSE_ROWS: usize = 400;
+
+/// The fit of a model whose rows give their derivatives in closed form (Hertz, DMT, JKR) as
+/// [`LeastSquares`] over every `stride`-th row: one pass over the rows gives the cost and the
+/// normal equations together, the m × n Jacobian never formed. The normal equations of the
+/// last cost are kept.
+struct ClosedForm<'a> {
+    model: ContactModel,
+    radius: f64,
+    data: &'a FitData<'a>,
+    s: Scales,
+    stride: usize,
+    last: Option<(Vec<f64>, DMatrix<f64>, DVector<f64>)>,
+}
+
+impl ClosedForm<'_> {
+    /// ½Σr², JᵀJ and Jᵀr at `x` in the fitted parameters (ln w, ln ℰ, d_c/L, F₀/F, or without
+    /// ln w for Hertz).
+    fn evaluate(&self, x: &[f64]) -> (f64, DMatrix<f64>, DVector<f64>) {
+        let (m, f0) = model_at(self.model, self.radius, self.s, x);
+        let s = self.s;
+        let inv = 1.0 / s.force;
+        let scale = [inv, inv, s.length * inv];
+        // Rows of the Jacobian: (g₀, g₁, g₂)·scale, and 1 for the baseline F₀/F.
+        let (mut a, mut b, mut sum_j) = ([0.0f64; 6], [0.0f64; 3], [0.0f64; 3]);
+        let (mut rr, mut sum_r, mut count) = (0.0, 0.0, 0.0);
+        for (r, g) in rows(&m, f0, self.data, s, self.stride) {
+            count += 1.0;
+            let j = [g[0] * scale[0], g[1] * scale[1], g[2] * scale[2]];
+            rr += r * r;
+            sum_r += r;
+            a[0] += j[0] * j[0];
+            a[1] += j[0] * j[1];
+            a[2] += j[0] * j[2];
+            a[3] += j[1] * j[1];
+            a[4] += j[1] * j[2];
+            a[5] += j[2] * j[2];
+            for k in 0..3 {
+                b[k] += j[k] * r;
+                sum_j[k] += j[k];
+            }
+        }
+        let full = [
+            [a[0], a[1], a[2], sum_j[0]],
+            [a[1], a[3], a[4], sum_j[1]],
+            [a[2], a[4], a[5], sum_j[2]],
+            [sum_j[0], sum_j[1], sum_j[2], count],
+        ];
+        let full_b = [b[0], b[1], b[2], sum_r];
+        // Hertz has no ln w: its parameters are the last three.
+        let first = usize::from(self.model == ContactModel::Hertz);
+        let n = 4 - first;
+        let jtj = DMatrix::from_fn(n, n, |i, k| full[i + first][k + first]);
+        let jtr = DVector::from_fn(n, |i, _| full_b[i + first]);
+        (0.5 * rr, jtj, jtr)
+    }
+}
+
+impl LeastSquares for ClosedForm<'_> {
+    fn rows(&self) -> usize {
+        self.data.depth.len().div_ceil(self.stride)
+    }
+
+    fn cost(&mut self, x: &[f64]) -> Option<f64> {
+        let (c, jtj, jtr) = self.evaluate(x);
+        self.last = Some((x.to_vec(), jtj, jtr));
+        c.is_finite().then_some(c)
+    }
+
+    fn normal(&mut self, x: &[f64]) -> (DMatrix<f64>, DVector<f64>) {
+        match self.last.take() {
+            Some((at, jtj, jtr)) if at == x => (jtj, jtr),
+            _ => {
+                let (_, jtj, jtr) = self.evaluate(x);
+                (jtj, jtr)
+            }
+        }
+    }
 }
 
 /// Central differences of the residuals in the (order-one) fitted parameters, with an absolute
@@ -848,29 +945,6 @@ fn fit_to(model: ContactModel, radius: f64, data: &FitData, cost_tol: f64) -> Re
                 .collect()
         }
     };
-    // The Jacobian is asked for at the point whose residuals were just computed (an accepted
-    // step): the rows' derivatives of that evaluation are kept for it.
-    let last: std::cell::RefCell<(Vec<f64>, Vec<[f64; 3]>)> =
-        std::cell::RefCell::new((Vec::new(), Vec::with_capacity(n)));
-    let res = |x: &[f64]| {
-        let (at, grads) = &mut *last.borrow_mut();
-        at.clear();
-        at.extend_from_slice(x);
-        evaluate(model, radius, data, s, x, grads)
-    };
-    let jac = |x: &[f64]| {
-        if model == ContactModel::MaugisDugdale {
-            return fd_jacobian(&|x: &[f64]| residuals(model, radius, data, s, x), x);
-        }
-        let kept = last.borrow();
-        if kept.0 == x {
-            jacobian(model, &kept.1, s)
-        } else {
-            let mut grads = Vec::with_capacity(n);
-            evaluate(model, radius, data, s, x, &mut grads);
-            jacobian(model, &grads, s)
-        }
-    };
     let opts = LmOptions {
         max_iterations: 300,
         cost_tol,
@@ -891,7 +965,39 @@ fn fit_to(model: ContactModel, radius: f64, data: &FitData, cost_tol: f64) -> Re
     let every_start = model == ContactModel::MaugisDugdale;
     let mut best: Option<LmSolution> = None;
     for (_, x0) in ranked {
-        if let Ok(sol) = levenberg_marquardt(&res, Some(&jac), x0, opts)
+        let solved = if model == ContactModel::MaugisDugdale {
+            // The branch is a table: its derivatives are taken by differences.
+            let res = |x: &[f64]| residuals(model, radius, data, s, x);
+            let jac = |x: &[f64]| fd_jacobian(&res, x);
+            levenberg_marquardt(&res, Some(&jac), x0, opts)
+        } else {
+            // Coarse to fine: on a long curve the steps far from the minimum are taken on every
+            // fourth row (still hundreds), and the fit on all rows starts at that minimum,
+            // where it needs a step or two. The answer is the fit on all rows.
+            let problem = |stride| ClosedForm {
+                model,
+                radius,
+                data,
+                s,
+                stride,
+                last: None,
+            };
+            let coarse = (n >= COARSE_ROWS)
+                .then(|| {
+                    let loose = LmOptions {
+                        cost_tol: 1e-6,
+                        ..opts
+                    };
+                    minimize(&mut problem(4), x0, loose).ok()
+                })
+                .flatten();
+            let fine = coarse.as_ref().map_or(x0.as_slice(), |c| c.x.as_slice());
+            minimize(&mut problem(1), fine, opts).or_else(|e| match coarse {
+                Some(_) => minimize(&mut problem(1), x0, opts),
+                None => Err(e),
+            })
+        };
+        if let Ok(sol) = solved
             && best.as_ref().is_none_or(|b| sol.residual_norm < b.residual_norm)
         {
             best = Some(sol);
@@ -1165,9 +1271,19 @@ mod tests {
             if hb > 1e8 {
                 break;
             }
-            let (s, on_branch) = jkr_root_radius_at_depth(hb);
-            assert!(on_branch, "h̄ − h̄_D = {}", hb - h_d);
-            let (a, b) = (s * s, sphere_radius_at_depth(hb));
+            let root = jkr_root_radius_at_depth(hb);
+            assert!(root.on_branch, "h̄ − h̄_D = {}", hb - h_d);
+            let (a, b) = (root.s * root.s, sphere_radius_at_depth(hb));
+            // ds/dh̄ = 1/(4s³ − 4/3), to the table's accuracy and, near the fold, to the
+            // round-off of h̄ − h̄_D (1e-16 of h̄_D, relative to h̄ − h̄_D).
+            let exact = 1.0 / (4.0 * root.s.powi(3) - 4.0 / 3.0);
+            let slope_tol = 1e-5 + 2e-16 / (hb - h_d);
+            assert!(
+                (root.ds_dh - exact).abs() <= slope_tol * exact,
+                "ds/dh̄ at h̄ − h̄_D = {}: {} against {exact}",
+                hb - h_d,
+                root.ds_dh
+            );
             // Near the fold the depth's round-off (1e-16 of h̄_D) moves ā by about
             // 1e-16/√(h̄ − h̄_D) in either method (the slope of h̄(s) vanishes there).
             let tol = 1e-13 + 1e-15 / (hb - h_d).sqrt();
@@ -1177,7 +1293,8 @@ mod tests {
         }
         assert!(worst.0 < 1.0, "{worst:?}");
         for below in [h_d - 1.0, h_d, f64::NAN] {
-            assert_eq!(jkr_root_radius_at_depth(below), (s_d, false), "{below}");
+            let root = jkr_root_radius_at_depth(below);
+            assert_eq!((root.s, root.ds_dh, root.on_branch), (s_d, 0.0, false), "{below}");
         }
     }
 }

@@ -27,17 +27,42 @@ pub struct Predictions {
 /// # Errors
 /// Model errors (invalid parameters).
 pub fn predictions(x: &Experiment) -> Result<Predictions> {
+    let jkr = jkr_predictions(x)?;
+    Ok(Predictions {
+        pull_in: x.pull_in()?,
+        pull_off: x.pull_off()?,
+        jkr_pull_in_force: jkr.pull_in_force,
+        jkr_pull_off_force: jkr.pull_off_force,
+        jkr_pull_off_depth: jkr.pull_off_depth,
+    })
+}
+
+/// The JKR instabilities of a spherical tip under depth control (Sec. 2.3), SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JkrPredictions {
+    /// Pull-in force (at h = 0) [N].
+    pub pull_in_force: f64,
+    /// Pull-off force, −5πwR/6 [N].
+    pub pull_off_force: f64,
+    /// Pull-off depth h_D [m].
+    pub pull_off_depth: f64,
+}
+
+/// The JKR predictions of an experiment with a spherical tip, in closed form on the branch
+/// (1.2) (no search over the machine's folds: [`predictions`] adds those).
+///
+/// # Errors
+/// Model errors (invalid parameters).
+pub fn jkr_predictions(x: &Experiment) -> Result<JkrPredictions> {
     let sc = x.scales();
     let stiff = MachineStiffness::new(TipShape::Sphere, 1.0)?;
     let a_d = crate::models::machine_stiffness::sphere_depth_minimum_radius();
     // JKR pull-in at h = 0: ā³/² = 4/3 on h̄ = ā² − (4/3)√ā = 0.
     let a_b = (4.0f64 / 3.0).powf(2.0 / 3.0);
-    Ok(Predictions {
-        pull_in: x.pull_in()?,
-        pull_off: x.pull_off()?,
-        jkr_pull_in_force: sc.force * stiff.branch_force(a_b),
-        jkr_pull_off_force: sc.force * stiff.branch_force(a_d),
-        jkr_pull_off_depth: sc.h * stiff.depth(a_d),
+    Ok(JkrPredictions {
+        pull_in_force: sc.force * stiff.branch_force(a_b),
+        pull_off_force: sc.force * stiff.branch_force(a_d),
+        pull_off_depth: sc.h * stiff.depth(a_d),
     })
 }
 

@@ -42,8 +42,6 @@ impl Default for LmOptions {
 pub struct LmSolution {
     /// Parameters at the minimum.
     pub x: Vec<f64>,
-    /// Residuals there.
-    pub residuals: Vec<f64>,
     /// ‖r‖₂.
     pub residual_norm: f64,
     /// Standard errors of the parameters, √diag(s²(JᵀJ)⁻¹); NaN where JᵀJ is singular.
@@ -92,6 +90,53 @@ fn gram(jac: &DMatrix<f64>) -> DMatrix<f64> {
     g
 }
 
+/// A least-squares problem as [`minimize`] sees it: the cost ½‖r(x)‖² at trial points, and the
+/// normal equations (JᵀJ, Jᵀr) at accepted ones. A problem whose rows give their derivatives in
+/// closed form accumulates the normal equations in the same pass as the cost, and never forms
+/// the m × n Jacobian.
+pub trait LeastSquares {
+    /// The number of residuals m.
+    fn rows(&self) -> usize;
+    /// ½‖r(x)‖², or `None` where a residual is not finite.
+    fn cost(&mut self, x: &[f64]) -> Option<f64>;
+    /// JᵀJ (n × n) and Jᵀr at `x`, a point whose cost was the last one asked for.
+    fn normal(&mut self, x: &[f64]) -> (DMatrix<f64>, DVector<f64>);
+}
+
+/// [`LeastSquares`] from a residual function and an optional Jacobian (else central
+/// differences): the residuals of the last cost are kept for the Jacobian by differences.
+struct Dense<'a> {
+    residuals: &'a dyn Fn(&[f64]) -> Vec<f64>,
+    jacobian: Option<&'a JacobianFn<'a>>,
+    fd_step: f64,
+    m: usize,
+    last: Vec<f64>,
+}
+
+impl LeastSquares for Dense<'_> {
+    fn rows(&self) -> usize {
+        self.m
+    }
+
+    fn cost(&mut self, x: &[f64]) -> Option<f64> {
+        self.last = (self.residuals)(x);
+        self.last
+            .iter()
+            .all(|v| v.is_finite())
+            .then(|| 0.5 * self.last.iter().map(|v| v * v).sum::<f64>())
+    }
+
+    fn normal(&mut self, x: &[f64]) -> (DMatrix<f64>, DVector<f64>) {
+        let jac = match self.jacobian {
+            Some(j) => j(x),
+            None => jacobian_fd(self.residuals, x, &self.last, self.fd_step),
+        };
+        let rv = DVector::from_column_slice(&self.last);
+        let g = DVector::from_fn(jac.ncols(), |i, _| jac.column(i).dot(&rv));
+        (gram(&jac), g)
+    }
+}
+
 /// Minimise ½‖r(x)‖² from `x0` by Levenberg-Marquardt (Marquardt's diagonal scaling, adaptive
 /// damping). `jacobian`, if given, returns the m × n matrix ∂r/∂x.
 ///
@@ -105,10 +150,28 @@ pub fn levenberg_marquardt(
     x0: &[f64],
     opts: LmOptions,
 ) -> Result<LmSolution> {
+    let m = residuals(x0).len();
+    let mut problem = Dense {
+        residuals,
+        jacobian,
+        fd_step: opts.fd_step,
+        m,
+        last: Vec::new(),
+    };
+    minimize(&mut problem, x0, opts)
+}
+
+/// Minimise a [`LeastSquares`] problem from `x0` by Levenberg-Marquardt (Marquardt's diagonal
+/// scaling, adaptive damping). Converged when the gradient vanishes, when an accepted step
+/// lowers the cost by less than `cost_tol` relative or moves x by less than `step_tol`, or when
+/// the undamped (Gauss-Newton) model predicts a decrease below `cost_tol` relative at an
+/// accepted point: that last step would only confirm the minimum, and is not taken.
+///
+/// # Errors
+/// As [`levenberg_marquardt`].
+pub fn minimize(problem: &mut dyn LeastSquares, x0: &[f64], opts: LmOptions) -> Result<LmSolution> {
     let n = x0.len();
-    let mut x = x0.to_vec();
-    let mut r = residuals(&x);
-    let m = r.len();
+    let m = problem.rows();
     if m < n {
         return Err(Error::invalid(
             "residuals",
@@ -116,47 +179,44 @@ pub fn levenberg_marquardt(
             format!("need at least {n} residuals for {n} parameters"),
         ));
     }
-    if r.iter().any(|v| !v.is_finite()) {
+    let mut x = x0.to_vec();
+    let Some(mut c) = problem.cost(&x) else {
         return Err(Error::invalid(
             "x0",
             format!("{x0:?}"),
             "residuals are not finite at the start",
         ));
-    }
-    let jac_of = |x: &[f64], r: &[f64]| match jacobian {
-        Some(j) => j(x),
-        None => jacobian_fd(residuals, x, r, opts.fd_step),
     };
-    let cost = |r: &[f64]| 0.5 * r.iter().map(|v| v * v).sum::<f64>();
-    let mut c = cost(&r);
-    let mut jac = jac_of(&x, &r);
+    let (mut jtj, mut g) = problem.normal(&x);
+    let mut fresh = true;
     let mut lambda = 1e-3;
     let mut converged = false;
     let mut iterations = 0;
     while iterations < opts.max_iterations {
         iterations += 1;
-        let rv = DVector::from_column_slice(&r);
-        let jtj = gram(&jac);
-        let g = DVector::from_fn(n, |i, _| jac.column(i).dot(&rv));
         if g.amax() <= opts.gradient_tol * (1.0 + c) {
             converged = true;
             break;
+        }
+        if fresh {
+            fresh = false;
+            // ½gᵀ(JᵀJ)⁻¹g: the decrease the Gauss-Newton step would bring.
+            let predicted = jtj.clone().cholesky().map(|ch| 0.5 * g.dot(&ch.solve(&g)));
+            if predicted.is_some_and(|p| p >= 0.0 && p < opts.cost_tol * c) {
+                converged = true;
+                break;
+            }
         }
         let mut a = jtj.clone();
         for i in 0..n {
             a[(i, i)] += lambda * jtj[(i, i)].max(1e-300);
         }
-        let Some(step) = a.clone().cholesky().map(|ch| ch.solve(&(-&g))) else {
+        let Some(step) = a.cholesky().map(|ch| ch.solve(&(-&g))) else {
             lambda *= 10.0;
             continue;
         };
         let x_new: Vec<f64> = x.iter().zip(step.iter()).map(|(a, b)| a + b).collect();
-        let r_new = residuals(&x_new);
-        let c_new = if r_new.iter().all(|v| v.is_finite()) {
-            cost(&r_new)
-        } else {
-            f64::INFINITY
-        };
+        let c_new = problem.cost(&x_new).unwrap_or(f64::INFINITY);
         if c_new < c {
             let rel_decrease = (c - c_new) / c.max(f64::MIN_POSITIVE);
             let step_small = step
@@ -164,9 +224,9 @@ pub fn levenberg_marquardt(
                 .zip(&x)
                 .all(|(s, xi)| s.abs() <= opts.step_tol * (xi.abs() + opts.step_tol));
             x = x_new;
-            r = r_new;
             c = c_new;
-            jac = jac_of(&x, &r);
+            (jtj, g) = problem.normal(&x);
+            fresh = true;
             lambda = (lambda / 3.0).max(1e-12);
             if rel_decrease < opts.cost_tol || step_small {
                 converged = true;
@@ -190,7 +250,6 @@ pub fn levenberg_marquardt(
     }
     let dof = (m - n).max(1) as f64;
     let s2 = 2.0 * c / dof;
-    let jtj = gram(&jac);
     let (covariance, std_errors) = match jtj.try_inverse() {
         Some(inv) => {
             let cov = inv * s2;
@@ -202,7 +261,6 @@ pub fn levenberg_marquardt(
     Ok(LmSolution {
         x,
         residual_norm: (2.0 * c).sqrt(),
-        residuals: r,
         std_errors,
         covariance,
         iterations,
