@@ -648,9 +648,23 @@ fn mnt_axis(number: u32, name: &str, step_nm: f64) -> Vec<u8> {
     tlv(0xffff, &desc)
 }
 
+/// A height block: first point, points, compressed bytes and the zlib stream of `raw`.
+fn mnt_block(first: u64, points: u32, raw: &[u8]) -> Vec<u8> {
+    use std::io::Write;
+    let mut z = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::best());
+    z.write_all(raw).unwrap();
+    let packed = z.finish().unwrap();
+    [
+        first.to_le_bytes().to_vec(),
+        points.to_le_bytes().to_vec(),
+        (packed.len() as u32).to_le_bytes().to_vec(),
+        packed,
+    ]
+    .concat()
+}
+
 /// The `ScopedContents` stream of the document `spec`.
 pub(crate) fn mnt_stream(spec: &MntSpec) -> Vec<u8> {
-    use std::io::Write;
     let (nx, ny) = (spec.nx, spec.ny);
     let n = spec.counts.len();
     // Blocks of equal size (SurfaceTopography groups them by their inflated size), in the order
@@ -665,13 +679,7 @@ pub(crate) fn mnt_stream(spec: &MntSpec) -> Vec<u8> {
     for k in order {
         let (a, b) = (starts[k], (starts[k] + per).min(n));
         let raw: Vec<u8> = spec.counts[a..b].iter().flat_map(|c| c.to_le_bytes()).collect();
-        let mut z = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::default());
-        z.write_all(&raw).unwrap();
-        let packed = z.finish().unwrap();
-        blob.extend((a as u64).to_le_bytes());
-        blob.extend(((b - a) as u32).to_le_bytes());
-        blob.extend((packed.len() as u32).to_le_bytes());
-        blob.extend(packed);
+        blob.extend(mnt_block(a as u64, (b - a) as u32, &raw));
     }
     if let Some(b) = &spec.blob {
         blob.clone_from(b);
@@ -680,32 +688,17 @@ pub(crate) fn mnt_stream(spec: &MntSpec) -> Vec<u8> {
         spec.counts.iter().copied().min().unwrap_or(0),
         spec.counts.iter().copied().max().unwrap_or(0),
     );
-    let x = tlv(
-        1,
-        &tlv(
-            0xffff,
-            &[
-                mnt_axis(1, "X", spec.steps_nm[0]),
-                tlv(1, &nx.to_le_bytes()),
-                tlv(2, &0u32.to_le_bytes()),
-                tlv(3, &(nx - 1).to_le_bytes()),
-            ]
-            .concat(),
-        ),
-    );
-    let y = tlv(
-        2,
-        &tlv(
-            0xffff,
-            &[
-                mnt_axis(2, "Y", spec.steps_nm[1]),
-                tlv(1, &ny.to_le_bytes()),
-                tlv(2, &0u32.to_le_bytes()),
-                tlv(3, &(ny - 1).to_le_bytes()),
-            ]
-            .concat(),
-        ),
-    );
+    // X and Y: {0xffff: descriptor, 1: points, 2: first index, 3: last index}.
+    let lateral = |number: u32, name: &str, points: u32| {
+        let axis = [
+            mnt_axis(number, name, spec.steps_nm[number as usize - 1]),
+            tlv(1, &points.to_le_bytes()),
+            tlv(2, &0u32.to_le_bytes()),
+            tlv(3, &(points - 1).to_le_bytes()),
+        ];
+        tlv(number as u16, &tlv(0xffff, &axis.concat()))
+    };
+    let (x, y) = (lateral(1, "X", nx), lateral(2, "Y", ny));
     let heights = tlv(
         1,
         &[
@@ -901,19 +894,7 @@ fn mnt_documents_truncated_corrupt_huge_or_inflating_are_refused() {
     let e = refused(&spec(4, 3, &counts, None), "count.mnt", None);
     assert!(e.contains("4 x 3 points on the axes but 16 heights"), "{e}");
     // Height data: byte count, then (first point, points, compressed bytes, zlib stream).
-    let block = |first: u64, points: u32, raw: &[u8]| -> Vec<u8> {
-        use std::io::Write;
-        let mut z = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::best());
-        z.write_all(raw).unwrap();
-        let packed = z.finish().unwrap();
-        [
-            first.to_le_bytes().to_vec(),
-            points.to_le_bytes().to_vec(),
-            (packed.len() as u32).to_le_bytes().to_vec(),
-            packed,
-        ]
-        .concat()
-    };
+    let block = mnt_block;
     let head = 64u64.to_le_bytes().to_vec();
     // A decompression bomb: 16 points (64 bytes) whose stream inflates to 16 MiB.
     let bomb = [head.clone(), block(0, 16, &vec![0u8; 16 << 20])].concat();
