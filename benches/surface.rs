@@ -4,7 +4,8 @@
 //! point against 1024²). `benches/surface_numpy.py` runs the same pipeline in numpy.
 //! Reading a 512² height map from the bytes of a file (`read 512x512 FORMAT`): Gwyddion simple
 //! field, Digital Surf, Nanosurf, Sensofar, Zygo MetroPro and Bruker Wyko, the files built here
-//! from the headers of the small fixtures in tests/fixtures/maps.
+//! from the headers of the small fixtures in tests/fixtures/maps; and a 4096² map as `.gsf`,
+//! `.sur` and `.gwy` (`read 4096x4096 .FORMAT`).
 
 use std::hint::black_box;
 
@@ -56,34 +57,13 @@ fn surface(c: &mut Criterion) {
 /// The points of the maps read.
 const N: usize = 512;
 
-/// Heights as stored integers: a smooth pattern (the values do not change the reading's work).
-fn stored(k: usize) -> i32 {
-    ((k * 7919) % 20_011) as i32 - 10_000
-}
-
-/// A fixture's bytes.
-fn fixture(name: &str) -> Vec<u8> {
-    std::fs::read(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("tests/fixtures/maps")
-            .join(name),
-    )
-    .expect("fixture")
-}
+mod maps;
+use maps::{fixture, stored};
 
 /// 512² maps in six formats, as file bytes.
 fn map_files() -> Vec<(&'static str, Vec<u8>)> {
     let n = N * N;
-    let mut gsf =
-        format!("Gwyddion Simple Field 1.0\nXRes = {N}\nYRes = {N}\nXReal = 1e-05\nYReal = 1e-05\n")
-            .into_bytes();
-    gsf.extend(std::iter::repeat_n(0u8, 4 - gsf.len() % 4));
-    gsf.extend((0..n).flat_map(|k| (stored(k) as f32 * 1e-12).to_le_bytes()));
-    let mut sur = fixture("sur-3.sur")[..512].to_vec();
-    sur[108..112].copy_from_slice(&(N as i32).to_le_bytes());
-    sur[112..116].copy_from_slice(&(N as i32).to_le_bytes());
-    sur[116..120].copy_from_slice(&(n as u32).to_le_bytes());
-    sur.extend((0..n).flat_map(|k| stored(k).to_le_bytes()));
+    let (gsf, sur) = (maps::gsf(N), maps::sur(N));
     let nid_text = String::from_utf8_lossy(&fixture("nid-small.nid")).into_owned();
     let header = &nid_text[..nid_text.find("#!").expect("data marker")];
     let mut nid = header
@@ -149,5 +129,28 @@ fn read_maps(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, surface, read_maps);
+/// Reading a 4096² map (16.8 M points) as `.gsf` (f32), `.sur` (int32) and `.gwy` (f64): the
+/// native formats against the simple field. Peak memory of the same readings:
+/// `examples/read_map.rs`.
+fn read_big_maps(c: &mut Criterion) {
+    let mut group = c.benchmark_group("surface");
+    group.sample_size(10);
+    let n = 4096;
+    for (format, bytes) in [
+        ("gsf", maps::gsf(n)),
+        ("sur", maps::sur(n)),
+        ("gwy", maps::gwy(n)),
+    ] {
+        let path = std::path::Path::new("map");
+        let m = parse_bytes(&bytes, path, None).expect(format);
+        assert_eq!((m.info.nx, m.info.ny), (n, n), "{format}");
+        drop(m);
+        group.bench_function(format!("read {n}x{n} .{format}"), |b| {
+            b.iter(|| black_box(parse_bytes(black_box(&bytes), path, None).expect("read")));
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, surface, read_maps, read_big_maps);
 criterion_main!(benches);

@@ -6,7 +6,9 @@ Usage (SurfaceTopography 1.25 and gwyfile from PyPI):
 
 `--make-fixtures` first writes the generated fixtures of tests/fixtures/maps (Gwyddion .gwy with
 the `gwyfile` package, ISO 25178 .x3p and binary .sdf written here by the format's layout),
-deterministically. Then every file listed in FILES is read with SurfaceTopography and
+deterministically (the Mountains .mnt fixtures are written by the Rust test
+`write_mnt_fixtures`, run with --ignored). Then every file listed in FILES is read with
+SurfaceTopography and
 tests/fixtures/maps/reference.json is written: for each file and channel, the grid (nx, ny),
 the physical size and unit SurfaceTopography reports and the same in metres, a few heights
 (x index i, y index j) in metres, their sum and the RMS height about the mean (no detrending),
@@ -57,6 +59,8 @@ FILES = [
     ("opd-small.opd", "OPD"),
     ("opdx-small.opdx", None),
     ("opdx-3.opdx", None),
+    ("mnt-small.mnt", None),
+    ("mnt-masked.mnt", None),
 ]
 
 EXTRA = [
@@ -74,6 +78,8 @@ EXTRA = [
     ("plu-1.plu", None),
     ("metropro-1.dat", None),
     ("opd-1.opd", None),
+    ("mnt-1.mnt", None),
+    ("mnt-2.mnt", None),
 ]
 
 SAMPLES = [(0, 0), (1, 0), (0, 1), (-1, -1), (3, 2), (-2, 1)]
@@ -365,6 +371,11 @@ def reference(path, channel):
     if missing == 0:
         out["sum"] = float(valid.sum())
         out["rms"] = float(np.sqrt(np.mean((valid - valid.mean()) ** 2)))
+    if path.endswith(".mnt"):
+        # Mountains documents: the fixed height scale SurfaceTopography applies [m per stored
+        # integer], and the RMS of the valid points (the examples have missing points).
+        out["mnt_height_scale_m"] = float(reader._height_scale_factor * scale)
+        out["rms_valid"] = float(np.sqrt(np.mean((valid - valid.mean()) ** 2)))
     return out
 
 

@@ -18,6 +18,7 @@
 //! | Zygo MetroPro `.dat` | `metropro` | one (the phase map) |
 //! | Bruker Wyko `.opd` | `opd` | one per raster |
 //! | Bruker Dektak `.opdx` | `opdx` | the primary map, or each line scan |
+//! | Digital Surf Mountains `.mnt` (OLE compound file) | `mnt` | the surface |
 //!
 //! Each reader yields [`Channel`]s: name, grid, physical size and units as the file declares
 //! them, and the heights decoded on demand (only the chosen channel is decoded). Heights keep
@@ -42,6 +43,7 @@ mod gwy;
 mod ibw;
 mod metropro;
 mod mi;
+mod mnt;
 mod nid;
 mod opd;
 mod opdx;
@@ -258,6 +260,8 @@ pub enum Format {
     Opd,
     /// Bruker Dektak `.opdx`.
     Opdx,
+    /// Digital Surf Mountains `.mnt`.
+    Mnt,
 }
 
 impl Format {
@@ -279,6 +283,7 @@ impl Format {
             Format::MetroPro => "Zygo MetroPro (.dat)",
             Format::Opd => "Bruker Wyko (.opd)",
             Format::Opdx => "Bruker Dektak (.opdx)",
+            Format::Mnt => "Digital Surf Mountains (.mnt)",
         }
     }
 
@@ -329,6 +334,9 @@ pub fn detect(bytes: &[u8], path: &Path) -> Result<Format> {
     if bytes.starts_with(opdx::MAGIC) {
         return Ok(Format::Opdx);
     }
+    if bytes.starts_with(mnt::OLE_MAGIC) {
+        return Ok(Format::Mnt);
+    }
     if bytes.len() >= 8 && crate::readers::igor_version(bytes).is_some() {
         return Ok(Format::Ibw);
     }
@@ -351,7 +359,7 @@ pub fn detect(bytes: &[u8], path: &Path) -> Result<Format> {
             format!(
                 "not a height map this program reads (binary file starting `{shown}`); formats: \
                  text matrix or xyz, .gsf, .gwy, .x3p, .sdf, .sur, .ibw, Nanoscope .di/.spm, .mi, .al3d, \
-                 .nid, .plu, MetroPro .dat, .opd, .opdx"
+                 .nid, .plu, MetroPro .dat, .opd, .opdx, .mnt"
             ),
         ));
     }
@@ -388,6 +396,7 @@ fn channels<'a>(format: Format, bytes: &'a [u8], path: &'a Path) -> Result<Vec<C
         Format::MetroPro => metropro::channels(bytes, path)?,
         Format::Opd => opd::channels(bytes, path)?,
         Format::Opdx => opdx::channels(bytes, path)?,
+        Format::Mnt => mnt::channels(bytes, path)?,
     };
     if list.is_empty() {
         return Err(Error::data_file(

@@ -103,7 +103,7 @@ pub fn metres_per_unit(unit: &str) -> Option<f64> {
 
 /// Read a height map, the format recognised by content ([`super::formats`]: text matrix or xyz,
 /// `.gsf`, `.gwy`, `.x3p`, `.sdf`, `.sur`, `.ibw`, Nanoscope, `.mi`, `.al3d`, `.nid`, `.plu`,
-/// MetroPro `.dat`, `.opd`, `.opdx`). `pixel_size` [m] is needed for a
+/// MetroPro `.dat`, `.opd`, `.opdx`, Mountains `.mnt`). `pixel_size` [m] is needed for a
 /// text matrix without lengths in its header and overrides them; ignored for the other formats.
 /// `FILE#CHANNEL` (when no file of that whole name exists) reads the channel named CHANNEL; else
 /// the first height channel.

@@ -5,7 +5,8 @@
 //! that mutations reach the headers and channels past the zip's checksums; Asylum .ibw;
 //! afmformats .h5; AFM Workshop CSV and zip; NT-MDT, Chiaro, afmformats .tab text), and the
 //! height-map readers (`map …`: text matrix and xyz, .sdf, .x3p re-zipped from mutated entries,
-//! .gwy, .sur, .ibw images, Nanoscope, .mi, .al3d, .nid, .plu, MetroPro .dat, .opd, .opdx).
+//! .gwy, .sur, .ibw images, Nanoscope, .mi, .al3d, .nid, .plu, MetroPro .dat, .opd, .opdx,
+//! Mountains .mnt whole and its document stream put back into a compound file).
 //! Each parser
 //! gets valid seeds mutated (bytes flipped, inserted, deleted, duplicated; numbers such as
 //! 1e308, -0, nan spliced in) and must return `Ok` or `Err`, never panic. A short run is in CI;
@@ -249,6 +250,11 @@ fn map_seeds() -> Vec<(&'static str, Vec<u8>)> {
         ("map MetroPro .dat", read("metropro-small.dat")),
         ("map .opd", read("opd-small.opd")),
         ("map .opdx", read("opdx-small.opdx")),
+        ("map .mnt", read("mnt-small.mnt")),
+        (
+            "map .mnt stream",
+            crate::maps::mnt_stream_of(&read("mnt-masked.mnt")),
+        ),
     ]
 }
 
@@ -373,8 +379,12 @@ fn panics(kind: &str, bytes: &[u8], dir: &Path) -> bool {
         .is_err();
     }
     if kind.starts_with("map ") {
+        // Mutated .mnt streams are put back into a compound file before the reader runs, so that
+        // mutations reach the document past the container.
         let bytes = if kind.ends_with(" entries") {
             rezip(bytes)
+        } else if kind.ends_with(" stream") {
+            crate::maps::mnt_file(bytes)
         } else {
             bytes.to_vec()
         };
@@ -524,6 +534,8 @@ fn height_map_seeds_read_unmutated() {
     for (kind, seed) in map_seeds() {
         let bytes = if kind.ends_with(" entries") {
             rezip(&seed)
+        } else if kind.ends_with(" stream") {
+            crate::maps::mnt_file(&seed)
         } else {
             seed
         };

@@ -81,6 +81,8 @@ fn compare_with_reference(dir: &Path, reference: &str, at_least: usize) {
             .collect();
         let ours = m.info.size.unwrap();
         let f = m.info.xy_unit.metres.unwrap_or(1.0);
+        let (size_factor, z_factor) = mnt_corrections(file, &m, e);
+        let st_size: Vec<f64> = st_size.iter().zip(size_factor).map(|(s, c)| s * c).collect();
         // A line scan has its length only.
         for k in 0..st_size.len() {
             assert!(
@@ -100,7 +102,7 @@ fn compare_with_reference(dir: &Path, reference: &str, at_least: usize) {
         for s in e["samples"].as_array().unwrap() {
             let (i, j) = (s[0].as_u64().unwrap() as usize, s[1].as_u64().unwrap() as usize);
             let ours = z[j * m.info.nx + i];
-            match s[2].as_f64() {
+            match s[2].as_f64().map(|h| h * z_factor) {
                 Some(h) => assert!(
                     rel(ours, h) < tol,
                     "{file} {channel}: height at ({i}, {j}) {ours} vs {h}"
@@ -123,6 +125,22 @@ fn compare_with_reference(dir: &Path, reference: &str, at_least: usize) {
         };
         if missing > 0 {
             refusal(&format!("{missing} of"));
+            if let Some(st_rms) = e["rms_valid"].as_f64().map(|r| r * z_factor) {
+                let valid: Vec<f64> = z.iter().copied().filter(|v| v.is_finite()).collect();
+                let n = valid.len() as f64;
+                let mean = valid.iter().sum::<f64>() / n;
+                let rms = (valid.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n).sqrt();
+                assert!(rel(rms, st_rms) < tol, "{file} {channel}: rms {rms} vs {st_rms}");
+                table.push(format!(
+                    "| {file} | {channel} | {} x {} | {:.6e} x {:.6e} | {rms:.9e} (of {} valid) | {st_rms:.9e} | {:.1e} |",
+                    m.info.nx,
+                    m.info.ny,
+                    ours[0] * f,
+                    ours[1] * f,
+                    valid.len(),
+                    rel(rms, st_rms)
+                ));
+            }
             continue;
         }
         if m.info.ny == 1 {
@@ -132,7 +150,10 @@ fn compare_with_reference(dir: &Path, reference: &str, at_least: usize) {
         let sum: f64 = z.iter().sum();
         let mean = sum / n;
         let rms = (z.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n).sqrt();
-        let (st_sum, st_rms) = (e["sum"].as_f64().unwrap(), e["rms"].as_f64().unwrap());
+        let (st_sum, st_rms) = (
+            e["sum"].as_f64().unwrap() * z_factor,
+            e["rms"].as_f64().unwrap() * z_factor,
+        );
         // A sum near zero (heights about a zero mean) compares relative to the sum of |z|.
         let scale = z.iter().map(|v| v.abs()).sum::<f64>();
         assert!(
@@ -150,6 +171,35 @@ fn compare_with_reference(dir: &Path, reference: &str, at_least: usize) {
         ));
     }
     println!("{}", table.join("\n"));
+}
+
+/// Z steps [nm] of the `.mnt` documents compared: the generated fixtures' (their specs below)
+/// and SurfaceTopography's examples' (their Z axes: 1e-4 nm and 0.2327 nm per count).
+const MNT_Z_STEPS_NM: &[(&str, f64)] = &[
+    ("mnt-small.mnt", 0.232732),
+    ("mnt-masked.mnt", 1e-4),
+    ("mnt-1.mnt", 1e-4),
+    ("mnt-2.mnt", 0.23273157119750973),
+];
+
+/// Factors taking SurfaceTopography 1.25's reading of a Mountains `.mnt` document to the
+/// document's own numbers, ones for other files. SurfaceTopography gives the extent of an
+/// extracted profile, (points - 1) x step, as the physical size (points x step here), and scales
+/// the stored integers by the fixed 10 nm of the document's pixel-scale entry (recorded as
+/// `mnt_height_scale_m`) instead of the Z axis's step, so its heights are those here times a
+/// constant: the check is that every height and the RMS are that same multiple, to 1e-6.
+fn mnt_corrections(file: &str, m: &Measured, e: &serde_json::Value) -> ([f64; 2], f64) {
+    if !file.ends_with(".mnt") {
+        return ([1.0; 2], 1.0);
+    }
+    let step = MNT_Z_STEPS_NM
+        .iter()
+        .find(|(f, _)| *f == file)
+        .unwrap_or_else(|| panic!("{file}: no Z step listed"))
+        .1;
+    let st_scale = e["mnt_height_scale_m"].as_f64().expect("mnt_height_scale_m");
+    let (nx, ny) = (m.info.nx as f64, m.info.ny as f64);
+    ([nx / (nx - 1.0), ny / (ny - 1.0)], step * 1e-9 / st_scale)
 }
 
 /// The fixtures whose lengths and heights are in length units become height maps in metres.
@@ -549,4 +599,356 @@ fn instrument_markers_of_points_not_measured_are_missing() {
             && list.contains("Scan backward (Z-Axis)"),
         "{list}"
     );
+}
+
+/// A Mountains `.mnt` document in the layout of SurfaceTopography's examples
+/// (`adhesion::surface::formats`' `mnt` module): one surface of `nx` × `ny` int32 heights
+/// `counts` (x fastest) with the steps in nanometres, stored in `blocks` zlib blocks written in
+/// a shuffled order, the storage code `code` (12: zeros are missing points), SurfaceTopography's
+/// fixed 10 nm pixel scale, and a third object holding the extent in millimetres where
+/// SurfaceTopography reads it.
+pub(crate) struct MntSpec<'a> {
+    pub nx: u32,
+    pub ny: u32,
+    pub counts: &'a [i32],
+    pub steps_nm: [f64; 3],
+    pub blocks: usize,
+    pub code: u8,
+    /// Height data written instead of the blocks of `counts` (a corrupt or hostile file).
+    pub blob: Option<Vec<u8>>,
+}
+
+fn tlv(tag: u16, data: &[u8]) -> Vec<u8> {
+    let mut out = tag.to_le_bytes().to_vec();
+    out.extend((data.len() as u64).to_le_bytes());
+    out.extend_from_slice(data);
+    out
+}
+
+fn mnt_text(s: &str) -> Vec<u8> {
+    let mut out = vec![4u8];
+    for u in s.encode_utf16() {
+        out.extend(u.to_le_bytes());
+    }
+    out
+}
+
+fn mnt_axis(number: u32, name: &str, step_nm: f64) -> Vec<u8> {
+    let id = [tlv(1, &number.to_le_bytes()), tlv(2, &mnt_text(name))].concat();
+    let desc = [
+        tlv(0xffff, &id),
+        tlv(1, &step_nm.to_le_bytes()),
+        tlv(2, &mnt_text("nm")),
+        tlv(3, &mnt_text("µm")),
+        tlv(4, &1000f64.to_le_bytes()),
+        tlv(5, &0f64.to_le_bytes()),
+        tlv(6, &1u32.to_le_bytes()),
+    ]
+    .concat();
+    tlv(0xffff, &desc)
+}
+
+/// A height block: first point, points, compressed bytes and the zlib stream of `raw`.
+fn mnt_block(first: u64, points: u32, raw: &[u8]) -> Vec<u8> {
+    use std::io::Write;
+    let mut z = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::best());
+    z.write_all(raw).unwrap();
+    let packed = z.finish().unwrap();
+    [
+        first.to_le_bytes().to_vec(),
+        points.to_le_bytes().to_vec(),
+        (packed.len() as u32).to_le_bytes().to_vec(),
+        packed,
+    ]
+    .concat()
+}
+
+/// The `ScopedContents` stream of the document `spec`.
+pub(crate) fn mnt_stream(spec: &MntSpec) -> Vec<u8> {
+    let (nx, ny) = (spec.nx, spec.ny);
+    let n = spec.counts.len();
+    // Blocks of equal size (SurfaceTopography groups them by their inflated size), in the order
+    // 1, 3, 5, …, 0, 2, 4, …
+    let per = n.div_ceil(spec.blocks.max(1));
+    let starts: Vec<usize> = (0..n).step_by(per.max(1)).collect();
+    let order: Vec<usize> = (0..starts.len())
+        .filter(|k| k % 2 == 1)
+        .chain((0..starts.len()).filter(|k| k % 2 == 0))
+        .collect();
+    let mut blob = ((n * 4) as u64).to_le_bytes().to_vec();
+    for k in order {
+        let (a, b) = (starts[k], (starts[k] + per).min(n));
+        let raw: Vec<u8> = spec.counts[a..b].iter().flat_map(|c| c.to_le_bytes()).collect();
+        blob.extend(mnt_block(a as u64, (b - a) as u32, &raw));
+    }
+    if let Some(b) = &spec.blob {
+        blob.clone_from(b);
+    }
+    let (min, max) = (
+        spec.counts.iter().copied().min().unwrap_or(0),
+        spec.counts.iter().copied().max().unwrap_or(0),
+    );
+    // X and Y: {0xffff: descriptor, 1: points, 2: first index, 3: last index}.
+    let lateral = |number: u32, name: &str, points: u32| {
+        let axis = [
+            mnt_axis(number, name, spec.steps_nm[number as usize - 1]),
+            tlv(1, &points.to_le_bytes()),
+            tlv(2, &0u32.to_le_bytes()),
+            tlv(3, &(points - 1).to_le_bytes()),
+        ];
+        tlv(number as u16, &tlv(0xffff, &axis.concat()))
+    };
+    let (x, y) = (lateral(1, "X", nx), lateral(2, "Y", ny));
+    let heights = tlv(
+        1,
+        &[
+            tlv(1, &tlv(1, &9049u32.to_le_bytes())),
+            tlv(2, &[tlv(1, &(n as u32).to_le_bytes()), tlv(2, &blob)].concat()),
+        ]
+        .concat(),
+    );
+    let z = tlv(
+        2,
+        &[
+            mnt_axis(3, "Z", spec.steps_nm[2]),
+            tlv(1, &min.to_le_bytes()),
+            tlv(2, &max.to_le_bytes()),
+        ]
+        .concat(),
+    );
+    let kind = |k: u32| tlv(1, &tlv(1, &k.to_le_bytes()));
+    let surface = [
+        kind(9012),
+        tlv(
+            2,
+            &[
+                tlv(0xffff, &tlv(4, &mnt_text("1 : generated"))),
+                tlv(1, &tlv(0xffff, &[x, y, heights, z].concat())),
+            ]
+            .concat(),
+        ),
+    ]
+    .concat();
+    // SurfaceTopography reads the grid and the extent (points - 1) x step [mm] of the third
+    // object, six levels deep.
+    let level6 = [
+        tlv(7, &nx.to_le_bytes()),
+        tlv(8, &ny.to_le_bytes()),
+        tlv(9, &(f64::from(nx - 1) * spec.steps_nm[0] * 1e-6).to_le_bytes()),
+        tlv(10, &(f64::from(ny - 1) * spec.steps_nm[1] * 1e-6).to_le_bytes()),
+    ]
+    .concat();
+    let profile = [kind(9013), tlv(2, &tlv(1, &tlv(2, &tlv(2, &tlv(2, &level6)))))].concat();
+    let mut objects = Vec::new();
+    for object in [surface, kind(9010), profile] {
+        let entry = tlv(1, &object);
+        objects.extend((entry.len() as u64).to_le_bytes());
+        objects.extend(entry);
+    }
+    let store = [tlv(1, &[spec.code]), tlv(2, &tlv(1, &objects))].concat();
+    let scales: Vec<u8> = (1..=4).flat_map(|t| tlv(t, &10f64.to_le_bytes())).collect();
+    let main = [tlv(6, &scales), tlv(0x2bd, &store)].concat();
+    let top = [
+        tlv(3, &[1]),
+        tlv(2, &5u32.to_le_bytes()),
+        tlv(4, &0x0001_0000u64.to_le_bytes()),
+        tlv(5, &(spec.blocks as u64).to_le_bytes()),
+        tlv(1, &main),
+    ]
+    .concat();
+    [(top.len() as u64).to_le_bytes().to_vec(), top].concat()
+}
+
+/// An OLE compound file holding `scoped` as its `ScopedContents` stream (and an empty
+/// `XmlHeader`, as Mountains writes it).
+pub(crate) fn mnt_file(scoped: &[u8]) -> Vec<u8> {
+    use std::io::Write;
+    let mut cf = cfb::CompoundFile::create(std::io::Cursor::new(Vec::new())).unwrap();
+    cf.create_stream("ScopedContents")
+        .unwrap()
+        .write_all(scoped)
+        .unwrap();
+    cf.create_stream("XmlHeader").unwrap().write_all(b"").unwrap();
+    cf.flush().unwrap();
+    cf.into_inner().into_inner()
+}
+
+/// Heights of the generated `.mnt` fixtures: a tilted sinusoidal bump field of counts, zeros
+/// in the lower left corner when `hole` (missing points under storage code 12) and one zero
+/// inside otherwise (a valid height under code 39).
+fn mnt_counts(nx: u32, ny: u32, hole: bool) -> Vec<i32> {
+    let mut z = Vec::new();
+    for j in 0..ny {
+        for i in 0..nx {
+            let (x, y) = (f64::from(i), f64::from(j));
+            let v = 3000.0 * (x / 5.0).sin() * (y / 7.0).cos() + 40.0 * x - 25.0 * y + 700.0;
+            let mut c = v.round() as i32;
+            if c == 0 {
+                c = 1;
+            }
+            if hole && i + j < 6 {
+                c = 0;
+            }
+            z.push(c);
+        }
+    }
+    if !hole {
+        z[(nx + 3) as usize] = 0;
+    }
+    z
+}
+
+/// The generated `.mnt` fixtures: (file, document).
+fn mnt_fixtures() -> Vec<(&'static str, Vec<u8>)> {
+    let (nx, ny) = (48u32, 40u32);
+    let plain = mnt_counts(nx, ny, false);
+    let holed = mnt_counts(nx, ny, true);
+    vec![
+        (
+            "mnt-small.mnt",
+            mnt_file(&mnt_stream(&MntSpec {
+                nx,
+                ny,
+                counts: &plain,
+                steps_nm: [74.8801903682761, 81.25, 0.232732],
+                blocks: 5,
+                code: 39,
+                blob: None,
+            })),
+        ),
+        (
+            "mnt-masked.mnt",
+            mnt_file(&mnt_stream(&MntSpec {
+                nx,
+                ny,
+                counts: &holed,
+                steps_nm: [1853.393117831074, 1854.5542570951588, 1e-4],
+                blocks: 4,
+                code: 12,
+                blob: None,
+            })),
+        ),
+    ]
+}
+
+/// Writes the generated `.mnt` fixtures (then run benches/surfacetopography_reference.py).
+#[test]
+#[ignore = "writes tests/fixtures/maps/mnt-*.mnt"]
+fn write_mnt_fixtures() {
+    for (file, bytes) in mnt_fixtures() {
+        std::fs::write(maps().join(file), bytes).unwrap();
+    }
+}
+
+/// The `ScopedContents` stream of the `.mnt` document `bytes`.
+pub(crate) fn mnt_stream_of(bytes: &[u8]) -> Vec<u8> {
+    let mut cf = cfb::CompoundFile::open(std::io::Cursor::new(bytes)).unwrap();
+    let mut out = Vec::new();
+    std::io::Read::read_to_end(&mut cf.open_stream("ScopedContents").unwrap(), &mut out).unwrap();
+    out
+}
+
+/// Mountains `.mnt`: cut files and document streams, sizes off, a grid of 100 000² points, and
+/// height blocks that inflate beyond their points, lie outside the grid or leave points
+/// uncovered are refused with one line naming the file, before anything is allocated from the
+/// claims.
+#[test]
+fn mnt_documents_truncated_corrupt_huge_or_inflating_are_refused() {
+    let file = std::fs::read(maps().join("mnt-small.mnt")).unwrap();
+    // (The compound file's last sector is padding: a file cut inside it still reads.)
+    for cut in [file.len() / 2, file.len() * 3 / 4, 600, 100, 5] {
+        let e = parse_bytes(&file[..cut], Path::new("cut.mnt"), None)
+            .map(|_| ())
+            .unwrap_err_or_else(|| panic!("cut at {cut} read"));
+        assert!(e.contains("cut.mnt") && !e.contains('\n'), "{cut}: {e}");
+    }
+    let sc = mnt_stream_of(&file);
+    for cut in [sc.len() / 2, sc.len() - 1, 40, 8, 3] {
+        // As cut, and with the stream's own length mended (the entries then overrun it).
+        let mut mended = sc[..cut].to_vec();
+        if cut >= 8 {
+            mended[..8].copy_from_slice(&(cut as u64 - 8).to_le_bytes());
+        }
+        for s in [&sc[..cut], &mended[..]] {
+            let e = refused(&mnt_file(s), "cut.mnt", None);
+            assert!(e.contains(".mnt"), "{cut}: {e}");
+        }
+    }
+    let e = refused(&mnt_file(b"not a document"), "empty.mnt", None);
+    assert!(e.contains("ScopedContents") || e.contains("corrupt"), "{e}");
+    let spec = |nx: u32, ny: u32, counts: &[i32], blob: Option<Vec<u8>>| -> Vec<u8> {
+        mnt_file(&mnt_stream(&MntSpec {
+            nx,
+            ny,
+            counts,
+            steps_nm: [10.0, 10.0, 1.0],
+            blocks: 1,
+            code: 39,
+            blob,
+        }))
+    };
+    let counts: Vec<i32> = (0..16).collect();
+    // A grid of 100 000 x 100 000 points (and 16 heights).
+    let e = refused(&spec(100_000, 100_000, &counts, None), "huge.mnt", None);
+    assert!(e.contains("100000 x 100000") && e.contains("limit"), "{e}");
+    let e = refused(&spec(4, 3, &counts, None), "count.mnt", None);
+    assert!(e.contains("4 x 3 points on the axes but 16 heights"), "{e}");
+    // Height data: byte count, then (first point, points, compressed bytes, zlib stream).
+    let block = mnt_block;
+    let head = 64u64.to_le_bytes().to_vec();
+    // A decompression bomb: 16 points (64 bytes) whose stream inflates to 16 MiB.
+    let bomb = [head.clone(), block(0, 16, &vec![0u8; 16 << 20])].concat();
+    assert!(bomb.len() < 64 << 10);
+    let e = refused(&spec(4, 4, &counts, Some(bomb)), "bomb.mnt", None);
+    assert!(e.contains("inflates beyond its 64 bytes"), "{e}");
+    let short = [head.clone(), block(0, 16, &[0u8; 60])].concat();
+    let e = refused(&spec(4, 4, &counts, Some(short)), "short.mnt", None);
+    assert!(
+        e.contains("60 of 64 bytes") || e.contains("inflates to 60"),
+        "{e}"
+    );
+    let outside = [head.clone(), block(8, 16, &[0u8; 64])].concat();
+    let e = refused(&spec(4, 4, &counts, Some(outside)), "outside.mnt", None);
+    assert!(e.contains("lies outside the 16 points"), "{e}");
+    let gap = [head.clone(), block(0, 8, &[0u8; 32]), block(9, 7, &[0u8; 28])].concat();
+    let e = refused(&spec(4, 4, &counts, Some(gap)), "gap.mnt", None);
+    assert!(e.contains("uncovered"), "{e}");
+    let wrong = [32u64.to_le_bytes().to_vec(), block(0, 16, &[0u8; 64])].concat();
+    let e = refused(&spec(4, 4, &counts, Some(wrong)), "bytes.mnt", None);
+    assert!(e.contains("declares 32 bytes"), "{e}");
+}
+
+/// The generated `.mnt` fixtures are the documents [`mnt_fixtures`] writes, and read back as
+/// written: the stored integers times the Z step, x fastest, zeros missing under code 12 only.
+#[test]
+fn mnt_fixtures_read_as_written() {
+    for (file, bytes) in mnt_fixtures() {
+        let m = read_measured(&maps().join(file), None).unwrap();
+        let again = parse_bytes(&bytes, Path::new(file), None).unwrap();
+        assert_eq!(m.z.len(), again.z.len(), "{file}");
+        assert!(
+            m.z.iter()
+                .zip(&again.z)
+                .all(|(a, b)| a == b || (a.is_nan() && b.is_nan())),
+            "{file}: the committed fixture differs from the generator's document"
+        );
+        let (nx, ny) = (m.info.nx, m.info.ny);
+        assert_eq!((nx, ny), (48, 40), "{file}");
+        let hole = file.contains("masked");
+        let counts = mnt_counts(48, 40, hole);
+        let step = MNT_Z_STEPS_NM.iter().find(|(f, _)| *f == file).unwrap().1;
+        assert_eq!(m.info.z_unit.name, "nm");
+        for (k, (&c, &z)) in counts.iter().zip(&m.z).enumerate() {
+            if hole && c == 0 {
+                assert!(z.is_nan(), "{file}: point {k} should be missing");
+            } else {
+                assert!(
+                    rel(z, f64::from(c) * step) < 1e-15,
+                    "{file}: point {k}: {z} vs {c}"
+                );
+            }
+        }
+        let missing = m.z.iter().filter(|z| z.is_nan()).count();
+        assert_eq!(missing, if hole { 21 } else { 0 }, "{file}");
+    }
 }
