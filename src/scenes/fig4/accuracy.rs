@@ -254,13 +254,12 @@ fn floored(e: f64) -> f64 {
     e.max(ERROR_FLOOR)
 }
 
+/// A curve of relative errors: its name, style and points.
+type ErrorCurve = (&'static str, Style, Vec<(f64, f64)>);
+
 /// The relative errors of P_adh (solid) and of H (dashed) of `runs` against `reference`, as
-/// drawn on a log axis against `x` of each run: (name, style, points).
-fn error_curves(
-    runs: &[&Run],
-    x: impl Fn(&Run) -> f64,
-    reference: &Run,
-) -> [(&'static str, Style, Vec<(f64, f64)>); 2] {
+/// drawn on a log axis against `x` of each run.
+fn error_curves(runs: &[&Run], x: impl Fn(&Run) -> f64, reference: &Run) -> [ErrorCurve; 2] {
     let curve = |pick: fn((f64, f64)) -> f64| {
         runs.iter()
             .map(|r| (x(r), floored(pick(errors(r, reference)))))
