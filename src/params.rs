@@ -288,6 +288,30 @@ fn parse_float(t: &str) -> Option<f64> {
     }
 }
 
+/// A cross-field check of two parameters that bound an interval: `Ok` unless `lo >= hi`, then
+/// [`Error::InvalidParameter`] naming `lo_name` with "must be below `hi_name`".
+///
+/// # Errors
+/// As above.
+pub fn require_below<T: PartialOrd + ToString>(lo_name: &str, lo: T, hi_name: &str, hi: T) -> Result<()> {
+    if lo >= hi {
+        return Err(Error::invalid(lo_name, lo, format!("must be below {hi_name}")));
+    }
+    Ok(())
+}
+
+/// A check of a list parameter: `Ok` unless `values` is empty, then
+/// [`Error::InvalidParameter`] naming `name` with "must not be empty".
+///
+/// # Errors
+/// As above.
+pub fn require_non_empty<T>(name: &str, values: &[T]) -> Result<()> {
+    if values.is_empty() {
+        return Err(Error::invalid(name, "[]", "must not be empty"));
+    }
+    Ok(())
+}
+
 /// Text from a file as every reader here takes it: a UTF-8 byte-order mark skipped, CRLF and
 /// CR alone turned into LF (so that each line keeps its number), whatever wrote the file.
 pub fn normalise_line_ends(text: &str) -> String {

@@ -61,6 +61,30 @@ pub struct Claim {
     pub expect: Expect,
 }
 
+impl Claim {
+    /// A claim that is an exact consequence of the text's numbers (a ratio of printed
+    /// parameters, a closed form): computed to a relative 1e-12 and expected reproduced.
+    pub const fn exact(
+        id: &'static str,
+        source: &'static str,
+        quantity: &'static str,
+        printed: &'static str,
+        code: &'static str,
+        compute: fn() -> Result<f64>,
+    ) -> Self {
+        Self {
+            id,
+            source,
+            quantity,
+            printed,
+            precision: Precision::Relative(1e-12),
+            code,
+            compute,
+            expect: Expect::Reproduced,
+        }
+    }
+}
+
 /// Status obtained.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]

@@ -32,16 +32,14 @@ const A_STEEP: f64 = 1.0e7;
 /// The claims of chapter 6.
 pub fn claims() -> Vec<Claim> {
     vec![
-        Claim {
-            id: "ch6.example_w_bar",
-            source: "Sec. 6.4",
-            quantity: "w/(Eh) for E = 1 MPa, h = 100 um, w = 10 J/m^2",
-            printed: "0.1",
-            precision: Precision::Relative(1e-12),
-            code: "reproduction::ch6::example_w_bar",
-            compute: || Ok(example_w_bar()),
-            expect: Expect::Reproduced,
-        },
+        Claim::exact(
+            "ch6.example_w_bar",
+            "Sec. 6.4",
+            "w/(Eh) for E = 1 MPa, h = 100 um, w = 10 J/m^2",
+            "0.1",
+            "reproduction::ch6::example_w_bar",
+            || Ok(example_w_bar()),
+        ),
         Claim {
             id: "ch6.alpha_w0.1",
             source: "Eq. (6.29)",

@@ -2,7 +2,7 @@
 //! curves of a rough surface (Fig. 1.4b).
 
 use super::{Registered, Scene, SceneDyn};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::figure::{Axis, Figure, Marker, MarkerShape, Panel, Series, Style};
 use crate::job::Job;
 use crate::models::classical::{
@@ -10,7 +10,7 @@ use crate::models::classical::{
     jkr_hysteresis_constant_by_quadrature,
 };
 use crate::models::fuller_tabor::FullerTabor;
-use crate::params::Range;
+use crate::params::{Range, require_below};
 
 /// The chapter's scenes, in figure order.
 pub const SCENES: &[&dyn SceneDyn] = &[&Registered::<Fig1_1>::NEW, &Registered::<Fig1_4b>::NEW];
@@ -305,14 +305,12 @@ impl Scene for Fig1_4b {
     ];
 
     fn validate(p: &Self::Params) -> Result<()> {
-        if p.min_separation_ho >= p.start_separation_ho {
-            return Err(Error::invalid(
-                "min_separation_ho",
-                p.min_separation_ho,
-                "must be below start_separation_ho",
-            ));
-        }
-        Ok(())
+        require_below(
+            "min_separation_ho",
+            p.min_separation_ho,
+            "start_separation_ho",
+            p.start_separation_ho,
+        )
     }
 
     fn quick(p: &mut Self::Params) {

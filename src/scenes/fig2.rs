@@ -15,7 +15,7 @@ use crate::figure::{Axis, Figure, Marker, MarkerShape, Panel, Series, Style};
 use crate::job::Job;
 use crate::models::machine_stiffness::{Accuracy, MachineStiffness, State, SweepPoint, TipShape};
 use crate::numerics::curve::{linspace, logspace};
-use crate::params::Range;
+use crate::params::{Range, require_below};
 
 /// The scenes of this chapter, in figure order.
 pub const SCENES: &[&dyn SceneDyn] = &[
@@ -145,16 +145,7 @@ fn branch_figure(
     let m = MachineStiffness::new(tip, alpha)?;
     let pull_in = m.pull_in(XTOL)?;
     let pull_off = m.pull_off(XTOL)?;
-    if delta_min >= pull_off.before.delta {
-        return Err(Error::invalid(
-            "delta_min",
-            delta_min,
-            format!(
-                "must lie below the pull-off stage displacement {}",
-                crate::text::fmt_sig(pull_off.before.delta)
-            ),
-        ));
-    }
+    // The cycle refuses a `delta_min` that does not reach below the pull-off.
     let cycle = m.cycle(delta_min, delta_max, points, XTOL)?;
     job.check()?;
     let a_o = pull_off.before.a;
@@ -518,62 +509,58 @@ crate::scene_params! {
     }
 }
 
-/// Fig. 2.5: sphere, pull-in and pull-off forces and hysteresis vs α, exact and (2.37), (2.39).
-pub struct Fig2_5;
+/// Figs. 2.5 and 2.7: the α sweep of one tip shape ([`sweep_figure`]), with the equations of
+/// its fits.
+macro_rules! alpha_sweep_scene {
+    (
+        $(#[$doc:meta])*
+        $name:ident, id = $id:literal, shape = $shape:expr, fits = $fits:expr,
+        title = $title:literal, caption = $caption:literal
+    ) => {
+        $(#[$doc])*
+        pub struct $name;
 
-impl Scene for Fig2_5 {
-    type Params = AlphaSweepParams;
-    const ID: &'static str = "fig2.5";
-    const CHAPTER: &'static str = "2";
-    const TITLE: &'static str = "Spherical tip: pull-in, pull-off and hysteresis vs machine stiffness";
-    const CAPTION: &'static str = "Spherical tip. (a) Exact (circles) and approximate (lines, Eq. (2.37)) |P_i| and \
-        |P_o| vs alpha. (b) Exact hysteresis (Eq. (2.38), circles) and its approximation (2.39).";
-    const RESULTS: &'static [(&'static str, &'static str)] = SWEEP_RESULTS;
+        impl Scene for $name {
+            type Params = AlphaSweepParams;
+            const ID: &'static str = $id;
+            const CHAPTER: &'static str = "2";
+            const TITLE: &'static str = $title;
+            const CAPTION: &'static str = $caption;
+            const RESULTS: &'static [(&'static str, &'static str)] = SWEEP_RESULTS;
 
-    fn quick(p: &mut Self::Params) {
-        p.points = p.points.min(12);
-    }
+            fn quick(p: &mut Self::Params) {
+                p.points = p.points.min(12);
+            }
 
-    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        sweep_figure(
-            Self::ID,
-            Self::TITLE,
-            TipShape::Sphere,
-            (p.alpha_min, p.alpha_max),
-            p.points,
-            ("(2.37)", "(2.39)"),
-            job,
-        )
-    }
+            fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+                sweep_figure(
+                    Self::ID,
+                    Self::TITLE,
+                    $shape,
+                    (p.alpha_min, p.alpha_max),
+                    p.points,
+                    $fits,
+                    job,
+                )
+            }
+        }
+    };
 }
 
-/// Fig. 2.7: cone, as Fig. 2.5 with the fits (2.47), (2.49).
-pub struct Fig2_7;
+alpha_sweep_scene! {
+    /// Fig. 2.5: sphere, pull-in and pull-off forces and hysteresis vs α, exact and (2.37), (2.39).
+    Fig2_5, id = "fig2.5", shape = TipShape::Sphere, fits = ("(2.37)", "(2.39)"),
+    title = "Spherical tip: pull-in, pull-off and hysteresis vs machine stiffness",
+    caption = "Spherical tip. (a) Exact (circles) and approximate (lines, Eq. (2.37)) |P_i| and \
+        |P_o| vs alpha. (b) Exact hysteresis (Eq. (2.38), circles) and its approximation (2.39)."
+}
 
-impl Scene for Fig2_7 {
-    type Params = AlphaSweepParams;
-    const ID: &'static str = "fig2.7";
-    const CHAPTER: &'static str = "2";
-    const TITLE: &'static str = "Conical tip: pull-in, pull-off and hysteresis vs machine stiffness";
-    const CAPTION: &'static str = "Conical tip. (a) Exact (circles) and approximate (lines, Eq. (2.47)) |P_i| and \
-        |P_o| vs alpha. (b) Exact hysteresis (Eq. (2.48), circles) and its approximation (2.49).";
-    const RESULTS: &'static [(&'static str, &'static str)] = SWEEP_RESULTS;
-
-    fn quick(p: &mut Self::Params) {
-        p.points = p.points.min(12);
-    }
-
-    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
-        sweep_figure(
-            Self::ID,
-            Self::TITLE,
-            TipShape::Cone,
-            (p.alpha_min, p.alpha_max),
-            p.points,
-            ("(2.47)", "(2.49)"),
-            job,
-        )
-    }
+alpha_sweep_scene! {
+    /// Fig. 2.7: cone, as Fig. 2.5 with the fits (2.47), (2.49).
+    Fig2_7, id = "fig2.7", shape = TipShape::Cone, fits = ("(2.47)", "(2.49)"),
+    title = "Conical tip: pull-in, pull-off and hysteresis vs machine stiffness",
+    caption = "Conical tip. (a) Exact (circles) and approximate (lines, Eq. (2.47)) |P_i| and \
+        |P_o| vs alpha. (b) Exact hysteresis (Eq. (2.48), circles) and its approximation (2.49)."
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -669,14 +656,7 @@ impl Scene for Fig2_5Accuracy {
     ];
 
     fn validate(p: &Self::Params) -> Result<()> {
-        if p.alpha_min >= p.alpha_max {
-            return Err(Error::invalid(
-                "alpha_min",
-                p.alpha_min,
-                "must be below alpha_max",
-            ));
-        }
-        Ok(())
+        require_below("alpha_min", p.alpha_min, "alpha_max", p.alpha_max)
     }
 
     fn quick(p: &mut Self::Params) {

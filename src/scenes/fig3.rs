@@ -13,7 +13,7 @@ use crate::models::maugis_dugdale::{
     jkr_loss_constant, scaled_empirical_loss, scaled_loss,
 };
 use crate::numerics::curve::logspace;
-use crate::params::Range;
+use crate::params::{Range, require_below};
 use crate::surface::{Moments, Spectrum, moments_of_map, read_height_map};
 
 /// The scenes of this chapter, in figure order.
@@ -389,20 +389,8 @@ impl Scene for Fig3_5 {
     fn validate(p: &Self::Params) -> Result<()> {
         check_list("ells_a", &p.ells_a)?;
         check_list("ells_b", &p.ells_b)?;
-        if p.chi_min_a >= p.chi_max_a {
-            return Err(Error::invalid(
-                "chi_min_a",
-                p.chi_min_a,
-                "must be below chi_max_a",
-            ));
-        }
-        if p.chi_min_b >= p.chi_max_b {
-            return Err(Error::invalid(
-                "chi_min_b",
-                p.chi_min_b,
-                "must be below chi_max_b",
-            ));
-        }
+        require_below("chi_min_a", p.chi_min_a, "chi_max_a", p.chi_max_a)?;
+        require_below("chi_min_b", p.chi_min_b, "chi_max_b", p.chi_max_b)?;
         for (chis, ells) in [
             ([p.chi_min_a, p.chi_max_a], &p.ells_a),
             ([p.chi_min_b, p.chi_max_b], &p.ells_b),
@@ -578,9 +566,7 @@ impl Scene for Fig3_5Accuracy {
     ];
 
     fn validate(p: &Self::Params) -> Result<()> {
-        if p.s_min >= p.s_max {
-            return Err(Error::invalid("s_min", p.s_min, "must be below s_max"));
-        }
+        require_below("s_min", p.s_min, "s_max", p.s_max)?;
         if p.table_densities.is_empty() {
             return Err(Error::invalid(
                 "table_densities",
@@ -996,20 +982,8 @@ impl Scene for Fig3_8 {
     ];
 
     fn validate(p: &Self::Params) -> Result<()> {
-        if p.range_min >= p.range_max {
-            return Err(Error::invalid(
-                "range_min",
-                p.range_min,
-                "must be below range_max",
-            ));
-        }
-        if p.sigma_min >= p.sigma_max {
-            return Err(Error::invalid(
-                "sigma_min",
-                p.sigma_min,
-                "must be below sigma_max",
-            ));
-        }
+        require_below("range_min", p.range_min, "range_max", p.range_max)?;
+        require_below("sigma_min", p.sigma_min, "sigma_max", p.sigma_max)?;
         p.model(p.range_1, p.sigma_1)?;
         JkrNominalArea::new(p.tip_radius, p.modulus, p.jkr_work_of_adhesion)?;
         Ok(())

@@ -20,7 +20,7 @@ use std::f64::consts::PI;
 use super::fig3::{draw_by_stability, draw_md};
 use super::sweep::Swept;
 use super::{Registered, Scene, SceneDyn};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::figure::{Axis, Figure, Marker, MarkerShape, Panel, Series, Style};
 use crate::job::Job;
 use crate::models::axisymmetric::cycle::{CycleOptions, TipCycle, TipState, run_cycle, run_cycle_watched};
@@ -29,7 +29,7 @@ use crate::models::body_force_fe::tip::FeTip;
 use crate::models::lennard_jones::LennardJones;
 use crate::models::maugis_dugdale::MaugisDugdale;
 use crate::models::wavy_jkr::{WavyJkr, WavyJkrParams};
-use crate::params::Range;
+use crate::params::{Range, require_below};
 use crate::scenes::groups::{
     ContactCriterion, DepthPath, ElasticTip, FeMesh, Interaction, SurfaceModel, Waviness,
 };
@@ -252,6 +252,26 @@ impl SceneTip {
     }
 }
 
+/// The options of a chapter 4 cycle at the equilibrium distance `zeta0` [m]: from `h_start` [m]
+/// down to `h_min` [m] and back in steps of `step` [m], jumps located to 1e-3 ζ0, contact where
+/// the gap is below `contact_gap` [m], the displacements kept at the jumps only.
+fn cycle_options(zeta0: f64, (h_start, h_min, step): (f64, f64, f64), contact_gap: f64) -> CycleOptions {
+    CycleOptions {
+        h_start,
+        h_min,
+        step,
+        refine_to: 1e-3 * zeta0,
+        contact_gap,
+        keep_profiles: false,
+        unload_to: None,
+    }
+}
+
+/// The largest contact radius [m] of a cycle's `states`.
+fn largest_contact_radius<'a>(states: impl IntoIterator<Item = &'a TipState>) -> f64 {
+    states.into_iter().map(|s| s.contact.radius()).fold(0.0, f64::max)
+}
+
 /// Draw a measured cycle into a P-h panel (h/R, P/(2E*R²)): loading and unloading solid,
 /// jumps dashed, pull-in and pull-off marked. `scale` = (R, 2E*R²).
 fn draw_cycle(panel: &mut Panel, cycle: &TipCycle, name: &str, color: usize, scale: (f64, f64)) {
@@ -362,14 +382,7 @@ impl Scene for Fig4_5 {
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
-        if p.path.h_min_over_zeta0 >= p.path.h_start_over_zeta0 {
-            return Err(Error::invalid(
-                "h_min_over_zeta0",
-                p.path.h_min_over_zeta0,
-                "must be below h_start_over_zeta0",
-            ));
-        }
-        Ok(())
+        p.path.validate()
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
@@ -382,15 +395,15 @@ impl Scene for Fig4_5 {
         };
         let h_min = p.path.h_min_over_zeta0 * zeta0;
         let tip = SceneTip::new(&choice, &lj, &p.tip, (0.0, 1.0), h_min, &p.surface)?;
-        let opts = CycleOptions {
-            h_start: p.path.h_start_over_zeta0 * zeta0,
-            h_min,
-            step: p.path.step_over_zeta0 * zeta0,
-            refine_to: 1e-3 * zeta0,
-            contact_gap: p.contact.contact_gap,
-            keep_profiles: false,
-            unload_to: None,
-        };
+        let opts = cycle_options(
+            zeta0,
+            (
+                p.path.h_start_over_zeta0 * zeta0,
+                h_min,
+                p.path.step_over_zeta0 * zeta0,
+            ),
+            p.contact.contact_gap,
+        );
         let scale = (p.tip.radius, 2.0 * modulus * p.tip.radius * p.tip.radius);
         let ph_axes = || {
             Panel::new(
@@ -416,12 +429,7 @@ impl Scene for Fig4_5 {
         )?;
         let (chi, ell) = (lj.chi(modulus), lj.ell(p.tip.radius, modulus));
         let md = MaugisDugdale::new(chi, ell)?;
-        let a_max = cycle
-            .loading
-            .iter()
-            .map(|s| s.contact.radius())
-            .fold(0.0, f64::max)
-            / p.tip.radius;
+        let a_max = largest_contact_radius(&cycle.loading) / p.tip.radius;
 
         let title = match tip {
             SceneTip::Surface(_) => Self::TITLE,
@@ -649,14 +657,12 @@ impl Scene for Fig4_7 {
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
-        if p.depth_1_over_radius >= p.depth_2_over_radius {
-            return Err(Error::invalid(
-                "depth_1_over_radius",
-                p.depth_1_over_radius,
-                "must be below depth_2_over_radius",
-            ));
-        }
-        Ok(())
+        require_below(
+            "depth_1_over_radius",
+            p.depth_1_over_radius,
+            "depth_2_over_radius",
+            p.depth_2_over_radius,
+        )
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
@@ -675,13 +681,12 @@ impl Scene for Fig4_7 {
             &p.surface,
         )?;
         let opts = |h: f64, keep: bool| CycleOptions {
-            h_start: p.h_start_over_zeta0 * zeta0,
-            h_min: -h,
-            step: p.step_over_zeta0 * zeta0,
-            refine_to: 1e-3 * zeta0,
-            contact_gap: p.contact.contact_gap,
             keep_profiles: keep,
-            unload_to: None,
+            ..cycle_options(
+                zeta0,
+                (p.h_start_over_zeta0 * zeta0, -h, p.step_over_zeta0 * zeta0),
+                p.contact.contact_gap,
+            )
         };
         // The two cycles in parallel, each with its part of the progress by its steps (the
         // depth travelled from the start, twice).
@@ -754,12 +759,7 @@ impl Scene for Fig4_7 {
 
         let (x, y) = axes();
         let mut b = Panel::new(x, y).titled("(b)", "deep cycle against the wavy JKR theory (4.26)");
-        let a_max = deep
-            .loading
-            .iter()
-            .map(|s| s.contact.radius())
-            .fold(0.0, f64::max)
-            / p.tip.radius;
+        let a_max = largest_contact_radius(&deep.loading) / p.tip.radius;
         let curve = theory.curve(1.2 * a_max.max(1e-6), 64)?;
         // (4.26) counts h̄ positive into contact; here h < 0 is pressed.
         let mut run: Vec<(f64, f64)> = Vec::new();
@@ -870,15 +870,15 @@ impl Scene for Fig4_8 {
             &p.surface,
         )?;
         let opts = CycleOptions {
-            h_start: p.h_start_over_zeta0 * zeta0,
-            h_min: -depth,
-            step: p.step_over_zeta0 * zeta0,
-            refine_to: 1e-3 * zeta0,
-            contact_gap: p.contact.contact_gap,
             keep_profiles: true,
             // D lies at h/R = 6e-5 on unloading: the rest of the cycle (the pull-off and its
             // recessions) is not drawn here.
             unload_to: Some(1.5e-4 * p.tip.radius),
+            ..cycle_options(
+                zeta0,
+                (p.h_start_over_zeta0 * zeta0, -depth, p.step_over_zeta0 * zeta0),
+                p.contact.contact_gap,
+            )
         };
         let deep = tip.cycle(&opts, |f| {
             job.progress(0.99 * f, "deep cycle");

@@ -20,7 +20,7 @@ use crate::models::peeling::{
     zigzag_optimum_angle_fit,
 };
 use crate::numerics::curve::{golden_min, linspace, logspace};
-use crate::params::Range;
+use crate::params::{Range, require_below};
 
 /// The chapter's scenes, in figure order.
 pub const SCENES: &[&dyn SceneDyn] = &[
@@ -728,13 +728,12 @@ impl Scene for Fig6Limits {
     ];
 
     fn validate(p: &Self::Params) -> Result<()> {
-        if p.aspect_ratio_min >= p.aspect_ratio_max {
-            return Err(Error::invalid(
-                "aspect_ratio_min",
-                p.aspect_ratio_min,
-                "must be below aspect_ratio_max",
-            ));
-        }
+        require_below(
+            "aspect_ratio_min",
+            p.aspect_ratio_min,
+            "aspect_ratio_max",
+            p.aspect_ratio_max,
+        )?;
         profile_of(&p.profile_file, &Profile::Zigzag).map(|_| ())
     }
 

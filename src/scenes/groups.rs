@@ -91,6 +91,21 @@ crate::param_group! {
     }
 }
 
+impl DepthPath {
+    /// The path's cross-field check: the deepest depth below the start.
+    ///
+    /// # Errors
+    /// [`crate::error::Error::InvalidParameter`] naming `h_min_over_zeta0`.
+    pub fn validate(&self) -> crate::error::Result<()> {
+        crate::params::require_below(
+            "h_min_over_zeta0",
+            self.h_min_over_zeta0,
+            "h_start_over_zeta0",
+            self.h_start_over_zeta0,
+        )
+    }
+}
+
 crate::param_group! {
     /// The discretisation of the axisymmetric surface model (section 4.2): ring width and
     /// Gauss points of the interaction energy.

@@ -388,21 +388,29 @@ impl PreparedSpectrum {
                 let damp = cutoff.map_or(1.0, |q0| (-q / q0).exp());
                 k * damp * (1.0 + lc * lc * q * q).powf(-exponent)
             }
-            Spectrum::SelfAffine {
-                hurst,
-                q_low,
-                q_roll,
-                q_high,
-                ..
-            } => {
-                if q < q_low || q > q_high {
-                    0.0
-                } else if q < q_roll {
-                    k
-                } else {
-                    k * (q / q_roll).powf(-2.0 * (1.0 + hurst))
-                }
-            }
+            Spectrum::SelfAffine { hurst, .. } => k * self.self_affine_shape(q, -2.0 * (1.0 + hurst)),
+        }
+    }
+
+    /// The self-affine spectrum's shape at `q` against its plateau: 0 outside [q_low, q_high],
+    /// 1 below the roll-off q_roll, (q/q_roll)^`power` above it (`power` = −2(1 + H) for the
+    /// spectrum, −(1 + H) for its square root); 0 for the other spectra.
+    fn self_affine_shape(&self, q: f64, power: f64) -> f64 {
+        let Spectrum::SelfAffine {
+            q_low,
+            q_roll,
+            q_high,
+            ..
+        } = self.spectrum
+        else {
+            return 0.0;
+        };
+        if q < q_low || q > q_high {
+            0.0
+        } else if q < q_roll {
+            1.0
+        } else {
+            (q / q_roll).powf(power)
         }
     }
 
@@ -425,21 +433,7 @@ impl PreparedSpectrum {
                 let damp = cutoff.map_or(0.0, |q0| -0.5 * q / q0);
                 k * (damp - 0.5 * exponent * (lc * lc * q * q).ln_1p()).exp()
             }
-            Spectrum::SelfAffine {
-                hurst,
-                q_low,
-                q_roll,
-                q_high,
-                ..
-            } => {
-                if q < q_low || q > q_high {
-                    0.0
-                } else if q < q_roll {
-                    k
-                } else {
-                    k * (q / q_roll).powf(-(1.0 + hurst))
-                }
-            }
+            Spectrum::SelfAffine { hurst, .. } => k * self.self_affine_shape(q, -(1.0 + hurst)),
         }
     }
 }

@@ -254,6 +254,23 @@ fn floored(e: f64) -> f64 {
     e.max(ERROR_FLOOR)
 }
 
+/// A curve of relative errors: its name, style and points.
+type ErrorCurve = (&'static str, Style, Vec<(f64, f64)>);
+
+/// The relative errors of P_adh (solid) and of H (dashed) of `runs` against `reference`, as
+/// drawn on a log axis against `x` of each run.
+fn error_curves(runs: &[&Run], x: impl Fn(&Run) -> f64, reference: &Run) -> [ErrorCurve; 2] {
+    let curve = |pick: fn((f64, f64)) -> f64| {
+        runs.iter()
+            .map(|r| (x(r), floored(pick(errors(r, reference)))))
+            .collect()
+    };
+    [
+        ("P_adh", Style::Stable, curve(|e| e.0)),
+        ("H", Style::Dashed, curve(|e| e.1)),
+    ]
+}
+
 /// Run the cycle of the smooth tip on one grid.
 ///
 /// # Errors
@@ -315,18 +332,12 @@ fn width_panels(s: &Sweep) -> (Panel, Panel) {
     for (color, &n) in s.counts.iter().enumerate() {
         let runs = s.width_runs(n);
         let label = format!("{n} Gauss point{}", if n == 1 { "" } else { "s" });
-        for (k, (name, style)) in [("P_adh", Style::Stable), ("H", Style::Dashed)]
-            .into_iter()
-            .enumerate()
-        {
-            let pts = runs
-                .iter()
-                .filter(|r| r.grid.width > s.finest_width())
-                .map(|r| {
-                    let e = errors(r, reference);
-                    (r.grid.width, floored(if k == 0 { e.0 } else { e.1 }))
-                })
-                .collect();
+        let shown: Vec<&Run> = runs
+            .iter()
+            .copied()
+            .filter(|r| r.grid.width > s.finest_width())
+            .collect();
+        for (name, style, pts) in error_curves(&shown, |r| r.grid.width, reference) {
             a.add(Series::new(format!("{name}, {label}"), style, pts).with_color(color));
         }
         let pts = runs.iter().map(|r| (r.grid.width, r.spurious as f64)).collect();
@@ -357,18 +368,15 @@ fn step_panels(s: &Sweep) -> (Panel, Panel) {
     let mut e = Panel::new(Axis::log("Depth step Δh/ζ0", ""), Axis::log("Relative error", ""))
         .titled("(e)", format!("error against step (h = {} b)", s.default.width));
     let reference = s.step_reference();
-    for (k, (name, style)) in [("P_adh", Style::Stable), ("H", Style::Dashed)]
+    let shown: Vec<&Run> = runs
+        .iter()
+        .copied()
+        .filter(|r| r.grid.step > s.finest_step())
+        .collect();
+    for (k, (name, style, pts)) in error_curves(&shown, |r| r.grid.step, reference)
         .into_iter()
         .enumerate()
     {
-        let pts = runs
-            .iter()
-            .filter(|r| r.grid.step > s.finest_step())
-            .map(|r| {
-                let err = errors(r, reference);
-                (r.grid.step, floored(if k == 0 { err.0 } else { err.1 }))
-            })
-            .collect();
         e.add(Series::new(format!("{name}, steps"), style, pts).with_color(STEP_COLORS[k]));
     }
     let d = s.at(s.default);
@@ -558,13 +566,7 @@ impl Scene for Fig4_5Accuracy {
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
-        if p.path.h_min_over_zeta0 >= p.path.h_start_over_zeta0 {
-            return Err(Error::invalid(
-                "h_min_over_zeta0",
-                p.path.h_min_over_zeta0,
-                "must be below h_start_over_zeta0",
-            ));
-        }
+        p.path.validate()?;
         if let Some(&n) = p.quadrature_sweep.iter().find(|n| n.fract() != 0.0) {
             return Err(Error::invalid(
                 "quadrature_sweep",

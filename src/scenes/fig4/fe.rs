@@ -7,7 +7,7 @@
 
 use std::time::Instant;
 
-use super::{draw_cycle, material, tip_for};
+use super::{cycle_options, draw_cycle, largest_contact_radius, material, tip_for};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Figure, Marker, MarkerShape, Panel, Series, Style};
 use crate::job::Job;
@@ -15,7 +15,7 @@ use crate::models::axisymmetric::cycle::{CycleModel, CycleOptions, TipCycle, run
 use crate::models::body_force_fe::body::FAR_POINTS;
 use crate::models::body_force_fe::tip::{FeGeometry, FeTip, FeTipParams};
 use crate::models::lennard_jones::LennardJones;
-use crate::params::Range;
+use crate::params::{Range, require_below};
 use crate::scenes::Scene;
 use crate::scenes::groups::{ContactCriterion, DepthPath, ElasticTip, Interaction, SurfaceModel};
 
@@ -142,14 +142,12 @@ impl Scene for Fig4_4 {
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
-        if p.step_over_sigma >= p.depth_over_sigma {
-            return Err(Error::invalid(
-                "step_over_sigma",
-                p.step_over_sigma,
-                "must be below depth_over_sigma",
-            ));
-        }
-        Ok(())
+        require_below(
+            "step_over_sigma",
+            p.step_over_sigma,
+            "depth_over_sigma",
+            p.depth_over_sigma,
+        )
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
@@ -251,7 +249,7 @@ impl Scene for Fig4_4 {
             Axis::linear("Contact force P", "µN"),
         )
         .titled("(b)", "a: gap below σ");
-        let a_max = deep.iter().map(|st| st.contact.radius()).fold(0.0, f64::max) * 1.05;
+        let a_max = largest_contact_radius(deep.iter().copied()) * 1.05;
         let hertz_a: Vec<(f64, f64)> = (0..=200)
             .map(|i| {
                 let a = a_max * i as f64 / 200.0;
@@ -408,14 +406,7 @@ impl Scene for Fig4_5Models {
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
-        if p.path.h_min_over_zeta0 >= p.path.h_start_over_zeta0 {
-            return Err(Error::invalid(
-                "h_min_over_zeta0",
-                p.path.h_min_over_zeta0,
-                "must be below h_start_over_zeta0",
-            ));
-        }
-        Ok(())
+        p.path.validate()
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
@@ -441,14 +432,16 @@ impl Scene for Fig4_5Models {
                 },
             )
         };
-        let opts = |h_min: f64| CycleOptions {
-            h_start: p.path.h_start_over_zeta0 * zeta0,
-            h_min,
-            step: p.path.step_over_zeta0 * zeta0,
-            refine_to: 1e-3 * zeta0,
-            contact_gap: p.contact.contact_gap,
-            keep_profiles: false,
-            unload_to: None,
+        let opts = |h_min: f64| {
+            cycle_options(
+                zeta0,
+                (
+                    p.path.h_start_over_zeta0 * zeta0,
+                    h_min,
+                    p.path.step_over_zeta0 * zeta0,
+                ),
+                p.contact.contact_gap,
+            )
         };
         let fe_tip = fe_at(p.grading, p.size_over_radius)?;
         // Progress: the full finite-element cycle, the surface model's, the shallow
@@ -687,10 +680,6 @@ impl Scene for Fig4_6 {
         p.width = p.width.max(0.5);
         p.grading = p.grading.max(0.4);
         p.size_over_radius = p.size_over_radius.min(5.0);
-    }
-
-    fn validate(_: &Self::Params) -> Result<()> {
-        Ok(())
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {

@@ -193,7 +193,39 @@ pub(super) struct Setup {
     pub(super) contact_gap: f64,
 }
 
+/// Largest surface-element width of the roughness sweeps (figs. 4.9b, 4.10) in units of the
+/// wavelength λ: at λ/8 the waviness is resolved where 0.25 b (b ∝ σ⁴) is not (b = 79 nm at
+/// σ = 2 nm, 400 nm at 3 nm against λ = 125 nm); the surface model at λ/8 is within 1.3 % of
+/// λ/16 (fig4.9b-models).
+pub(super) const MAX_WIDTH_OVER_WAVELENGTH: f64 = 0.125;
+
 impl Setup {
+    /// The radial unit b = ζ0²E*/w [m] of (4.6)-(4.7b).
+    pub(super) fn radial_unit(&self) -> f64 {
+        let zeta0 = self.lj.zeta0();
+        zeta0 * zeta0 * self.modulus / self.lj.work_of_adhesion()
+    }
+
+    /// The surface-element width [m] of `width_b` b, at most `max_over_wavelength` λ, and
+    /// whether that cap applied.
+    pub(super) fn capped_width(&self, width_b: f64, max_over_wavelength: f64) -> (f64, bool) {
+        let (width, cap) = (
+            width_b * self.radial_unit(),
+            max_over_wavelength * self.wavelength,
+        );
+        (width.min(cap), width > cap)
+    }
+
+    /// Cap the set-up's ring width at `max_over_wavelength` λ ([`Setup::capped_width`]);
+    /// whether the cap applied (the width is unchanged where it did not).
+    pub(super) fn cap_ring_width(&mut self, max_over_wavelength: f64) -> bool {
+        let (width, capped) = self.capped_width(self.surface.ring_width, max_over_wavelength);
+        if capped {
+            self.surface.ring_width = width / self.radial_unit();
+        }
+        capped
+    }
+
     /// (P, h) scales of the figures: (R, 2E*R²).
     pub(super) fn scale(&self) -> (f64, f64) {
         (self.radius, 2.0 * self.modulus * self.radius * self.radius)
@@ -224,13 +256,16 @@ impl Setup {
     fn cycle_of(&self, tip: &SceneTip, keep_profiles: bool, job: &Job) -> Result<TipCycle> {
         let zeta0 = self.lj.zeta0();
         let opts = CycleOptions {
-            h_start: self.h_start_over_zeta0 * zeta0,
-            h_min: -self.depth,
-            step: self.step_over_zeta0 * zeta0,
-            refine_to: 1e-3 * zeta0,
-            contact_gap: self.contact_gap,
             keep_profiles,
-            unload_to: None,
+            ..super::cycle_options(
+                zeta0,
+                (
+                    self.h_start_over_zeta0 * zeta0,
+                    -self.depth,
+                    self.step_over_zeta0 * zeta0,
+                ),
+                self.contact_gap,
+            )
         };
         tip.cycle(&opts, |f| {
             job.progress(f, "cycle");
@@ -245,7 +280,11 @@ impl Setup {
         keep_profiles: bool,
         job: &Job,
     ) -> Result<(SceneTip, TipCycle)> {
+        // The set-up of a finite-element tip takes seconds at small σ: the job is checked
+        // before and after it, not only in the cycle.
+        job.check()?;
         let tip = self.tip(amplitude)?;
+        job.check()?;
         let cycle = self.cycle_of(&tip, keep_profiles, job)?;
         Ok((tip, cycle))
     }

@@ -84,24 +84,18 @@ const VARIANTS: [(&str, &str); 3] = [
 ];
 
 impl Fig4_9bModelsParams {
-    /// b = ζ0²E*/w [m] at σ.
-    fn radial_unit(&self, setup: &Setup) -> f64 {
-        let zeta0 = setup.lj.zeta0();
-        zeta0 * zeta0 * setup.modulus / setup.lj.work_of_adhesion()
-    }
-
     /// The set-up of run `run` at σ: its model and its surface-element width in b.
     fn run_setup(&self, sigma: f64, run: Run) -> Result<Setup> {
         let mut setup = self.setup(self.tip.youngs_modulus, sigma, sigma)?;
-        let cap = self.max_width_over_wavelength * self.wavelength;
-        let b = self.radial_unit(&setup);
+        let (ring_width, cap) = (self.surface.ring_width, self.max_width_over_wavelength);
+        let b = setup.radial_unit();
         let width = match run {
             Run::Surface { refined } | Run::Fe { refined } => {
-                (self.surface.ring_width * b).min(cap) * if refined { self.refinement } else { 1.0 }
+                setup.capped_width(ring_width, cap).0 * if refined { self.refinement } else { 1.0 }
             }
             Run::FixedMesh => {
                 let fixed = self.setup(self.tip.youngs_modulus, self.fixed_sigma, self.fixed_sigma)?;
-                (self.surface.ring_width * self.radial_unit(&fixed)).min(cap)
+                fixed.capped_width(ring_width, cap).0
             }
         };
         setup.surface.ring_width = width / b;
@@ -354,7 +348,7 @@ impl Sweep for Fig4_9bModels {
         // The table: one row per (A/λ, σ).
         let fixed_width = {
             let s = p.run_setup(p.sigmas[0], Run::FixedMesh)?;
-            s.surface.ring_width * p.radial_unit(&s)
+            s.surface.ring_width * s.radial_unit()
         };
         fig.note(format!(
             "Ran: σ = {} nm, A/λ = {}; cycles to |h_min|/R = {:.2e} from {} ζ0 in steps of {} ζ0; (i), (ii) on \

@@ -4,7 +4,7 @@
 //! axisymmetric surface model, the points in parallel (rayon). The contact threshold of each
 //! point is its σ (section 4.2.2); P_adh and H do not depend on it.
 
-use super::roughness::{Setup, rough_tip_params};
+use super::roughness::{MAX_WIDTH_OVER_WAVELENGTH, Setup, rough_tip_params};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Field, Figure, Marker, MarkerShape, Panel, Series, Style};
 use crate::job::Job;
@@ -50,6 +50,34 @@ fn ran_note(setup: &Setup, grid: &str) -> String {
         setup.surface.ring_width,
         setup.surface.quadrature_points
     )
+}
+
+/// The set-up of one point of a roughness sweep with its surface elements at most λ/8
+/// ([`MAX_WIDTH_OVER_WAVELENGTH`]), and whether that cap applied.
+fn capped_setup(setup: Result<Setup>) -> Result<(Setup, bool)> {
+    let mut setup = setup?;
+    let capped = setup.cap_ring_width(MAX_WIDTH_OVER_WAVELENGTH);
+    Ok((setup, capped))
+}
+
+/// The note on the cap of the surface elements at λ/8: the values of the swept quantity
+/// (`what`, as printed in `capped`) where it applied, or that it applied nowhere.
+fn cap_note(setup: &Setup, what: &str, capped: &[String]) -> String {
+    let cap = MAX_WIDTH_OVER_WAVELENGTH * setup.wavelength * 1e9;
+    if capped.is_empty() {
+        format!(
+            "Surface elements of {} b at every point (all below λ/8 = {cap:.1} nm).",
+            setup.surface.ring_width
+        )
+    } else {
+        format!(
+            "Surface elements capped at λ/8 = {cap:.1} nm, narrower than {} b (b ∝ σ⁴), at {what} = {} (the \
+             waviness resolved); {} b elsewhere.",
+            setup.surface.ring_width,
+            capped.join(", "),
+            setup.surface.ring_width
+        )
+    }
 }
 
 /// `n` values from `lo` to `hi`, geometric.
@@ -171,7 +199,7 @@ impl Sweep for Fig4_9b {
         let sigmas = geometric(p.sigma_min, p.sigma_max, p.sigma_points);
         let ratios = [p.amplitude_ratio_1, p.amplitude_ratio_2, p.amplitude_ratio_3];
         let (curve, i) = (id / sigmas.len(), id % sigmas.len());
-        let setup = p.setup(p.tip.youngs_modulus, sigmas[i], sigmas[i])?;
+        let (setup, _) = capped_setup(p.setup(p.tip.youngs_modulus, sigmas[i], sigmas[i]))?;
         let (force, loss) = adhesion_of(&setup, ratios[curve] * p.wavelength, job)?;
         Ok(vec![force, loss])
     }
@@ -253,6 +281,14 @@ impl Sweep for Fig4_9b {
                 fmt_sig(p.sigma_max * 1e9)
             ),
         ));
+        let mut capped = Vec::new();
+        for &s in &sigmas {
+            if capped_setup(p.setup(p.tip.youngs_modulus, s, s))?.1 {
+                capped.push(format!("{} nm", fmt_sig(s * 1e9)));
+            }
+        }
+        let first = p.setup(p.tip.youngs_modulus, p.sigma_min, p.sigma_min)?;
+        fig.note(cap_note(&first, "σ", &capped));
         fig.note(format!("{}.", notes.join("; ")));
         let rough_rise = (1..3).any(|c| {
             ratios[c] > 0.0
@@ -412,7 +448,7 @@ impl Sweep for Fig4_10 {
         let (alphas, betas) = p.grid();
         let (ia, ib) = (id % alphas.len(), id / alphas.len());
         let (sigma, amplitude) = p.point(alphas[ia], betas[ib])?;
-        let setup = p.setup(p.tip.youngs_modulus, sigma, sigma)?;
+        let (setup, _) = capped_setup(p.setup(p.tip.youngs_modulus, sigma, sigma))?;
         let (force, loss) = adhesion_of(&setup, amplitude, job)?;
         Ok(vec![force, loss])
     }
@@ -469,6 +505,18 @@ impl Sweep for Fig4_10 {
                 fmt_sig(p.beta_min),
                 fmt_sig(p.beta_max)
             ),
+        ));
+        let mut capped = Vec::new();
+        for &b in &betas {
+            let (sigma, _) = p.point(0.0, b)?;
+            if capped_setup(p.setup(p.tip.youngs_modulus, sigma, sigma))?.1 {
+                capped.push(fmt_sig(b));
+            }
+        }
+        fig.note(cap_note(
+            &p.setup(p.tip.youngs_modulus, sigma_lo, sigma_lo)?,
+            "β",
+            &capped,
         ));
         let r = |n: &str| fig.result_value(n).unwrap_or(0.0);
         let on_edge = |a: f64, b: f64| {

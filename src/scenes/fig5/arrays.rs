@@ -2,10 +2,10 @@
 //! force-displacement cycles of Fig. 5.7.
 
 use super::{efficiencies, k_bar_of_n, mean_std, uncoupled_samples, unit_surfaces};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::figure::{Axis, Figure, Legend, Panel, Series, Style};
 use crate::job::Job;
-use crate::params::Range;
+use crate::params::{Range, require_non_empty};
 use crate::scenes::Scene;
 use crate::scenes::groups::{ArrayCycle, SurfaceSamples};
 
@@ -103,10 +103,7 @@ impl Scene for Fig5_7 {
     ];
 
     fn validate(p: &Self::Params) -> Result<()> {
-        if p.roughness.is_empty() {
-            return Err(Error::invalid("roughness", "[]", "must not be empty"));
-        }
-        Ok(())
+        require_non_empty("roughness", &p.roughness)
     }
 
     fn quick(p: &mut Self::Params) {

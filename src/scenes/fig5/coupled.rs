@@ -6,7 +6,7 @@ use super::{cycle_window, k_bar_of_n};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Figure, Panel, Series, Style};
 use crate::job::Job;
-use crate::params::Range;
+use crate::params::{Range, require_non_empty};
 use crate::scenes::Scene;
 use crate::scenes::groups::{ArrayCycle, ArraySurface};
 
@@ -96,29 +96,33 @@ fn coupling_study(
         .collect()
 }
 
-fn coupling_validate(p: &CouplingParams) -> Result<()> {
-    if p.couplings.is_empty() {
-        return Err(Error::invalid("couplings", "[]", "must not be empty"));
-    }
-    Ok(())
-}
+/// The checks, quick form and memory estimate of the coupling study, which Figs. 5.10 and 5.11
+/// share (items of their `Scene` impls).
+macro_rules! coupling_study_checks {
+    () => {
+        fn validate(p: &Self::Params) -> Result<()> {
+            require_non_empty("couplings", &p.couplings)
+        }
 
-/// Peak memory of the coupling study: about 512 bytes per spring and coupling (heights, state,
-/// sparse tangent and the iterative solver's vectors; measured 450-490 bytes at 256² and
-/// 1024² springs with three couplings), all couplings at once, plus 64 MiB.
-fn coupling_memory(p: &CouplingParams) -> crate::scenes::MemoryEstimate {
-    let springs = p.springs_x as f64 * p.springs_y as f64;
-    crate::scenes::MemoryEstimate {
-        bytes: 64.0 * 1024.0 * 1024.0 + 512.0 * springs * p.couplings.len().max(1) as f64,
-        parameter: "springs_x x springs_y",
-        value: format!("{} x {}", p.springs_x, p.springs_y),
-    }
-}
+        fn quick(p: &mut Self::Params) {
+            p.springs_x = p.springs_x.min(32);
+            p.springs_y = p.springs_y.min(2);
+            p.cycle.quick();
+        }
 
-fn coupling_quick(p: &mut CouplingParams) {
-    p.springs_x = p.springs_x.min(32);
-    p.springs_y = p.springs_y.min(2);
-    p.cycle.quick();
+        /// Peak memory of the coupling study: about 512 bytes per spring and coupling
+        /// (heights, state, sparse tangent and the iterative solver's vectors; measured
+        /// 450-490 bytes at 256² and 1024² springs with three couplings), all couplings at
+        /// once, plus 64 MiB.
+        fn memory_estimate(p: &Self::Params) -> Option<crate::scenes::MemoryEstimate> {
+            let springs = p.springs_x as f64 * p.springs_y as f64;
+            Some(crate::scenes::MemoryEstimate {
+                bytes: 64.0 * 1024.0 * 1024.0 + 512.0 * springs * p.couplings.len().max(1) as f64,
+                parameter: "springs_x x springs_y",
+                value: format!("{} x {}", p.springs_x, p.springs_y),
+            })
+        }
+    };
 }
 
 /// Fig. 5.10: force-displacement cycles for several coupling stiffnesses.
@@ -157,17 +161,7 @@ impl Scene for Fig5_10 {
         ),
     ];
 
-    fn validate(p: &Self::Params) -> Result<()> {
-        coupling_validate(p)
-    }
-
-    fn quick(p: &mut Self::Params) {
-        coupling_quick(p);
-    }
-
-    fn memory_estimate(p: &Self::Params) -> Option<crate::scenes::MemoryEstimate> {
-        Some(coupling_memory(p))
-    }
+    coupling_study_checks!();
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
         let cycles = coupling_study(p, job)?;
@@ -257,17 +251,7 @@ impl Scene for Fig5_11 {
         ),
     ];
 
-    fn validate(p: &Self::Params) -> Result<()> {
-        coupling_validate(p)
-    }
-
-    fn quick(p: &mut Self::Params) {
-        coupling_quick(p);
-    }
-
-    fn memory_estimate(p: &Self::Params) -> Option<crate::scenes::MemoryEstimate> {
-        Some(coupling_memory(p))
-    }
+    coupling_study_checks!();
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
         let cycles = coupling_study(p, job)?;

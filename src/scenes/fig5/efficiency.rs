@@ -7,7 +7,7 @@ use crate::error::{Error, Result};
 use crate::figure::{Axis, Figure, Panel, Series, Style, number};
 use crate::job::Job;
 use crate::numerics::curve::logspace;
-use crate::params::{Range, fmt_sig};
+use crate::params::{Range, fmt_sig, require_below, require_non_empty};
 use crate::scenes::Scene;
 use crate::scenes::groups::{ArrayCycle, SurfaceSamples};
 use crate::scenes::sweep::Sweep;
@@ -91,17 +91,8 @@ impl Scene for Fig5_8 {
     ];
 
     fn validate(p: &Self::Params) -> Result<()> {
-        if p.roughness_min >= p.roughness_max {
-            return Err(Error::invalid(
-                "roughness_min",
-                p.roughness_min,
-                "must be below roughness_max",
-            ));
-        }
-        if p.stiffness_exponents.is_empty() {
-            return Err(Error::invalid("stiffness_exponents", "[]", "must not be empty"));
-        }
-        Ok(())
+        require_below("roughness_min", p.roughness_min, "roughness_max", p.roughness_max)?;
+        require_non_empty("stiffness_exponents", &p.stiffness_exponents)
     }
 
     fn quick(p: &mut Self::Params) {

@@ -2,12 +2,12 @@
 //! loading-unloading cycle (Fig. 5.4), and pull-in, pull-off and hysteresis against the
 //! stiffness (Fig. 5.5).
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::figure::{Axis, Figure, Marker, MarkerShape, Panel, Series, Style};
 use crate::job::Job;
 use crate::models::fibril::{K_CR_BAR, SingleSpring, SpringState};
 use crate::numerics::curve::{linspace, logspace};
-use crate::params::Range;
+use crate::params::{Range, require_below, require_non_empty};
 use crate::scenes::Scene;
 
 /// The equilibrium curve ū(d̄) of (5.18) over a gap range, split into stable and unstable runs.
@@ -81,13 +81,8 @@ impl Scene for Fig5_3 {
     ];
 
     fn validate(p: &Self::Params) -> Result<()> {
-        if p.gap_min >= p.gap_max {
-            return Err(Error::invalid("gap_min", p.gap_min, "must be below gap_max"));
-        }
-        if p.displacements.is_empty() {
-            return Err(Error::invalid("displacements", "[]", "must not be empty"));
-        }
-        Ok(())
+        require_below("gap_min", p.gap_min, "gap_max", p.gap_max)?;
+        require_non_empty("displacements", &p.displacements)
     }
 
     fn quick(p: &mut Self::Params) {
@@ -202,13 +197,8 @@ impl Scene for Fig5_4 {
     ];
 
     fn validate(p: &Self::Params) -> Result<()> {
-        if p.u_min >= p.u_max {
-            return Err(Error::invalid("u_min", p.u_min, "must be below u_max"));
-        }
-        if p.stiffness_ratios.is_empty() {
-            return Err(Error::invalid("stiffness_ratios", "[]", "must not be empty"));
-        }
-        Ok(())
+        require_below("u_min", p.u_min, "u_max", p.u_max)?;
+        require_non_empty("stiffness_ratios", &p.stiffness_ratios)
     }
 
     fn quick(p: &mut Self::Params) {
@@ -317,10 +307,7 @@ impl Scene for Fig5_5 {
     ];
 
     fn validate(p: &Self::Params) -> Result<()> {
-        if p.k_min >= p.k_max {
-            return Err(Error::invalid("k_min", p.k_min, "must be below k_max"));
-        }
-        Ok(())
+        require_below("k_min", p.k_min, "k_max", p.k_max)
     }
 
     fn quick(p: &mut Self::Params) {
