@@ -72,6 +72,9 @@ impl Pin {
     }
 }
 
+/// The legend entry of a hidden current run.
+pub const CURRENT_HIDDEN: &str = "this run (hidden: x shows it)";
+
 /// Parameters that change how a run is drawn, not what it computes: a pin that differs from
 /// the current run in them is recomputed with the current run's values before it is drawn.
 pub const DISPLAY_PARAMS: &[&str] = &["units"];
@@ -246,6 +249,50 @@ impl Overlay {
             .partition(|(_, o)| **o == Owner::Current);
         panel.series = pinned.into_iter().chain(current).map(|(s, _)| s).collect();
         panel
+    }
+
+    /// The overlay with the current run hidden: its curves, markers, regions, arrows and field
+    /// leave the chart (its axes stay, the pins are drawn on them), and one legend entry says
+    /// it is hidden.
+    #[must_use]
+    pub fn with_current_hidden(mut self) -> Self {
+        let color = self.panel.series_colors().first().copied();
+        let mut entry = Series::new(CURRENT_HIDDEN, crate::figure::Style::Stable, Vec::new());
+        entry.color = color;
+        let mut kept = vec![entry];
+        let mut owners = vec![Owner::Current];
+        let mut moved = vec![None; self.panel.series.len()];
+        for (k, (s, o)) in std::mem::take(&mut self.panel.series)
+            .into_iter()
+            .zip(&self.series)
+            .enumerate()
+        {
+            if *o != Owner::Current {
+                moved[k] = Some(kept.len());
+                kept.push(s);
+                owners.push(*o);
+            }
+        }
+        self.panel.series = kept;
+        self.series = owners;
+        for e in &mut self.entries {
+            *e = e.and_then(|k| moved[k]);
+        }
+        let markers = std::mem::take(&mut self.panel.markers);
+        (self.panel.markers, self.markers) = markers
+            .into_iter()
+            .zip(std::mem::take(&mut self.markers))
+            .filter(|(_, o)| *o != Owner::Current)
+            .unzip();
+        let regions = std::mem::take(&mut self.panel.regions);
+        (self.panel.regions, self.regions) = regions
+            .into_iter()
+            .zip(std::mem::take(&mut self.regions))
+            .filter(|(_, o)| *o != Owner::Current)
+            .unzip();
+        self.panel.arrows.clear();
+        self.panel.field = None;
+        self
     }
 
     /// The markers and regions of the current run: they come first, the pins' follow (what the
