@@ -72,6 +72,15 @@ impl Pin {
     }
 }
 
+/// The items of the pins among `items` (owned by `owners`), with their owners.
+fn pins_only<T>(items: &mut Vec<T>, owners: &mut Vec<Owner>) -> (Vec<T>, Vec<Owner>) {
+    std::mem::take(items)
+        .into_iter()
+        .zip(std::mem::take(owners))
+        .filter(|(_, o)| *o != Owner::Current)
+        .unzip()
+}
+
 /// The legend entry of a hidden current run.
 pub const CURRENT_HIDDEN: &str = "this run (hidden: x shows it)";
 
@@ -278,18 +287,8 @@ impl Overlay {
         for e in &mut self.entries {
             *e = e.and_then(|k| moved[k]);
         }
-        let markers = std::mem::take(&mut self.panel.markers);
-        (self.panel.markers, self.markers) = markers
-            .into_iter()
-            .zip(std::mem::take(&mut self.markers))
-            .filter(|(_, o)| *o != Owner::Current)
-            .unzip();
-        let regions = std::mem::take(&mut self.panel.regions);
-        (self.panel.regions, self.regions) = regions
-            .into_iter()
-            .zip(std::mem::take(&mut self.regions))
-            .filter(|(_, o)| *o != Owner::Current)
-            .unzip();
+        (self.panel.markers, self.markers) = pins_only(&mut self.panel.markers, &mut self.markers);
+        (self.panel.regions, self.regions) = pins_only(&mut self.panel.regions, &mut self.regions);
         self.panel.arrows.clear();
         self.panel.field = None;
         self

@@ -417,6 +417,6 @@ mod tests {
         assert_eq!(action_for(ctrl_c), Some(Action::Quit));
         let plain = |c| KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE);
         assert_eq!(action_for(plain('r')), Some(Action::Run));
-        assert_eq!(action_for(plain('x')), None);
+        assert_eq!(action_for(plain('y')), None);
     }
 }

@@ -1435,3 +1435,58 @@ fn x_hides_and_shows_the_current_run() {
     assert!(!s.app().current_hidden());
     assert_eq!(drawn_points(&s, Owner::Current), 200);
 }
+
+/// A scene's sweep fills in the terminal as its points finish: fig6.3 with 401 values of A
+/// (about four times its defaults' second) shows at least 2 partial frames with more computed
+/// cells each time, titled "partial: k of 401 points", before its complete figure.
+#[test]
+fn a_sweep_scene_fills_its_map_while_it_runs() {
+    use super::workbench::at_scene;
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = at_scene(dir.path(), "fig6.3");
+    press(&mut s, KeyCode::Tab);
+    for _ in 0..2 {
+        press(&mut s, KeyCode::Down);
+    }
+    assert_eq!(s.app().form().expect("a form").selected(), 2);
+    press(&mut s, KeyCode::Enter);
+    clear_line(&mut s);
+    type_text(&mut s, "401");
+    press(&mut s, KeyCode::Enter);
+    press(&mut s, KeyCode::Char('r'));
+    let computed = |f: &Figure| -> usize {
+        f.panels
+            .iter()
+            .map(|p| {
+                p.field
+                    .as_ref()
+                    .map_or(0, |f| f.values.iter().filter(|v| v.is_finite()).count())
+                    + p.series.iter().map(|s| s.points.len()).sum::<usize>()
+            })
+            .sum()
+    };
+    let mut counts: Vec<usize> = Vec::new();
+    let start = Instant::now();
+    while s.app().running().is_some() && start.elapsed() < Duration::from_secs(120) {
+        s.wait_until(Duration::from_millis(40), |_| false);
+        let k = s.app().selected();
+        if let Some(v) = s.app().figure(k)
+            && v.state == FigureState::Partial
+            && counts.last() != Some(&computed(&v.figure))
+        {
+            counts.push(computed(&v.figure));
+            let screen = text(&draw(&s));
+            assert!(screen.contains(" of 401 points"), "{screen}");
+        }
+    }
+    assert!(s.wait_until(Duration::from_secs(120), idle), "the run ends");
+    assert!(counts.len() >= 2, "partial frames: {counts:?}");
+    assert!(
+        counts.windows(2).all(|w| w[1] > w[0]),
+        "it only grows: {counts:?}"
+    );
+    let k = s.app().selected();
+    let v = s.app().figure(k).expect("a figure");
+    assert_eq!(v.state, FigureState::Complete, "{:?}", s.app().status());
+    assert!(computed(&v.figure) > *counts.last().unwrap_or(&0));
+}
