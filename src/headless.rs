@@ -675,6 +675,7 @@ pub fn progress_job(id: &str) -> Job {
         bar.text = text;
         PROGRESS_SHOWN.store(true, std::sync::atomic::Ordering::Relaxed);
     })
+    .without_previews()
 }
 
 static PROGRESS_SHOWN: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);

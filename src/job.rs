@@ -48,6 +48,8 @@ fn send(sink: &Sink, fraction: f64, message: &str) {
 pub struct Job {
     cancel: Arc<AtomicBool>,
     sink: Option<Arc<Sink>>,
+    /// Whether the sink wants previews (a progress bar does not).
+    previews: bool,
 }
 
 impl Default for Job {
@@ -71,6 +73,7 @@ impl Job {
         Self {
             cancel: Arc::new(AtomicBool::new(false)),
             sink: None,
+            previews: false,
         }
     }
 
@@ -80,7 +83,16 @@ impl Job {
         Self {
             cancel: Arc::new(AtomicBool::new(false)),
             sink: Some(Arc::new(sink)),
+            previews: true,
         }
+    }
+
+    /// The same job for a sink that only shows progress: [`Job::wants_preview`] says no, so
+    /// no partial figure is built for it (nor for its parts).
+    #[must_use]
+    pub fn without_previews(mut self) -> Self {
+        self.previews = false;
+        self
     }
 
     /// Use `flag` as the cancellation flag (set it to `true` from another thread to cancel).
@@ -191,7 +203,9 @@ impl Job {
     }
 
     fn child(&self, sink: impl Fn(&JobEvent<'_>) + Send + Sync + 'static) -> Job {
-        Job::with_sink(sink).with_cancel_flag(self.cancel_flag())
+        let mut job = Job::with_sink(sink).with_cancel_flag(self.cancel_flag());
+        job.previews = self.previews;
+        job
     }
 
     fn silent_child(&self) -> Job {
@@ -273,12 +287,12 @@ impl Job {
 
     /// Whether anyone listens for previews; build a partial figure only if so.
     pub fn wants_preview(&self) -> bool {
-        self.sink.is_some()
+        self.previews && self.sink.is_some()
     }
 
     /// Stream the figure as far as it is computed.
     pub fn preview(&self, figure: &Figure) {
-        if let Some(sink) = &self.sink {
+        if let Some(sink) = self.sink.as_ref().filter(|_| self.previews) {
             sink(&JobEvent::Preview(figure));
         }
     }
@@ -370,6 +384,10 @@ mod tests {
         assert!(!part.wants_preview());
         quiet.cancel();
         assert!(part.is_cancelled());
+        // A progress-only job's parts want no previews either.
+        let bar = Job::with_sink(|_| {}).without_previews();
+        assert!(!bar.part(0.0, 0.5).wants_preview() && !bar.parts(&[1.0], 0.0, 1.0)[0].wants_preview());
+        assert!(Job::with_sink(|_| {}).part(0.0, 0.5).wants_preview());
     }
 
     #[test]

@@ -12,29 +12,56 @@
 //!
 //! The headless exporter stores each point's vector in a file of its own (`--shard I/N`, a job
 //! array on a cluster) and assembles them later (`--merge`); see `crate::headless`.
+//!
+//! While a run goes on, a listener for previews (the terminal UI) gets the figure as far as it
+//! is computed: the finished points assembled with the others missing
+//! ([`Sweep::assemble_partial`]), at most every [`PREVIEW_INTERVAL`], marked "partial: k of n
+//! points" and without the results and findings, which need every point.
 
+use std::any::Any;
 use std::marker::PhantomData;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 
 use super::{Registered, Scene, SceneDyn, SceneInfo, memory_limit};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::figure::Figure;
 use crate::job::Job;
 use crate::params::{ParamSpec, ParamValues};
+
+/// Shortest interval between two previews of a sweep's partial figure; longer when assembling
+/// takes long (at most a fifth of the time goes to previews).
+pub const PREVIEW_INTERVAL: Duration = Duration::from_millis(200);
 
 /// A scene that is a sweep of independent points.
 pub trait Sweep: Scene {
     /// What the points computed in one process share, built once per process before its first
     /// point (the unit surfaces of the samples, the spectral moments of a substrate); `()` when
     /// the points share nothing. Building it must not depend on which points follow.
-    type Context: Sync;
+    type Context: Sync + 'static;
 
-    /// Build the shared context.
+    /// The number of values every point gives when it does not depend on the parameters (one
+    /// by default); a sweep whose points' lengths do overrides [`Sweep::point_len`] instead.
+    const POINT_LEN: usize = 1;
+
+    /// Build the shared context. The default builds the empty context `()`; a sweep with
+    /// another context must build it here (the default refuses it with an error).
     ///
     /// # Errors
     /// Model errors, cancellation.
-    fn context(params: &Self::Params, job: &Job) -> Result<Self::Context>;
+    fn context(_params: &Self::Params, _job: &Job) -> Result<Self::Context> {
+        let empty: Box<dyn Any> = Box::new(());
+        empty
+            .downcast::<Self::Context>()
+            .map(|c| *c)
+            .map_err(|_| Error::Unresolvable {
+                model: "sweep",
+                reason: format!("scene {} has a context but does not build it", Self::ID),
+            })
+    }
 
     /// The points, in id order, each as a short label of its parameters ("n = 7, σ_rms/σ = 31.6").
     fn points(params: &Self::Params) -> Vec<String>;
@@ -51,9 +78,30 @@ pub trait Sweep: Scene {
     /// Model errors of the parts of the figure that are not points.
     fn assemble(params: &Self::Params, points: &[Vec<f64>], job: &Job) -> Result<Figure>;
 
+    /// Build the figure of a run that is not complete from the points finished so far (`None`
+    /// for the others), for a preview. By default the missing points are NaN (of
+    /// [`Sweep::point_len`]) and go through [`Sweep::assemble`]; the caller then drops the
+    /// non-finite points, the results and the notes, and marks the figure partial.
+    ///
+    /// # Errors
+    /// Those of the assembly (the preview is then skipped).
+    fn assemble_partial(params: &Self::Params, points: &[Option<Vec<f64>>], job: &Job) -> Result<Figure> {
+        let filled: Vec<Vec<f64>> = points
+            .iter()
+            .enumerate()
+            .map(|(id, v)| {
+                v.clone()
+                    .unwrap_or_else(|| vec![f64::NAN; Self::point_len(params, id)])
+            })
+            .collect();
+        Self::assemble(params, &filled, job)
+    }
+
     /// The number of values [`Sweep::run_point`] gives for point `id`: a stored point of
-    /// another length is refused by a merge.
-    fn point_len(params: &Self::Params, id: usize) -> usize;
+    /// another length is refused by a merge. By default [`Sweep::POINT_LEN`].
+    fn point_len(_params: &Self::Params, _id: usize) -> usize {
+        Self::POINT_LEN
+    }
 
     /// Whether a point's values may be NaN (a map cell where the quantity is not defined);
     /// otherwise a merge refuses a stored point with a non-finite value. Infinities are always
@@ -90,11 +138,149 @@ pub fn run<S: Sweep>(params: &S::Params, job: &Job) -> Result<Figure> {
     let ids: Vec<usize> = (0..S::points(params).len()).collect();
     let mut weights = S::point_weights(params);
     weights.resize(ids.len(), 1.0);
-    let points = job.map_parallel_parts(&ids, &weights, "points", (a, b), |&id, part| {
-        part.check()?;
-        S::run_point(params, &context, id, part)
-    })?;
+    let compute = |finished: &(dyn Fn(usize, &[f64]) + Sync)| {
+        job.map_parallel_parts(&ids, &weights, "points", (a, b), |&id, part| {
+            part.check()?;
+            let values = S::run_point(params, &context, id, part)?;
+            finished(id, &values);
+            Ok(values)
+        })
+    };
+    // The previews' watcher blocks its thread: not a thread of the rayon pool the points run on.
+    let points = if job.wants_preview() && rayon::current_thread_index().is_none() {
+        Previews::new(ids.len()).run::<S>(params, job, compute)?
+    } else {
+        compute(&|_, _| {})?
+    };
     S::assemble(params, &points, &job.part(b, 1.0))
+}
+
+/// The points of a running sweep finished so far, for its previews.
+struct Previews {
+    state: Mutex<(Vec<Option<Vec<f64>>>, usize)>,
+}
+
+impl Previews {
+    fn new(n: usize) -> Self {
+        Self {
+            state: Mutex::new((vec![None; n], 0)),
+        }
+    }
+
+    /// The points finished so far and their count.
+    fn snapshot(&self) -> Option<(Vec<Option<Vec<f64>>>, usize)> {
+        self.state.lock().ok().map(|s| (*s).clone())
+    }
+
+    /// Run `compute` (the points, in parallel) on a thread of its own, told of each finished
+    /// point, while this thread sends a preview of the points finished so far whenever there
+    /// are new ones and [`PREVIEW_INTERVAL`] (or four times the last assembly) has passed. The
+    /// previews share the run's cancellation but not its progress; the last point sends none
+    /// (the complete figure follows). A cancelled run sends the points finished since the last
+    /// preview, if a partial assembly was seen to be quick, so the figure it keeps shows all it
+    /// computed.
+    ///
+    /// # Errors
+    /// Those of `compute`.
+    fn run<S: Sweep>(
+        &self,
+        params: &S::Params,
+        job: &Job,
+        compute: impl FnOnce(&(dyn Fn(usize, &[f64]) + Sync)) -> Result<Vec<Vec<f64>>> + Send,
+    ) -> Result<Vec<Vec<f64>>> {
+        let watcher = std::thread::current();
+        let silent = Job::quiet().with_cancel_flag(job.cancel_flag());
+        let (mut shown, mut next, mut cost) = (0, Instant::now(), None::<Duration>);
+        // Assemble the points finished so far with `with` (a job without progress) and send
+        // them; how long the assembly took.
+        let send = |shown: &mut usize, with: &Job| {
+            let (points, done) = self.snapshot()?;
+            let start = Instant::now();
+            if let Some(figure) = partial_figure::<S>(params, &points, done, with) {
+                job.preview(&figure);
+            }
+            *shown = done;
+            Some(start.elapsed())
+        };
+        let outcome = std::thread::scope(|scope| {
+            let work = scope.spawn(|| {
+                let out = compute(&|id, values| {
+                    if let Ok(mut s) = self.state.lock() {
+                        s.0[id] = Some(values.to_vec());
+                        s.1 += 1;
+                    }
+                    watcher.unpark();
+                });
+                watcher.unpark();
+                out
+            });
+            while !work.is_finished() {
+                let (done, n) = self.state.lock().map_or((0, 0), |s| (s.1, s.0.len()));
+                let now = Instant::now();
+                if done <= shown || done == n || now < next {
+                    // Woken by the next finished point, or when the next preview is due.
+                    let wait = if done > shown {
+                        next - now
+                    } else {
+                        PREVIEW_INTERVAL
+                    };
+                    std::thread::park_timeout(wait);
+                    continue;
+                }
+                if let Some(c) = send(&mut shown, &silent) {
+                    cost = Some(c);
+                    next = Instant::now() + PREVIEW_INTERVAL.max(4 * c);
+                }
+            }
+            work.join()
+        });
+        let outcome = match outcome {
+            Ok(outcome) => outcome,
+            Err(panic) => std::panic::resume_unwind(panic),
+        };
+        if matches!(outcome, Err(Error::Cancelled)) && cost.is_some_and(|c| c < Duration::from_millis(100)) {
+            let done = self.state.lock().map_or(0, |s| s.1);
+            if done > shown {
+                send(&mut shown, &Job::quiet());
+            }
+        }
+        outcome
+    }
+}
+
+/// The partial figure of `done` finished points ([`Sweep::assemble_partial`]) with what needs
+/// every point removed: the non-finite points of the lines (what is missing is absent), the
+/// results, the notes and the panels' remarks (findings); a note "partial: k of n points"
+/// instead. `None` when the assembly fails or panics: a preview never stops a run.
+fn partial_figure<S: Sweep>(
+    params: &S::Params,
+    points: &[Option<Vec<f64>>],
+    done: usize,
+    job: &Job,
+) -> Option<Figure> {
+    let assembled = catch_unwind(AssertUnwindSafe(|| S::assemble_partial(params, points, job)));
+    let mut fig = assembled.ok()?.ok()?;
+    fig.results.clear();
+    fig.notes.clear();
+    for panel in &mut fig.panels {
+        panel.notes.clear();
+        let finite = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite();
+        for series in &mut panel.series {
+            series.points.retain(finite);
+        }
+        for region in &mut panel.regions {
+            region.points.retain(finite);
+        }
+        panel.markers.retain(|m| m.x.is_finite() && m.y.is_finite());
+        panel.arrows.retain(|a| finite(&a.from) && finite(&a.to));
+    }
+    fig.note(partial_note(done, points.len()));
+    Some(fig)
+}
+
+/// The note of a sweep's partial figure.
+pub fn partial_note(done: usize, total: usize) -> String {
+    format!("partial: {done} of {total} points")
 }
 
 /// The computation of one point, handed to the caller of [`SweepDyn::run_points`] to run and

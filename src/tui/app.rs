@@ -264,6 +264,7 @@ pub struct App {
     pub(crate) auto_run: bool,
     pub(crate) filter: String,
     pub(crate) pins: Vec<Vec<Pin>>,
+    pub(crate) current_hidden: Vec<bool>,
     pub(crate) cursor: Option<CursorAt>,
     pub(crate) zoom: Option<View>,
     pub(crate) zoom_mark: Option<(f64, f64)>,
@@ -322,6 +323,7 @@ impl App {
             auto_run: false,
             filter: String::new(),
             pins,
+            current_hidden: vec![false; n],
             cursor: None,
             zoom: None,
             zoom_mark: None,
@@ -722,6 +724,7 @@ impl App {
             | Action::ZoomReset => self.chart_action(action),
             Action::Info => self.show_info = !self.show_info,
             Action::TogglePin => {}
+            Action::HideCurrent => self.toggle_current(),
             Action::NudgeUp | Action::NudgeDown => effects.extend(self.nudge(action == Action::NudgeUp)),
             Action::Legend => {
                 self.legend = !self.legend;

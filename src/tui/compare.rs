@@ -72,6 +72,18 @@ impl Pin {
     }
 }
 
+/// The items of the pins among `items` (owned by `owners`), with their owners.
+fn pins_only<T>(items: &mut Vec<T>, owners: &mut Vec<Owner>) -> (Vec<T>, Vec<Owner>) {
+    std::mem::take(items)
+        .into_iter()
+        .zip(std::mem::take(owners))
+        .filter(|(_, o)| *o != Owner::Current)
+        .unzip()
+}
+
+/// The legend entry of a hidden current run.
+pub const CURRENT_HIDDEN: &str = "this run (hidden: x shows it)";
+
 /// Parameters that change how a run is drawn, not what it computes: a pin that differs from
 /// the current run in them is recomputed with the current run's values before it is drawn.
 pub const DISPLAY_PARAMS: &[&str] = &["units"];
@@ -246,6 +258,40 @@ impl Overlay {
             .partition(|(_, o)| **o == Owner::Current);
         panel.series = pinned.into_iter().chain(current).map(|(s, _)| s).collect();
         panel
+    }
+
+    /// The overlay with the current run hidden: its curves, markers, regions, arrows and field
+    /// leave the chart (its axes stay, the pins are drawn on them), and one legend entry says
+    /// it is hidden.
+    #[must_use]
+    pub fn with_current_hidden(mut self) -> Self {
+        let color = self.panel.series_colors().first().copied();
+        let mut entry = Series::new(CURRENT_HIDDEN, crate::figure::Style::Stable, Vec::new());
+        entry.color = color;
+        let mut kept = vec![entry];
+        let mut owners = vec![Owner::Current];
+        let mut moved = vec![None; self.panel.series.len()];
+        for (k, (s, o)) in std::mem::take(&mut self.panel.series)
+            .into_iter()
+            .zip(&self.series)
+            .enumerate()
+        {
+            if *o != Owner::Current {
+                moved[k] = Some(kept.len());
+                kept.push(s);
+                owners.push(*o);
+            }
+        }
+        self.panel.series = kept;
+        self.series = owners;
+        for e in &mut self.entries {
+            *e = e.and_then(|k| moved[k]);
+        }
+        (self.panel.markers, self.markers) = pins_only(&mut self.panel.markers, &mut self.markers);
+        (self.panel.regions, self.regions) = pins_only(&mut self.panel.regions, &mut self.regions);
+        self.panel.arrows.clear();
+        self.panel.field = None;
+        self
     }
 
     /// The markers and regions of the current run: they come first, the pins' follow (what the

@@ -125,8 +125,39 @@ impl std::fmt::Debug for Form {
     }
 }
 
-/// The factor a number is stepped by ([`Form::nudge`]).
+/// The factor a number is stepped by ([`Form::nudge`]) unless its parameter declares a step.
 pub const NUDGE_FACTOR: f64 = 1.1;
+
+/// A parameter's own step for nudging ([`NUDGE_STEPS`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum NudgeStep {
+    /// Add or subtract this (a value that may be zero or negative, or whose natural steps are
+    /// even: degrees, exponents, seeds).
+    Linear(f64),
+    /// Multiply or divide by this (a quantity spanning decades).
+    Factor(f64),
+}
+
+/// Declared nudge steps, by parameter name (a name means one physical parameter in every
+/// scene); the others step by [`NUDGE_FACTOR`].
+pub const NUDGE_STEPS: &[(&str, NudgeStep)] = &[
+    ("peel_angle", NudgeStep::Linear(5.0)),
+    ("poisson_ratio", NudgeStep::Linear(0.05)),
+    ("stiffness_exponent", NudgeStep::Linear(1.0)),
+    ("amplitude_ratio_1", NudgeStep::Linear(0.0025)),
+    ("amplitude_ratio_2", NudgeStep::Linear(0.0025)),
+    ("amplitude_ratio_3", NudgeStep::Linear(0.0025)),
+    ("min_separation_ho", NudgeStep::Linear(0.1)),
+    ("start_separation_ho", NudgeStep::Linear(0.5)),
+    ("seed", NudgeStep::Linear(1.0)),
+    // Ten steps a decade.
+    ("roughness", NudgeStep::Factor(1.258_925_411_794_167_2)),
+];
+
+/// The declared nudge step of parameter `name`, if any.
+pub fn nudge_step(name: &str) -> Option<NudgeStep> {
+    NUDGE_STEPS.iter().find(|(n, _)| *n == name).map(|(_, s)| *s)
+}
 
 /// `x` rounded to `digits` significant digits (so that steps by 1.1 read `1.331e-5`, not
 /// `1.3310000000000003e-5`).
@@ -299,11 +330,12 @@ impl Form {
         }
     }
 
-    /// Step the selected field up or down, as a slider would: a number by the factor
-    /// [`NUDGE_FACTOR`] (its magnitude grows when `up` for a positive value, the value grows for
-    /// a negative one), an integer by about a tenth of it (at least 1), a choice or a flag to
-    /// its next option. Returns the new text, or why the field cannot be stepped (zero cannot
-    /// be scaled; a step out of the range is refused, the value kept).
+    /// Step the selected field up or down, as a slider would: by its declared step
+    /// ([`NUDGE_STEPS`]: added, or a factor), else a number by the factor [`NUDGE_FACTOR`] (its
+    /// magnitude grows when `up` for a positive value, the value grows for a negative one), an
+    /// integer by about a tenth of it (at least 1), a choice or a flag to its next option.
+    /// Returns the new text, or why the field cannot be stepped (zero cannot be scaled; a step
+    /// out of the range is refused, the value kept).
     ///
     /// # Errors
     /// One line naming the parameter.
@@ -312,8 +344,20 @@ impl Form {
             return Err("no parameter to step".into());
         };
         let value = &self.valid.values[self.selected];
-        let text = match (spec.kind, value) {
-            (ParamKind::Float, toml::Value::Float(x)) => {
+        let sign = if up { 1.0 } else { -1.0 };
+        let text = match (spec.kind, value, nudge_step(spec.name)) {
+            (ParamKind::Float, toml::Value::Float(x), Some(NudgeStep::Linear(d))) => {
+                let y = round_significant(x + sign * d, 9);
+                // No 1e-17 left where the steps meet zero.
+                fmt_float(if y.abs() < 1e-9 * d { 0.0 } else { y })
+            }
+            (ParamKind::Int, toml::Value::Integer(i), Some(NudgeStep::Linear(d))) => {
+                (i + sign as i64 * (d.round() as i64).max(1)).to_string()
+            }
+            (ParamKind::Float, toml::Value::Float(x), Some(NudgeStep::Factor(f))) if *x != 0.0 => {
+                fmt_float(round_significant(x * f.powf(sign), 6))
+            }
+            (ParamKind::Float, toml::Value::Float(x), _) => {
                 if *x == 0.0 {
                     return Err(format!("{} is 0: type a value to step from (Enter)", spec.name));
                 }
@@ -324,11 +368,11 @@ impl Form {
                 };
                 fmt_float(round_significant(x * factor, 6))
             }
-            (ParamKind::Int, toml::Value::Integer(i)) => {
+            (ParamKind::Int, toml::Value::Integer(i), _) => {
                 let step = (i.abs() / 10).max(1);
                 (if up { i + step } else { i - step }).to_string()
             }
-            (ParamKind::Bool | ParamKind::Choice(_), _) => {
+            (ParamKind::Bool | ParamKind::Choice(_), _, _) => {
                 self.cycle();
                 return Ok(self.texts[self.selected].clone());
             }
@@ -571,6 +615,43 @@ mod tests {
         assert!(f.is_valid(), "{:?}", f.first_error());
         assert_eq!(f.values().get("lo"), Some(&toml::Value::Float(3.0)));
         assert_eq!(f.values().get("hi"), Some(&toml::Value::Float(4.0)));
+    }
+
+    #[test]
+    fn declared_steps_add_or_multiply_and_every_declared_name_is_a_parameter() {
+        let names: Vec<&str> = scenes::all()
+            .iter()
+            .flat_map(|s| s.specs().into_iter().map(|p| p.name))
+            .collect();
+        for (name, _) in NUDGE_STEPS {
+            assert!(names.contains(name), "{name} is no scene's parameter");
+        }
+        // Linear: A/λ steps from 0 (a factor could not), back to 0 exactly, and not below
+        // its range.
+        let mut f = Form::new(scenes::find("fig4.9b").expect("fig4.9b is registered"));
+        f.selected = index(&f, "amplitude_ratio_1");
+        assert_eq!(f.nudge(true).as_deref(), Ok("0.0025"));
+        assert_eq!(f.nudge(true).as_deref(), Ok("0.005"));
+        assert_eq!(f.nudge(false).as_deref(), Ok("0.0025"));
+        assert_eq!(f.nudge(false).as_deref(), Ok("0"));
+        assert!(f.nudge(false).is_err(), "below the range");
+        // Linear in degrees.
+        let mut f = Form::new(scenes::find("fig6.2").expect("fig6.2 is registered"));
+        f.selected = index(&f, "peel_angle");
+        assert_eq!(f.nudge(false).as_deref(), Ok("85"));
+        // Undeclared: ×1.1.
+        let mut f = form();
+        f.selected = index(&f, "radius");
+        let before = f
+            .values()
+            .get("radius")
+            .and_then(toml::Value::as_float)
+            .expect("radius");
+        let after: f64 = f.nudge(true).expect("stepped").parse().expect("a number");
+        assert!(
+            (after / before - NUDGE_FACTOR).abs() < 1e-5,
+            "{before} -> {after}"
+        );
     }
 
     #[test]

@@ -86,7 +86,9 @@ pub enum Action {
     TipRadius,
     /// Show or hide pinned run #1-#9 (the digit says which).
     TogglePin,
-    /// Step the selected parameter up (×1.1, or its declared step) and rerun after a pause.
+    /// Show or hide the current run (the pins stay).
+    HideCurrent,
+    /// Step the selected parameter up (its declared step, or ×1.1) and rerun after a pause.
     NudgeUp,
     /// Step the selected parameter down (÷1.1, or its declared step) and rerun after a pause.
     NudgeDown,
@@ -344,16 +346,22 @@ pub const BINDINGS: &[Binding] = &[
         help: "hide / show pinned run #1-#9 (legend entry, table rows stay)",
     },
     Binding {
+        keys: &[KeyCode::Char('x')],
+        label: "x",
+        action: Action::HideCurrent,
+        help: "hide / show this run (legend entry, table row stay; exports draw it)",
+    },
+    Binding {
         keys: &[KeyCode::Char('}')],
         label: "}",
         action: Action::NudgeUp,
-        help: "nudge the selected parameter up (×1.1), rerun after a pause",
+        help: "nudge the selected parameter up (its step, else ×1.1), rerun after a pause",
     },
     Binding {
         keys: &[KeyCode::Char('{')],
         label: "{",
         action: Action::NudgeDown,
-        help: "nudge the selected parameter down (÷1.1), rerun after a pause",
+        help: "nudge the selected parameter down (its step, else ÷1.1), rerun after a pause",
     },
     Binding {
         keys: &[KeyCode::Char('L')],
@@ -409,6 +417,6 @@ mod tests {
         assert_eq!(action_for(ctrl_c), Some(Action::Quit));
         let plain = |c| KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE);
         assert_eq!(action_for(plain('r')), Some(Action::Run));
-        assert_eq!(action_for(plain('x')), None);
+        assert_eq!(action_for(plain('y')), None);
     }
 }

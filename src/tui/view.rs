@@ -515,6 +515,16 @@ fn form_columns(
     (name_width, value_width, unit_width)
 }
 
+/// How much of a partial figure there is: a sweep's note ("partial: 3 of 8 points") or
+/// "partial".
+fn partial_text(figure: &crate::figure::Figure) -> &str {
+    figure
+        .notes
+        .iter()
+        .find(|n| n.starts_with("partial"))
+        .map_or("partial", String::as_str)
+}
+
 fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect, layout: &mut DrawnLayout) {
     let Some(scene) = app.scene() else {
         frame.render_widget(pane(" Figure ".into(), false), area);
@@ -529,9 +539,9 @@ fn draw_figure(frame: &mut Frame<'_>, app: &App, area: Rect, layout: &mut DrawnL
         FigureState::Complete => v
             .run_time_s
             .map_or(String::new(), |t| format!(" · computed in {}", fmt_duration(t))),
-        FigureState::Partial => " · partial".into(),
-        FigureState::Cancelled => " · cancelled, partial".into(),
-        FigureState::Failed => " · failed, partial".into(),
+        FigureState::Partial => format!(" · {}", partial_text(&v.figure)),
+        FigureState::Cancelled => format!(" · cancelled, {}", partial_text(&v.figure)),
+        FigureState::Failed => format!(" · failed, {}", partial_text(&v.figure)),
     });
     // The state first: a long title is cut at the end, never what the figure shows.
     let block = pane(format!(" {}{state} — {} ", info.id, info.title), false);
@@ -756,10 +766,14 @@ fn split_results(app: &App, body: Rect) -> (Rect, Option<Rect>) {
 fn draw_results(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, area: Rect) {
     let partial = view.is_some_and(|v| v.state != FigureState::Complete);
     let pins = app.pins(app.selected);
+    let hidden = app.current_hidden();
+    let this_run = if hidden { "this run (hidden)" } else { "this run" };
     let title = match (partial, pins.is_empty()) {
+        (true, _) if hidden => " Results (partial, this run hidden) ".to_string(),
         (true, _) => " Results (partial) ".to_string(),
+        (false, true) if hidden => " Results (this run hidden) ".to_string(),
         (false, true) => " Results (R hides) ".to_string(),
-        (false, false) => format!(" Results: this run and {} pin(s) ", pins.len()),
+        (false, false) => format!(" Results: {this_run} and {} pin(s) ", pins.len()),
     };
     let block = Block::bordered()
         .title(title)
@@ -791,7 +805,7 @@ fn draw_results(frame: &mut Frame<'_>, app: &App, view: Option<&FigureView>, are
         let text = value.map_or("…".to_string(), |v| result_text(name, v, unit));
         let name_width = width.saturating_sub(text.chars().count() + 1);
         let line = format!("{:<name_width$} {text}", clip(&label, name_width));
-        lines.push(if value.is_some() {
+        lines.push(if value.is_some() && !hidden {
             Line::from(line)
         } else {
             Line::styled(line, dim)

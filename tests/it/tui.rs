@@ -12,6 +12,7 @@ use adhesion::error::{Error, Result};
 use adhesion::figure::{Axis, Figure, Panel, Series, Style};
 use adhesion::job::Job;
 use adhesion::params::Range;
+use adhesion::scenes::sweep::{Sweep, Swept};
 use adhesion::scenes::{self, Registered, Scene, SceneDyn};
 use adhesion::tui::app::{App, FigureState, Focus, Mode, Page};
 use adhesion::tui::session::Session;
@@ -1238,4 +1239,254 @@ fn the_cursor_stays_on_the_pull_off_across_nudges_and_reads_the_change() {
         .expect("P_D");
     let moved = adhesion::render::labels::fmt_quantity(0.1 * pinned, "N");
     assert!(screen.contains(&format!("y {moved}")), "Δy = {moved}:\n{screen}");
+}
+
+adhesion::scene_params! {
+    /// Parameters of the probe sweep.
+    pub struct ProbeSweepParams {
+        /// Points of the sweep.
+        points: usize = 8, unit = "", range = Range::between(2.0, 100.0);
+    }
+}
+
+/// A sweep for the UI tests: point `id` gives `id²` once the test has released it
+/// (`SWEEP_GATE` > `id`), and waits (cancellable) until then.
+pub(crate) struct ProbeSweep;
+
+/// Points of the probe sweep released so far.
+static SWEEP_GATE: AtomicUsize = AtomicUsize::new(0);
+
+impl Scene for ProbeSweep {
+    type Params = ProbeSweepParams;
+    const ID: &'static str = "probe-sweep";
+    const CHAPTER: &'static str = "1";
+    const TITLE: &'static str = "Probe sweep";
+    const CAPTION: &'static str = "Squares, point by point, for the terminal UI tests.";
+    const RESULTS: &'static [(&'static str, &'static str)] = &[("sum_norm", "the sum of the squares")];
+
+    fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
+        adhesion::scenes::sweep::run::<Self>(p, job)
+    }
+}
+
+impl Sweep for ProbeSweep {
+    type Context = ();
+
+    fn points(p: &Self::Params) -> Vec<String> {
+        (0..p.points).map(|i| format!("x = {i}")).collect()
+    }
+
+    fn run_point(_p: &Self::Params, _context: &(), id: usize, job: &Job) -> Result<Vec<f64>> {
+        let start = Instant::now();
+        while SWEEP_GATE.load(Ordering::SeqCst) <= id {
+            job.check()?;
+            if start.elapsed() > WAIT {
+                return Err(Error::Unresolvable {
+                    model: "probe",
+                    reason: "never released".into(),
+                });
+            }
+            std::thread::sleep(Duration::from_millis(2));
+        }
+        Ok(vec![(id * id) as f64])
+    }
+
+    fn assemble(p: &Self::Params, points: &[Vec<f64>], _job: &Job) -> Result<Figure> {
+        let squares: Vec<(f64, f64)> = points.iter().enumerate().map(|(i, v)| (i as f64, v[0])).collect();
+        let x_axis = Axis::linear("x", "").with_range(0.0, (p.points - 1) as f64);
+        let mut panel = Panel::new(x_axis, Axis::linear("x²", ""));
+        panel.add(Series::new("squares", Style::Stable, squares));
+        panel.annotate("a finding about every point");
+        let mut fig = Figure::new(Self::ID, Self::TITLE).with_panel(panel);
+        fig.result("sum_norm", points.iter().map(|v| v[0]).sum());
+        fig.note("a note about every point");
+        Ok(fig)
+    }
+}
+
+static PROBE_SWEEP: Swept<ProbeSweep> = Swept::<ProbeSweep>::NEW;
+
+/// The finite points of the first series of scene 0's figure.
+fn sweep_points(app: &App) -> Vec<(f64, f64)> {
+    app.figure(0)
+        .and_then(|v| v.figure.panels.first())
+        .and_then(|p| p.series.first())
+        .map_or(Vec::new(), |s| s.points.clone())
+}
+
+/// A sweep fills its points as they finish: released two, then four, of eight points, the
+/// chart shows a partial figure of the finished points only (the others absent, not NaN),
+/// marked "partial: k of 8 points" in its title, without the results and findings that need
+/// every point; the complete figure follows. The same sweep cancelled keeps its partial
+/// figure, marked cancelled.
+#[test]
+fn a_sweep_fills_its_points_as_they_finish_and_a_cancelled_one_keeps_them() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = session(dir.path(), vec![&PROBE_SWEEP]);
+    SWEEP_GATE.store(0, Ordering::SeqCst);
+    press(&mut s, KeyCode::Char('r'));
+    let mut cells = Vec::new();
+    for released in [2usize, 4] {
+        // Past the interval between previews, so the next finished point sends one.
+        std::thread::sleep(adhesion::scenes::sweep::PREVIEW_INTERVAL + Duration::from_millis(50));
+        SWEEP_GATE.store(released, Ordering::SeqCst);
+        assert!(
+            s.wait_until(WAIT, |a| sweep_points(a).len() == released),
+            "a preview of {released} points: {:?}",
+            sweep_points(s.app())
+        );
+        let v = s.app().figure(0).expect("a preview");
+        assert_eq!(v.state, FigureState::Partial);
+        let want: Vec<(f64, f64)> = (0..released).map(|i| (i as f64, (i * i) as f64)).collect();
+        assert_eq!(sweep_points(s.app()), want, "the finished points, in order");
+        assert!(v.figure.results.is_empty(), "{:?}", v.figure.results);
+        assert_eq!(v.figure.notes, vec![format!("partial: {released} of 8 points")]);
+        assert!(
+            v.figure.panels[0].notes.is_empty(),
+            "{:?}",
+            v.figure.panels[0].notes
+        );
+        let buf = draw(&s);
+        let screen = text(&buf);
+        assert!(
+            screen.contains(&format!("partial: {released} of 8 points")),
+            "{screen}"
+        );
+        cells.push(braille_cells(&buf));
+    }
+    SWEEP_GATE.store(8, Ordering::SeqCst);
+    assert!(s.wait_until(WAIT, idle), "the run ends");
+    let v = s.app().figure(0).expect("the figure");
+    assert_eq!(v.state, FigureState::Complete);
+    assert_eq!(v.figure.result_value("sum_norm"), Some(140.0));
+    cells.push(braille_cells(&draw(&s)));
+    assert!(
+        cells.windows(2).all(|w| w[1] > w[0]),
+        "the curve grows: {cells:?}"
+    );
+
+    // Cancelled after three points: the partial figure stays, marked.
+    SWEEP_GATE.store(0, Ordering::SeqCst);
+    press(&mut s, KeyCode::Char('r'));
+    std::thread::sleep(adhesion::scenes::sweep::PREVIEW_INTERVAL);
+    SWEEP_GATE.store(3, Ordering::SeqCst);
+    assert!(
+        s.wait_until(WAIT, |a| {
+            a.figure(0).is_some_and(|v| v.state == FigureState::Partial) && sweep_points(a).len() == 3
+        }),
+        "a preview of 3 points"
+    );
+    press(&mut s, KeyCode::Esc);
+    assert!(s.wait_until(WAIT, idle), "the run stops after Esc");
+    let v = s.app().figure(0).expect("kept");
+    assert_eq!(v.state, FigureState::Cancelled);
+    assert_eq!(sweep_points(s.app()).len(), 3);
+    let screen = text(&draw(&s));
+    assert!(screen.contains("cancelled, partial: 3 of 8 points"), "{screen}");
+}
+
+/// `x` hides the current run: its curves leave the chart and the pin's stay, one legend entry
+/// says it is hidden, the results table says so; `x` again shows it.
+#[test]
+fn x_hides_and_shows_the_current_run() {
+    use adhesion::tui::compare::Owner;
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = session(dir.path(), vec![&PROBE]);
+    press(&mut s, KeyCode::Char('r'));
+    assert!(s.wait_until(WAIT, |a| a.history().len() == 1), "the first run");
+    press(&mut s, KeyCode::Char('p'));
+    press(&mut s, KeyCode::Tab);
+    press(&mut s, KeyCode::Down);
+    press(&mut s, KeyCode::Char('}'));
+    assert!(
+        s.wait_until(WAIT, |a| a.history().len() == 2 && idle(a)),
+        "the nudged run"
+    );
+    let drawn_points = |s: &Session, owner: Owner| -> usize {
+        let d = s.app().drawn().expect("a chart");
+        d.panel
+            .series
+            .iter()
+            .zip(&d.series)
+            .filter(|(_, o)| **o == owner)
+            .map(|(x, _)| x.points.len())
+            .sum()
+    };
+    assert_eq!(drawn_points(&s, Owner::Current), 200);
+    assert_eq!(drawn_points(&s, Owner::Pin(0)), 200);
+    let before = text(&draw(&s));
+    assert!(!before.contains("this run (hidden"), "{before}");
+
+    press(&mut s, KeyCode::Char('x'));
+    assert!(s.app().current_hidden());
+    assert_eq!(
+        drawn_points(&s, Owner::Current),
+        0,
+        "the current run's curves are gone"
+    );
+    assert_eq!(drawn_points(&s, Owner::Pin(0)), 200, "the pin's stay");
+    let screen = text(&draw(&s));
+    assert!(
+        screen.contains("this run (hidden"),
+        "the legend and the table say so:\n{screen}"
+    );
+
+    press(&mut s, KeyCode::Char('x'));
+    assert!(!s.app().current_hidden());
+    assert_eq!(drawn_points(&s, Owner::Current), 200);
+}
+
+/// A scene's sweep fills in the terminal as its points finish: fig6.3 with 401 values of A
+/// (about four times its defaults' second) shows at least 2 partial frames with more computed
+/// cells each time, titled "partial: k of 401 points", before its complete figure.
+#[test]
+fn a_sweep_scene_fills_its_map_while_it_runs() {
+    use super::workbench::at_scene;
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = at_scene(dir.path(), "fig6.3");
+    press(&mut s, KeyCode::Tab);
+    for _ in 0..2 {
+        press(&mut s, KeyCode::Down);
+    }
+    assert_eq!(s.app().form().expect("a form").selected(), 2);
+    press(&mut s, KeyCode::Enter);
+    clear_line(&mut s);
+    type_text(&mut s, "401");
+    press(&mut s, KeyCode::Enter);
+    press(&mut s, KeyCode::Char('r'));
+    let computed = |f: &Figure| -> usize {
+        f.panels
+            .iter()
+            .map(|p| {
+                p.field
+                    .as_ref()
+                    .map_or(0, |f| f.values.iter().filter(|v| v.is_finite()).count())
+                    + p.series.iter().map(|s| s.points.len()).sum::<usize>()
+            })
+            .sum()
+    };
+    let mut counts: Vec<usize> = Vec::new();
+    let start = Instant::now();
+    while s.app().running().is_some() && start.elapsed() < Duration::from_secs(120) {
+        s.wait_until(Duration::from_millis(40), |_| false);
+        let k = s.app().selected();
+        if let Some(v) = s.app().figure(k)
+            && v.state == FigureState::Partial
+            && counts.last() != Some(&computed(&v.figure))
+        {
+            counts.push(computed(&v.figure));
+            let screen = text(&draw(&s));
+            assert!(screen.contains(" of 401 points"), "{screen}");
+        }
+    }
+    assert!(s.wait_until(Duration::from_secs(120), idle), "the run ends");
+    assert!(counts.len() >= 2, "partial frames: {counts:?}");
+    assert!(
+        counts.windows(2).all(|w| w[1] > w[0]),
+        "it only grows: {counts:?}"
+    );
+    let k = s.app().selected();
+    let v = s.app().figure(k).expect("a figure");
+    assert_eq!(v.state, FigureState::Complete, "{:?}", s.app().status());
+    assert!(computed(&v.figure) > *counts.last().unwrap_or(&0));
 }

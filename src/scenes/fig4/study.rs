@@ -227,14 +227,7 @@ impl Scene for Fig4_9bModels {
 /// result is (P_adh/(2E*R²), H/(2E*R³)).
 impl Sweep for Fig4_9bModels {
     type Context = ();
-
-    fn point_len(_p: &Self::Params, _id: usize) -> usize {
-        2
-    }
-
-    fn context(_p: &Self::Params, _job: &Job) -> Result<()> {
-        Ok(())
-    }
+    const POINT_LEN: usize = 2;
 
     fn points(p: &Self::Params) -> Vec<String> {
         (0..p.amplitude_ratios.len() * p.sigmas.len() * RUNS.len())

@@ -165,14 +165,7 @@ impl Scene for Fig4_9b {
 /// number `i` (n values of σ); its result is (P_adh/(2E*R²), H/(2E*R³)).
 impl Sweep for Fig4_9b {
     type Context = ();
-
-    fn point_len(_p: &Self::Params, _id: usize) -> usize {
-        2
-    }
-
-    fn context(_p: &Self::Params, _job: &Job) -> Result<()> {
-        Ok(())
-    }
+    const POINT_LEN: usize = 2;
 
     fn points(p: &Self::Params) -> Vec<String> {
         let sigmas = geometric(p.sigma_min, p.sigma_max, p.sigma_points);
@@ -414,14 +407,7 @@ impl Scene for Fig4_10 {
 /// result is (P_adh/(2E*R²), H/(2E*R³)).
 impl Sweep for Fig4_10 {
     type Context = ();
-
-    fn point_len(_p: &Self::Params, _id: usize) -> usize {
-        2
-    }
-
-    fn context(_p: &Self::Params, _job: &Job) -> Result<()> {
-        Ok(())
-    }
+    const POINT_LEN: usize = 2;
 
     fn points(p: &Self::Params) -> Vec<String> {
         let (alphas, betas) = p.grid();

@@ -285,10 +285,6 @@ impl Sweep for Fig5_9 {
         p.surfaces.samples
     }
 
-    fn context(_p: &Self::Params, _job: &Job) -> Result<()> {
-        Ok(())
-    }
-
     fn points(p: &Self::Params) -> Vec<String> {
         p.roughness
             .iter()

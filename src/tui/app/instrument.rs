@@ -44,16 +44,40 @@ impl App {
         let view = self.figure(self.selected)?;
         let k = self.panel();
         let panel = view.figure.panels.get(k)?;
-        Some(
-            overlay(
-                panel,
-                k,
-                &view.values,
-                self.pins(self.selected),
-                &self.pin_labels(),
-            )
-            .with_legend_symbols(),
+        let drawn = overlay(
+            panel,
+            k,
+            &view.values,
+            self.pins(self.selected),
+            &self.pin_labels(),
         )
+        .with_legend_symbols();
+        Some(if self.current_hidden() {
+            drawn.with_current_hidden()
+        } else {
+            drawn
+        })
+    }
+
+    /// Whether the selected scene's current run is hidden from the chart.
+    pub fn current_hidden(&self) -> bool {
+        self.current_hidden.get(self.selected).copied().unwrap_or(false)
+    }
+
+    /// Show or hide the selected scene's current run (its row of the results table stays,
+    /// dimmed; an export still draws it).
+    pub(crate) fn toggle_current(&mut self) {
+        let Some(hidden) = self.current_hidden.get_mut(self.selected) else {
+            return;
+        };
+        *hidden = !*hidden;
+        let text = if *hidden {
+            "this run hidden (x shows it; exports still draw it)"
+        } else {
+            "this run shown"
+        };
+        self.cursor = None;
+        self.set_status(text, false);
     }
 
     /// Where the last frame drew the chart's graph and what it shows.
