@@ -600,6 +600,10 @@ crate::scene_params! {
 /// (2.39) as the cheapest method.
 pub struct Fig2_5Accuracy;
 
+/// A family of method settings: its name, the quantity its setting is (an axis title), and
+/// each setting's value with the method it stands for.
+type Family = (&'static str, &'static str, Vec<(f64, Method)>);
+
 /// One method setting: its label and accuracy, or loop sampling.
 #[derive(Clone, Copy)]
 enum Method {
@@ -704,7 +708,7 @@ impl Scene for Fig2_5Accuracy {
         let orders = [2usize, 3, 4, 6, 8, 12, 16, 24, 40];
         let samples = [50usize, 100, 200, 400, 800, 1600, 3200];
         // Each family against its own setting, one quantity per axis: (name, axis, settings).
-        let families: Vec<(&str, &str, Vec<(f64, Method)>)> = vec![
+        let families: Vec<Family> = vec![
             (
                 "Brent tolerance (40-point rule)",
                 "Root-finding tolerance x_tol",
