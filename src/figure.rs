@@ -491,6 +491,32 @@ impl Field {
     }
 }
 
+/// Contour levels at round values for a field spanning decades: 1, 2 and 5 × 10ⁿ strictly
+/// between `lo` and `hi` (both positive); where those are more than twice `target`, only the
+/// powers of ten (every second, third, ... decade where still too many). Empty for an empty
+/// or non-positive range.
+pub fn round_log_levels(lo: f64, hi: f64, target: usize) -> Vec<f64> {
+    if !(lo > 0.0 && hi > lo && hi.is_finite()) {
+        return Vec::new();
+    }
+    let (first, last) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
+    // Parsed from their decimal form: 2e-3 is the double nearest 0.002, not 2 × 10^-3.
+    let at = |mantissas: &[u8]| -> Vec<f64> {
+        (first..=last)
+            .flat_map(|n| mantissas.iter().map(move |m| format!("{m}e{n}")))
+            .filter_map(|t| t.parse::<f64>().ok())
+            .filter(|&v| v > lo && v < hi)
+            .collect()
+    };
+    let all = at(&[1, 2, 5]);
+    if all.len() <= 2 * target.max(1) {
+        return all;
+    }
+    let decades = at(&[1]);
+    let every = decades.len().div_ceil(2 * target.max(1)).max(1);
+    decades.into_iter().step_by(every).collect()
+}
+
 /// Where two curves count as one in the drawing, for [`Panel::mark_coinciding`]: within this
 /// fraction of the panel's span on each axis, about a pixel of a PNG's frame.
 pub const COINCIDENCE_TOL: f64 = 1.5e-3;
@@ -961,6 +987,23 @@ mod tests {
         assert_eq!(solid[0].points.last(), dashed[0].points.first());
         let shifted = p.series.iter().find(|s| s.name == "shifted").unwrap();
         assert_eq!((shifted.style, shifted.color), (Style::Stable, Some(colors[2])));
+    }
+
+    #[test]
+    fn round_log_levels_are_one_two_five_times_powers_of_ten() {
+        assert_eq!(
+            round_log_levels(0.0048, 0.1543, 7),
+            vec![0.005, 0.01, 0.02, 0.05, 0.1]
+        );
+        // Six decades: the powers of ten alone.
+        assert_eq!(
+            round_log_levels(3.0e-7, 0.3, 7),
+            vec![1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 1e-1]
+        );
+        // Twenty decades: every second one.
+        assert_eq!(round_log_levels(0.5e-20, 1.0, 5).len(), 10);
+        assert!(round_log_levels(0.0, 1.0, 5).is_empty());
+        assert!(round_log_levels(2.0, 1.0, 5).is_empty());
     }
 
     #[test]

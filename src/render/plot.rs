@@ -13,6 +13,7 @@
 mod draw;
 mod heat;
 mod legend;
+mod place;
 
 use std::path::Path;
 
@@ -235,21 +236,21 @@ fn figure_size(fig: &Figure, m: &Metrics) -> (u32, u32) {
 fn row_heights(fig: &Figure, m: &Metrics) -> Vec<i32> {
     let (pw, ph) = (m.px(m.panel.0), m.px(m.panel.1));
     let mut rows: Vec<i32> = Vec::new();
-    for (k, panel) in shown_panels(fig).iter().enumerate() {
-        let (_, r, w) = panel_slot(fig.panels.len(), k, pw);
+    for (k, plan) in panel_plans(fig, m).iter().enumerate() {
+        let (_, r, _) = panel_slot(fig.panels.len(), k, pw);
         let r = r as usize;
         if rows.len() <= r {
-            rows.resize(r + 1, ph);
+            rows.resize(r + 1, 0);
         }
-        let extra = panel_frame(panel, f64::from(w), f64::from(ph), m).map_or(0.0, |(frame, bar, _)| {
-            let (_, boxes) = plan_legend(panel, frame, &panel.series_colors(), m, f64::from(w), bar);
-            boxes
+        // A map kept at its aspect may be less tall than the panel: the row shrinks to it.
+        let need = plan.as_ref().map_or(f64::from(ph), |plan| {
+            plan.legend
                 .iter()
                 .filter(|b| b.is_footer())
-                .map(|b| b.bottom() + 8.0 * m.s - f64::from(ph))
-                .fold(0.0, f64::max)
+                .map(|b| b.bottom() + 8.0 * m.s)
+                .fold(plan.frame.y1 + PANEL_BOTTOM * m.s, f64::max)
         });
-        rows[r] = rows[r].max(ph + extra.ceil() as i32);
+        rows[r] = rows[r].max(need.ceil() as i32);
     }
     if rows.is_empty() {
         rows.push(ph);
@@ -459,8 +460,10 @@ fn note_lines(fig: &Figure, m: &Metrics) -> Vec<String> {
             lines.extend(legend::wrap(n, m.font(NOTE_TEXT), width));
         }
     }
-    for (p, letter) in fig.panels.iter().zip(panel_letters(fig)) {
-        for n in &p.notes {
+    let plans = panel_plans(fig, m);
+    for ((p, letter), plan) in fig.panels.iter().zip(panel_letters(fig)).zip(&plans) {
+        let instead = plan.iter().flat_map(|plan| plan.instead.iter());
+        for n in p.notes.iter().chain(instead) {
             if seen.contains(&n.as_str()) {
                 continue;
             }
@@ -524,14 +527,20 @@ fn shown_panels(fig: &Figure) -> Vec<std::borrow::Cow<'_, Panel>> {
                 shown.push(names);
             }
             let lone = letter != p.label;
-            // A map over lengths in one unit on both axes (a top view, a cross-section) keeps
-            // its aspect: square cells stay square, circles round.
+            // A map over lengths in one unit on both axes and of comparable spans (a top view,
+            // a cross-section) keeps its aspect: square cells stay square, circles round. A map
+            // over two parameters that share a unit (Z₀ and σ_rms in nm, spans 7:1) does not.
+            let comparable = p.data_bounds().is_some_and(|((x0, x1), (y0, y1))| {
+                let r = (x1 - x0) / (y1 - y0);
+                (0.5..=2.0).contains(&r)
+            });
             let square = p.field.is_some()
                 && !p.equal_aspect
                 && p.x.scale == Scale::Linear
                 && p.y.scale == Scale::Linear
                 && !p.x.unit.is_empty()
-                && p.x.unit == p.y.unit;
+                && p.x.unit == p.y.unit
+                && comparable;
             if !repeated && !lone && !square && p.notes.is_empty() {
                 return Cow::Borrowed(p);
             }
@@ -637,6 +646,9 @@ fn cell_edges(g: &[f64], scale: Scale) -> Option<(f64, f64)> {
     }
 }
 
+/// Room under a panel's frame for the tick labels and the x-axis title (layout units).
+const PANEL_BOTTOM: f64 = 56.0;
+
 /// The plotting frame of a panel of size `w` × `h` pixels before the legend is placed, and
 /// whether it has a colour bar; `None` when there is nothing to draw.
 fn panel_frame(panel: &Panel, w: f64, h: f64, m: &Metrics) -> Option<(Frame, bool, [f64; 4])> {
@@ -646,12 +658,14 @@ fn panel_frame(panel: &Panel, w: f64, h: f64, m: &Metrics) -> Option<(Frame, boo
     let frame_box = (
         92.0 * m.s,
         w - if has_bar { 110.0 } else { 24.0 } * m.s,
-        (if panel.title.is_empty() && panel.label.is_empty() {
-            14.0
+        if panel.title.is_empty() && panel.label.is_empty() {
+            14.0 * m.s
         } else {
-            38.0
-        }) * m.s,
-        h - 56.0 * m.s,
+            // A heading wrapped onto two lines takes a line more.
+            let head = heading(panel, 92.0 * m.s, w, m);
+            38.0 * m.s + head.row * (head.lines.len().max(1) - 1) as f64
+        },
+        h - PANEL_BOTTOM * m.s,
     );
     let ((xlo, xhi), (ylo, yhi)) = panel.data_bounds()?;
     // A colour map fills its frame (as far as its cells reach), unless something drawn over
@@ -682,9 +696,9 @@ fn panel_frame(panel: &Panel, w: f64, h: f64, m: &Metrics) -> Option<(Frame, boo
         if dx > 0.0 && dy > 0.0 {
             let unit = (fw / dx).min(fh / dy);
             let (nw, nh) = (unit * dx, unit * dy);
+            // Centred across, at the top: the row shrinks to the frame's height.
             frame_box.0 += 0.5 * (fw - nw);
             frame_box.1 = frame_box.0 + nw;
-            frame_box.2 += 0.5 * (fh - nh);
             frame_box.3 = frame_box.2 + nh;
         }
     }
@@ -704,10 +718,146 @@ fn panel_frame(panel: &Panel, w: f64, h: f64, m: &Metrics) -> Option<(Frame, boo
     ))
 }
 
+/// A panel laid out before anything is drawn: the frame, the legend, the ticks, the texts
+/// placed beside markers and contour lines, and the data they were placed clear of.
+struct PanelPlan {
+    frame: Frame,
+    colors: Vec<usize>,
+    legend: Vec<legend::LegendPlan>,
+    x_ticks: (super::axes::Ticks, Option<i32>),
+    y_ticks: (super::axes::Ticks, Option<i32>),
+    /// Marker and contour labels with their places.
+    texts: Vec<place::Placed>,
+    /// What the notes under the figure say for labels that found no free place.
+    instead: Vec<String>,
+    /// Pixel points of everything drawn as data: curves (densified), markers, arrows,
+    /// contour lines.
+    data: Vec<(f64, f64)>,
+}
+
+/// Lay out a panel of `w` × `h` pixels ([`PanelPlan`]); `None` when there is nothing to draw.
+fn plan_panel(panel: &Panel, w: f64, h: f64, m: &Metrics) -> Option<PanelPlan> {
+    let (frame, has_bar, ranges) = panel_frame(panel, w, h, m)?;
+    let colors = panel.series_colors();
+    let (frame, legend) = plan_legend(panel, frame, &colors, m, w, has_bar);
+    let [xa, xb, ya, yb] = ranges;
+    let x_ticks = spaced_ticks((xa, xb), panel.x.scale, 6, &|v| frame.tx(v), true, m);
+    let y_ticks = spaced_ticks((ya, yb), panel.y.scale, 6, &|v| frame.ty(v), false, m);
+    let mut data = legend::covered_points(panel, &frame);
+    for a in &panel.arrows {
+        data.extend(legend::densify(&frame, &[a.from, a.to]));
+    }
+    let mut first = Vec::new();
+    let mut last = Vec::new();
+    if let Some(field) = &panel.field {
+        let over_colours = has_bar;
+        let highlight: Vec<f64> = field.highlight.iter().map(|(l, _)| *l).collect();
+        for level in field.contour_levels() {
+            let emphasised = highlight.contains(&level);
+            let mut lines = field.contour(level);
+            for line in &lines {
+                data.extend(legend::densify(&frame, line));
+            }
+            lines.sort_by_key(|l| std::cmp::Reverse(l.len()));
+            // Along the longest line first, then at the middle of the others.
+            let mut anchors: Vec<(f64, f64)> = Vec::new();
+            if let Some(line) = lines.first() {
+                for f in [0.5, 0.3, 0.7, 0.15, 0.85, 0.05, 0.95] {
+                    anchors.extend(frame.map(line[((line.len() - 1) as f64 * f) as usize]));
+                }
+            }
+            anchors.extend(lines.iter().skip(1).filter_map(|l| frame.map(l[l.len() / 2])));
+            anchors.retain(|p| frame.inside(*p));
+            let color = contour_color(emphasised, over_colours);
+            let text = field.highlight.iter().find(|(l, _)| *l == level).map_or_else(
+                || tick_markup(&super::axes::format_number(level)),
+                |(_, t)| t.clone(),
+            );
+            let request = place::Request {
+                // A level with no line in the frame has nothing to label.
+                instead: (emphasised && !anchors.is_empty()).then(|| format!("red line: {text}")),
+                text,
+                size: m.font(if emphasised { 13.0 } else { SMALL_TEXT }),
+                bold: emphasised,
+                color,
+                anchors,
+                gap: 3.0 * m.s,
+                ground: emphasised && over_colours,
+            };
+            if emphasised {
+                first.push(request);
+            } else {
+                last.push(request);
+            }
+        }
+    }
+    for marker in &panel.markers {
+        if let Some(label) = &marker.label
+            && let Some(p) = frame.map((marker.x, marker.y)).filter(|p| frame.inside(*p))
+        {
+            first.push(place::Request {
+                instead: Some(format!("{label}: {}", marker.name)),
+                text: label.clone(),
+                size: m.font(14.0),
+                bold: true,
+                color: BLACK,
+                anchors: vec![p],
+                gap: 8.0 * m.s,
+                ground: false,
+            });
+        }
+    }
+    first.extend(last);
+    let taken: Vec<_> = legend
+        .iter()
+        .filter(|b| !b.is_footer())
+        .map(|b| b.rect())
+        .collect();
+    let (texts, instead) = place::place(first, &frame, &data, &taken, m);
+    Some(PanelPlan {
+        frame,
+        colors,
+        legend,
+        x_ticks,
+        y_ticks,
+        texts,
+        instead,
+        data,
+    })
+}
+
+/// Colour of a highlighted contour level and its label.
+const HIGHLIGHT: RGBColor = RGBColor(200, 0, 0);
+
+/// Colour of a contour line and its label: red for a highlighted level, white over a colour
+/// map, else dark grey.
+fn contour_color(highlighted: bool, over_colours: bool) -> RGBColor {
+    if highlighted {
+        HIGHLIGHT
+    } else if over_colours {
+        WHITE
+    } else {
+        RGBColor(60, 60, 60)
+    }
+}
+
+/// The plan of every panel as drawn ([`shown_panels`]) with the metrics `m`.
+fn panel_plans(fig: &Figure, m: &Metrics) -> Vec<Option<PanelPlan>> {
+    let (pw, ph) = (m.px(m.panel.0), m.px(m.panel.1));
+    shown_panels(fig)
+        .iter()
+        .enumerate()
+        .map(|(k, panel)| {
+            let (_, _, w) = panel_slot(fig.panels.len(), k, pw);
+            plan_panel(panel, f64::from(w), f64::from(ph), m)
+        })
+        .collect()
+}
+
 fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -> Draw<()> {
     // The frame is laid out in a panel of the nominal height; notes under it extend the area.
     let (w, h) = (f64::from(area.dim_in_pixel().0), f64::from(m.px(m.panel.1)));
-    let Some((frame, has_bar, [xa, xb, ya, yb])) = panel_frame(panel, w, h, m) else {
+    let Some(plan) = plan_panel(panel, w, h, m) else {
         return draw_label(
             area,
             Label::new("no data", m.font(14.0)),
@@ -716,11 +866,18 @@ fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -
             m,
         );
     };
+    let PanelPlan {
+        frame,
+        colors,
+        legend: legend_boxes,
+        x_ticks: (xt, x_power),
+        y_ticks: (yt, y_power),
+        texts,
+        ..
+    } = plan;
     if !(frame.xr.1 > frame.xr.0 && frame.yr.1 > frame.yr.0) {
         return Err(format!("empty axis range in panel `{}`", panel.title));
     }
-    let colors = panel.series_colors();
-    let (frame, legend_boxes) = plan_legend(panel, frame, &colors, m, w, has_bar);
     let grey = RGBColor(225, 225, 225);
 
     // Field first.
@@ -744,8 +901,6 @@ fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -
     }
 
     // Grid.
-    let (xt, x_power) = common_power(ticks(xa, xb, panel.x.scale, 6));
-    let (yt, y_power) = common_power(ticks(ya, yb, panel.y.scale, 6));
     if panel.field.is_none() {
         for &v in &xt.values {
             if let Some(px) = frame.tx(v) {
@@ -782,8 +937,7 @@ fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -
     }
 
     if let Some(field) = &panel.field {
-        let boxes: Vec<_> = legend_boxes.iter().map(|b| b.rect()).collect();
-        draw_contours(area, &frame, field, bar_range.is_some(), &boxes, m)?;
+        draw_contours(area, &frame, field, bar_range.is_some(), m)?;
     }
 
     // Series.
@@ -836,21 +990,31 @@ fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -
         }
     }
 
-    // Markers and their labels.
+    // Markers.
     for marker in &panel.markers {
         let color = rgb(palette(panel.marker_color(marker, &colors).unwrap_or(7)));
         if let Some(p) = frame.map((marker.x, marker.y)).filter(|p| frame.inside(*p)) {
             draw_marker(area, p, marker.shape, color, m)?;
-            if let Some(label) = &marker.label {
-                draw_label(
-                    area,
-                    Label::new(label, m.font(14.0)).bold(),
-                    (p.0 + 7.0 * m.s, p.1 - 5.0 * m.s),
-                    (Anchor::Start, Baseline::Bottom),
-                    m,
-                )?;
-            }
         }
+    }
+
+    // Marker and contour labels, each where it covers no data ([`plan_panel`]).
+    for t in &texts {
+        if t.ground {
+            // A light ground keeps a highlighted level's label readable over the dark map.
+            let pad = 2.0 * m.s;
+            let (x0, y0, x1, y1) = t.rect();
+            let ground = [
+                (x0 - pad, y0 - pad),
+                (x1 + pad, y0 - pad),
+                (x1 + pad, y1 + pad),
+                (x0 - pad, y1 + pad),
+            ];
+            fill_polygon(area, &ground, WHITE.mix(0.8), m)?;
+        }
+        let label = Label::new(&t.text, t.size).color(t.color);
+        let label = if t.bold { label.bold() } else { label };
+        draw_label(area, label, (t.x, t.y), (Anchor::Start, Baseline::Top), m)?;
     }
 
     let titles = (
@@ -867,73 +1031,24 @@ fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -
     Ok(())
 }
 
-/// The contour lines of a field, each level labelled once at the middle of its longest line;
-/// the highlighted levels (a measured value) thicker, in red, with their own label. A label
-/// that would overlap one already drawn, or the legend's boxes `covered` (left, top, right,
-/// bottom), is left out.
+/// The contour lines of a field; the highlighted levels (a measured value) thicker, in red.
+/// Their labels are placed with the panel's other texts ([`plan_panel`]).
 fn draw_contours<DB: DrawingBackend>(
     area: &Area<DB>,
     frame: &Frame,
     field: &crate::figure::Field,
     over_colours: bool,
-    covered: &[(f64, f64, f64, f64)],
     m: &Metrics,
 ) -> Draw<()> {
-    let highlight: Vec<f64> = field.highlight.iter().map(|(l, _)| *l).collect();
-    let mut levels = field.contour_levels();
-    // Highlighted levels label first: their labels win where two would overlap.
-    levels.sort_by_key(|l| !highlight.contains(l));
-    let mut taken: Vec<(f64, f64, f64, f64)> = covered.to_vec();
-    for level in levels {
-        let emphasised = highlight.contains(&level);
-        let color = if emphasised {
-            RGBColor(200, 0, 0)
-        } else if over_colours {
-            WHITE
-        } else {
-            RGBColor(60, 60, 60)
-        };
-        let lines = field.contour(level);
-        for line in &lines {
+    for level in field.contour_levels() {
+        let emphasised = field.highlight.iter().any(|(l, _)| *l == level);
+        let color = contour_color(emphasised, over_colours);
+        for line in &field.contour(level) {
             for run in pixel_runs(frame, line) {
                 let width = if emphasised { 2.6 } else { 1.0 } * m.s;
                 draw_polyline(area, &run, color.to_rgba(), width, m)?;
             }
         }
-        let Some(line) = lines.into_iter().max_by_key(Vec::len) else {
-            continue;
-        };
-        let Some(p) = frame.map(line[line.len() / 2]).filter(|p| frame.inside(*p)) else {
-            continue;
-        };
-        let text = field.highlight.iter().find(|(l, _)| *l == level).map_or_else(
-            || tick_markup(&super::axes::format_number(level)),
-            |(_, t)| t.clone(),
-        );
-        let label = Label::new(&text, m.font(if emphasised { 13.0 } else { SMALL_TEXT })).color(color);
-        let label = if emphasised { label.bold() } else { label };
-        // Right of the point, or left of it where the text would leave the frame.
-        let x = (p.0 + 3.0 * m.s).min(frame.x1 - label.width() - 3.0 * m.s);
-        let y = (p.1 - 2.0 * m.s).max(frame.y0 + 1.2 * label.size);
-        let bbox = (x, y - 1.1 * label.size, x + label.width(), y);
-        let overlaps =
-            |b: &(f64, f64, f64, f64)| bbox.0 < b.2 && b.0 < bbox.2 && bbox.1 < b.3 && b.1 < bbox.3;
-        if taken.iter().any(overlaps) {
-            continue;
-        }
-        taken.push(bbox);
-        if emphasised && over_colours {
-            // A light ground keeps the measured level's label readable over the dark map.
-            let pad = 2.0 * m.s;
-            let ground = [
-                (bbox.0 - pad, bbox.1 - pad),
-                (bbox.2 + pad, bbox.1 - pad),
-                (bbox.2 + pad, bbox.3 + pad),
-                (bbox.0 - pad, bbox.3 + pad),
-            ];
-            fill_polygon(area, &ground, WHITE.mix(0.8), m)?;
-        }
-        draw_label(area, label, (x, y), (Anchor::Start, Baseline::Bottom), m)?;
     }
     Ok(())
 }
@@ -1016,28 +1131,102 @@ fn draw_axes<DB: DrawingBackend>(
         (Anchor::Middle, Baseline::Top),
         m,
     )?;
-    // The panel letter in bold at 9 pt, the title after it in bold at 8 pt (smaller where it
-    // is too long for the panel, never below 6 pt).
-    let mut x = frame.x0;
+    // The panel letter in bold at 9 pt, the title after it in bold ([`heading`]).
+    let head = heading(panel, frame.x0, f64::from(area.dim_in_pixel().0), m);
     let at_top = frame.y0 - 8.0 * m.s;
     if !panel.label.is_empty() {
         let letter = Label::new(&panel.label, m.font(PANEL_LETTER)).bold();
-        let w = letter.width();
-        draw_label(area, letter, (x, at_top), (Anchor::Start, Baseline::Bottom), m)?;
-        x += w + 0.35 * m.font(PANEL_LETTER);
-    }
-    if !panel.title.is_empty() {
-        let room = f64::from(area.dim_in_pixel().0) - x - 4.0 * m.s;
-        let size = fitting_size(&panel.title, m.font(15.0), true, room, m);
+        let first = at_top - head.row * (head.lines.len().max(1) - 1) as f64;
         draw_label(
             area,
-            Label::new(&panel.title, size).bold(),
-            (x, at_top),
+            letter,
+            (frame.x0, first),
+            (Anchor::Start, Baseline::Bottom),
+            m,
+        )?;
+    }
+    let n = head.lines.len();
+    for (k, line) in head.lines.iter().enumerate() {
+        draw_label(
+            area,
+            Label::new(line, head.size).bold(),
+            (head.x, at_top - head.row * (n - 1 - k) as f64),
             (Anchor::Start, Baseline::Bottom),
             m,
         )?;
     }
     Ok(())
+}
+
+/// A panel's heading as laid out: the title's lines, their size, the left edge of the title
+/// (after the letter) and the distance between lines (pixels).
+struct Heading {
+    lines: Vec<String>,
+    size: f64,
+    x: f64,
+    row: f64,
+}
+
+impl Heading {
+    /// The right edge of the widest line (pixels of the panel's area).
+    fn right(&self) -> f64 {
+        self.lines
+            .iter()
+            .map(|l| self.x + crate::render::text::width(l, self.size, true))
+            .fold(self.x, f64::max)
+    }
+}
+
+/// The heading of a panel whose frame starts at `x0` in an area `area_w` pixels wide: the
+/// letter in bold at 9 pt, then the title in bold at 8 pt on one line; where that is too
+/// long, smaller down to 6 pt, else wrapped onto two lines (smaller where still too long,
+/// never below 6 pt).
+fn heading(panel: &Panel, x0: f64, area_w: f64, m: &Metrics) -> Heading {
+    let letter = if panel.label.is_empty() {
+        0.0
+    } else {
+        crate::render::text::width(&panel.label, m.font(PANEL_LETTER), true) + 0.35 * m.font(PANEL_LETTER)
+    };
+    let x = x0 + letter;
+    let room = area_w - x - 4.0 * m.s;
+    let size = m.font(15.0);
+    let row = 1.2 * size;
+    if panel.title.is_empty() {
+        return Heading {
+            lines: Vec::new(),
+            size,
+            x,
+            row,
+        };
+    }
+    let width = |t: &str, size: f64| crate::render::text::width(t, size, true);
+    let one = width(&panel.title, size);
+    if one <= room || size * room / one >= m.font(MIN_TEXT) {
+        return Heading {
+            lines: vec![panel.title.clone()],
+            size: size.min(size * room / one),
+            x,
+            row,
+        };
+    }
+    let mut lines = legend::wrap(&panel.title, size, room);
+    if lines.len() > 2 {
+        // Two lines at the least size, the rest of the words on the second.
+        let least = legend::wrap(&panel.title, m.font(MIN_TEXT), room);
+        lines = if least.len() <= 2 {
+            least
+        } else {
+            vec![least[0].clone(), least[1..].join(" ")]
+        };
+    }
+    let widest = lines.iter().map(|l| width(l, size)).fold(0.0, f64::max);
+    let size = (size * room / widest).min(size).max(m.font(MIN_TEXT));
+    Heading {
+        lines,
+        size,
+        x,
+        row: 1.2 * size,
+    }
 }
 
 /// The colour bar of a filled field right of the frame: the colour map, ticks with labels and
@@ -1071,7 +1260,8 @@ fn draw_colour_bar<DB: DrawingBackend>(
         (bx0, frame.y0),
     ];
     draw_polyline(area, &outline, BLACK.to_rgba(), 1.0, m)?;
-    let (bt, power) = common_power(ticks(lo, hi, Scale::Linear, 5));
+    let at = |v: f64| Some(frame.y1 - (v - lo) / (hi - lo).max(f64::MIN_POSITIVE) * (frame.y1 - frame.y0));
+    let (bt, power) = spaced_ticks((lo, hi), Scale::Linear, 5, &at, false, m);
     let mut widest = 0.0f64;
     for (v, label) in bt.values.iter().zip(&bt.labels) {
         let y = frame.y1 - (v - lo) / (hi - lo).max(f64::MIN_POSITIVE) * (frame.y1 - frame.y0);
@@ -1133,6 +1323,84 @@ fn common_power(t: super::axes::Ticks) -> (super::axes::Ticks, Option<i32>) {
         })
         .collect();
     (super::axes::Ticks { labels, ..t }, Some(k))
+}
+
+/// The ticks of an axis from `lo` to `hi` whose labels do not run together where they are
+/// drawn (`at` maps a value to its pixel along the axis; `horizontal` for labels side by side
+/// under an x axis, else stacked beside a y axis or a colour bar): the ticks of [`ticks`] for
+/// `target` intervals, else for fewer (at least three ticks), else every second (third, ...)
+/// of them, keeping zero. Relabelled with a common power of ten ([`common_power`]).
+fn spaced_ticks(
+    (lo, hi): (f64, f64),
+    scale: Scale,
+    target: usize,
+    at: &dyn Fn(f64) -> Option<f64>,
+    horizontal: bool,
+    m: &Metrics,
+) -> (super::axes::Ticks, Option<i32>) {
+    let font = m.font(TICK_TEXT);
+    let apart = |t: &super::axes::Ticks| {
+        tick_boxes(t, at, horizontal, (0.0, 0.0), font)
+            .windows(2)
+            .all(|w| !place::overlap(w[0], w[1], 0.4 * font))
+    };
+    let first = common_power(ticks(lo, hi, scale, target));
+    if apart(&first.0) {
+        return first;
+    }
+    for fewer in (3..target).rev() {
+        let t = common_power(ticks(lo, hi, scale, fewer));
+        if t.0.values.len() >= 3 && apart(&t.0) {
+            return t;
+        }
+    }
+    let (t, power) = first;
+    let zero = t.values.iter().position(|v| *v == 0.0).unwrap_or(0);
+    for k in 2..t.values.len().max(2) {
+        let keep = |i: &usize| i % k == zero % k;
+        let thin = super::axes::Ticks {
+            values: (0..t.values.len()).filter(keep).map(|i| t.values[i]).collect(),
+            labels: (0..t.labels.len())
+                .filter(keep)
+                .map(|i| t.labels[i].clone())
+                .collect(),
+            minor: t.minor.clone(),
+        };
+        if apart(&thin) || thin.values.len() <= 2 {
+            return (thin, power);
+        }
+    }
+    (t, power)
+}
+
+/// The boxes (left, top, right, bottom) of tick labels at `font` px: centred under their tick
+/// below `edge.0` for an x axis (`horizontal`), else right-aligned left of `edge.1` and centred
+/// on their tick; in order along the axis.
+fn tick_boxes(
+    t: &super::axes::Ticks,
+    at: &dyn Fn(f64) -> Option<f64>,
+    horizontal: bool,
+    (below, right): (f64, f64),
+    font: f64,
+) -> Vec<(f64, f64, f64, f64)> {
+    let h = place::text_height(font);
+    let mut boxes: Vec<(f64, f64, f64, f64)> = t
+        .values
+        .iter()
+        .zip(&t.labels)
+        .filter_map(|(&v, l)| {
+            let p = at(v)?;
+            let w = crate::render::text::width(&tick_markup(l), font, false);
+            Some(if horizontal {
+                (p - 0.5 * w, below, p + 0.5 * w, below + h)
+            } else {
+                (right - w, p - 0.5 * h, right, p + 0.5 * h)
+            })
+        })
+        .collect();
+    let along = |b: &(f64, f64, f64, f64)| if horizontal { b.0 + b.2 } else { b.1 + b.3 };
+    boxes.sort_by(|a, b| along(a).total_cmp(&along(b)));
+    boxes
 }
 
 /// An axis (or colour-bar) title with its unit and the common power of ten of its ticks:

@@ -587,6 +587,10 @@ crate::scene_params! {
 /// (2.39) as the cheapest method.
 pub struct Fig2_5Accuracy;
 
+/// A family of method settings: its name, the quantity its setting is (an axis title), and
+/// each setting's value with the method it stands for.
+type Family = (&'static str, &'static str, Vec<(f64, Method)>);
+
 /// One method setting: its label and accuracy, or loop sampling.
 #[derive(Clone, Copy)]
 enum Method {
@@ -630,7 +634,7 @@ impl Scene for Fig2_5Accuracy {
         "Spherical tip: accuracy against run time of the pull-off force and hysteresis";
     const CAPTION: &'static str = "Largest relative error over a set of alpha values of the pull-off force and the \
         hysteresis (2.38) of the sphere, as the root-finding tolerance (Brent), the Gauss-Legendre order, \
-        or the sampling of the loop-area method vary, against the setting (a) and the run time (b); \
+        or the sampling of the loop-area method vary, against each setting (a)-(c) and the run time (d); \
         the fits (2.37), (2.39) are the cheapest method.";
     const RESULTS: &'static [(&'static str, &'static str)] = &[
         (
@@ -683,9 +687,11 @@ impl Scene for Fig2_5Accuracy {
         let tolerances = [1e-2, 1e-3, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-14];
         let orders = [2usize, 3, 4, 6, 8, 12, 16, 24, 40];
         let samples = [50usize, 100, 200, 400, 800, 1600, 3200];
-        let families: Vec<(&str, Vec<(f64, Method)>)> = vec![
+        // Each family against its own setting, one quantity per axis: (name, axis, settings).
+        let families: Vec<Family> = vec![
             (
                 "Brent tolerance (40-point rule)",
+                "Root-finding tolerance x_tol",
                 tolerances
                     .iter()
                     .map(|&t| (t, Method::Exact(Accuracy { xtol: t, order: 40 })))
@@ -693,6 +699,7 @@ impl Scene for Fig2_5Accuracy {
             ),
             (
                 "Gauss-Legendre order (tolerance 1e-14)",
+                "Gauss-Legendre order n",
                 orders
                     .iter()
                     .map(|&n| {
@@ -708,24 +715,20 @@ impl Scene for Fig2_5Accuracy {
             ),
             (
                 "loop area, samples per branch",
+                "Samples per branch of the loop",
                 samples.iter().map(|&n| (n as f64, Method::Loop(n))).collect(),
             ),
-            ("fits (2.37), (2.39)", vec![(1.0, Method::Fits)]),
+            ("fits (2.37), (2.39)", "", vec![(1.0, Method::Fits)]),
         ];
         let floor = 1e-17;
-        let mut by_setting_off = Panel::new(
-            Axis::log("Setting (tolerance, order or samples)", ""),
-            Axis::log("Max relative error", ""),
-        )
-        .titled("(a)", "error against the setting");
-        let mut by_time = Panel::new(Axis::log("Run time", "s"), Axis::log("Max relative error", ""))
-            .titled("(b)", "error against run time");
+        let letters = ["(a)", "(b)", "(c)"];
+        let mut by_time = Panel::new(Axis::log("Run time", "s"), Axis::log("Max relative error", ""));
         let mut fig = Figure::new(Self::ID, Self::TITLE);
         // Progress: the reference above, then setting by setting.
-        let n_settings: usize = families.iter().map(|(_, s)| s.len()).sum();
+        let n_settings: usize = families.iter().map(|(_, _, s)| s.len()).sum();
         let mut done = 0;
         job.progress(0.05, "reference computed");
-        for (k, (name, settings)) in families.into_iter().enumerate() {
+        for (k, (name, axis, settings)) in families.into_iter().enumerate() {
             job.check()?;
             let mut off_pts = Vec::new();
             let mut h_pts = Vec::new();
@@ -765,10 +768,13 @@ impl Scene for Fig2_5Accuracy {
                 }
             }
             if !off_pts.is_empty() {
-                by_setting_off
+                let mut by_setting = Panel::new(Axis::log(axis, ""), Axis::log("Max relative error", ""))
+                    .titled(letters[k.min(2)], name);
+                by_setting
                     .add(Series::new(format!("pull-off, {name}"), Style::Stable, off_pts).with_color(k));
-                by_setting_off
+                by_setting
                     .add(Series::new(format!("hysteresis, {name}"), Style::Dashed, h_pts).with_color(k));
+                fig.panels.push(by_setting);
             }
             if p.time_runs {
                 let style = if off_t.len() == 1 {
@@ -785,9 +791,8 @@ impl Scene for Fig2_5Accuracy {
                 by_time.add(Series::new(format!("hysteresis, {name}"), style, h_t).with_color(k));
             }
         }
-        fig.panels.push(by_setting_off);
         if p.time_runs {
-            fig.panels.push(by_time);
+            fig.panels.push(by_time.titled("(d)", "error against run time"));
         }
         fig.result("reference_time_s", if p.time_runs { reference_time } else { 0.0 });
         fig.note(format!(

@@ -1168,9 +1168,8 @@ impl Sweep for Fig3_8 {
             values,
         );
         let (lo, hi) = field.value_range().unwrap_or((0.0, 1.0));
-        // Geometric levels: the loss per area spans decades over the grid.
-        let lo = lo.max(hi * 1e-6);
-        let levels: Vec<f64> = (1..8).map(|i| lo * (hi / lo).powf(f64::from(i) / 8.0)).collect();
+        // Levels at 1, 2, 5 × 10ⁿ: the loss per area spans decades over the grid.
+        let levels = crate::figure::round_log_levels(lo.max(hi * 1e-6), hi, 7);
         field.kind = FieldKind::Contour { levels, filled: true };
         field
             .highlight

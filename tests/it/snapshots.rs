@@ -68,6 +68,60 @@ fn legends_cover_no_data_point_in_any_scene() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// Issue 34, item 4: no text drawn in a panel's frame (marker labels, contour labels) lies over
+/// the plotted data (curves, markers, arrows, contour lines), over the legend or over another
+/// text; the tick labels of no axis run together; no panel heading runs past its panel. In
+/// every panel of every scene, with the placement the PNG renderer computes.
+#[test]
+fn texts_cover_no_data_nor_each_other_in_any_scene() {
+    let overlap =
+        |a: &(f64, f64, f64, f64), b: &(f64, f64, f64, f64)| a.0 < b.2 && b.0 < a.2 && a.1 < b.3 && b.1 < a.3;
+    let mut failures = Vec::new();
+    let mut texts = 0;
+    for (id, fig) in quick_figures() {
+        for (k, layout) in adhesion::render::plot::panel_layouts(fig).into_iter().enumerate() {
+            let Some(layout) = layout else { continue };
+            let panel = k + 1;
+            for (i, (text, r)) in layout.texts.iter().enumerate() {
+                texts += 1;
+                let under = layout
+                    .data
+                    .iter()
+                    .filter(|p| p.0 >= r.0 && p.0 <= r.2 && p.1 >= r.1 && p.1 <= r.3)
+                    .count();
+                if under > 0 {
+                    failures.push(format!("{id} panel {panel}: {text:?} over {under} data points"));
+                }
+                if layout.boxes.iter().any(|b| overlap(r, b)) {
+                    failures.push(format!("{id} panel {panel}: {text:?} over the legend"));
+                }
+                for (other, q) in &layout.texts[i + 1..] {
+                    if overlap(r, q) {
+                        failures.push(format!("{id} panel {panel}: {text:?} over {other:?}"));
+                    }
+                }
+                let (x0, x1, y0, y1) = layout.frame;
+                if r.0 < x0 || r.2 > x1 || r.1 < y0 || r.3 > y1 {
+                    failures.push(format!("{id} panel {panel}: {text:?} outside the frame"));
+                }
+            }
+            for (axis, boxes) in ["x", "y"].iter().zip(&layout.ticks) {
+                if boxes.windows(2).any(|w| overlap(&w[0], &w[1])) {
+                    failures.push(format!("{id} panel {panel}: {axis} tick labels run together"));
+                }
+            }
+            if layout.heading_right > layout.width {
+                failures.push(format!(
+                    "{id} panel {panel}: heading runs {:.0} px past the panel",
+                    layout.heading_right - layout.width
+                ));
+            }
+        }
+    }
+    assert!(texts > 20, "only {texts} texts placed");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 #[test]
 fn exported_csv_matches_the_stored_fixtures() {
     let update = std::env::var_os("UPDATE_SNAPSHOTS").is_some();

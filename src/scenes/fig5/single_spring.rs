@@ -107,32 +107,35 @@ impl Scene for Fig5_3 {
             for ((yname, which), label) in names.into_iter().zip(labels) {
                 let mut panel = Panel::new(Axis::linear("Gap d/σ", ""), Axis::linear(yname, ""))
                     .titled(label, format!("k = {ratio} k_cr"));
-                for (c, &u) in p.displacements.iter().enumerate() {
+                if which == 2 {
+                    // (5.20) does not depend on u: the curves of every displacement are one,
+                    // drawn once under one legend entry.
+                    let pts = gaps.iter().map(|&d| (d, s.curvature(d))).collect();
+                    panel.add(Series::new("every u/σ (coincide)", Style::Stable, pts).with_color(7));
+                }
+                for (c, &u) in p.displacements.iter().enumerate().filter(|_| which < 2) {
                     let pts = gaps
                         .iter()
                         .map(|&d| {
-                            let y = match which {
-                                0 => s.energy(u, d),
-                                1 => s.residual(u, d),
-                                _ => s.curvature(d),
+                            let y = if which == 0 {
+                                s.energy(u, d)
+                            } else {
+                                s.residual(u, d)
                             };
                             (d, y)
                         })
                         .collect();
                     panel.add(Series::new(format!("u/σ = {u}"), Style::Stable, pts).with_color(c));
-                    if which < 2 {
-                        // Mark the equilibria at this displacement (roots of (5.18)).
-                        let roots =
-                            crate::numerics::curve::all_roots(|d| s.residual(u, d), &gaps, 1e-12, 1e-12)?;
-                        for d in roots {
-                            let y = if which == 0 { s.energy(u, d) } else { 0.0 };
-                            let shape = if s.curvature(d) > 0.0 {
-                                MarkerShape::StableState
-                            } else {
-                                MarkerShape::UnstableState
-                            };
-                            panel.mark(Marker::new(format!("u/σ = {u}"), shape, d, y).with_color(c));
-                        }
+                    // Mark the equilibria at this displacement (roots of (5.18)).
+                    let roots = crate::numerics::curve::all_roots(|d| s.residual(u, d), &gaps, 1e-12, 1e-12)?;
+                    for d in roots {
+                        let y = if which == 0 { s.energy(u, d) } else { 0.0 };
+                        let shape = if s.curvature(d) > 0.0 {
+                            MarkerShape::StableState
+                        } else {
+                            MarkerShape::UnstableState
+                        };
+                        panel.mark(Marker::new(format!("u/σ = {u}"), shape, d, y).with_color(c));
                     }
                 }
                 if which == 2 {
@@ -152,6 +155,11 @@ impl Scene for Fig5_3 {
             }
         }
         fig.note("filled circles: stable equilibria (minimizers); open circles: unstable ones (maximizers)");
+        fig.note(format!(
+            "(c), (f): the second derivative (5.20) does not depend on the displacement, so the curves of all {} \
+             displacements coincide; drawn once",
+            p.displacements.len()
+        ));
         job.progress(1.0, "done");
         Ok(fig)
     }
