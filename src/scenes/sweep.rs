@@ -146,8 +146,7 @@ pub fn run<S: Sweep>(params: &S::Params, job: &Job) -> Result<Figure> {
             Ok(values)
         })
     };
-    // The previews' watcher blocks its thread: not a thread of the rayon pool the points run on.
-    let points = if job.wants_preview() && rayon::current_thread_index().is_none() {
+    let points = if job.wants_preview() {
         Previews::new(ids.len()).run::<S>(params, job, compute)?
     } else {
         compute(&|_, _| {})?
@@ -172,13 +171,13 @@ impl Previews {
         self.state.lock().ok().map(|s| (*s).clone())
     }
 
-    /// Run `compute` (the points, in parallel) on a thread of its own, told of each finished
-    /// point, while this thread sends a preview of the points finished so far whenever there
-    /// are new ones and [`PREVIEW_INTERVAL`] (or four times the last assembly) has passed. The
-    /// previews share the run's cancellation but not its progress; the last point sends none
-    /// (the complete figure follows). A cancelled run sends the points finished since the last
-    /// preview, if a partial assembly was seen to be quick, so the figure it keeps shows all it
-    /// computed.
+    /// Run `compute` (the points, in parallel), told of each finished point: the worker that
+    /// finishes a point sends a preview of the points finished so far when
+    /// [`PREVIEW_INTERVAL`] (or four times the last assembly) has passed and no other worker
+    /// is assembling one (the others go on computing). The previews share the run's
+    /// cancellation but not its progress; the last point sends none (the complete figure
+    /// follows). A cancelled run sends the points finished since the last preview, if a
+    /// partial assembly was seen to be quick, so the figure it keeps shows all it computed.
     ///
     /// # Errors
     /// Those of `compute`.
@@ -186,11 +185,12 @@ impl Previews {
         &self,
         params: &S::Params,
         job: &Job,
-        compute: impl FnOnce(&(dyn Fn(usize, &[f64]) + Sync)) -> Result<Vec<Vec<f64>>> + Send,
+        compute: impl FnOnce(&(dyn Fn(usize, &[f64]) + Sync)) -> Result<Vec<Vec<f64>>>,
     ) -> Result<Vec<Vec<f64>>> {
-        let watcher = std::thread::current();
         let silent = Job::quiet().with_cancel_flag(job.cancel_flag());
-        let (mut shown, mut next, mut cost) = (0, Instant::now(), None::<Duration>);
+        // The points shown by the last preview, when the next is due, and the last assembly's
+        // time.
+        let schedule = Mutex::new((0usize, Instant::now(), None::<Duration>));
         // Assemble the points finished so far with `with` (a job without progress) and send
         // them; how long the assembly took.
         let send = |shown: &mut usize, with: &Job| {
@@ -202,42 +202,27 @@ impl Previews {
             *shown = done;
             Some(start.elapsed())
         };
-        let outcome = std::thread::scope(|scope| {
-            let work = scope.spawn(|| {
-                let out = compute(&|id, values| {
-                    if let Ok(mut s) = self.state.lock() {
-                        s.0[id] = Some(values.to_vec());
-                        s.1 += 1;
-                    }
-                    watcher.unpark();
-                });
-                watcher.unpark();
-                out
-            });
-            while !work.is_finished() {
-                let (done, n) = self.state.lock().map_or((0, 0), |s| (s.1, s.0.len()));
-                let now = Instant::now();
-                if done <= shown || done == n || now < next {
-                    // Woken by the next finished point, or when the next preview is due.
-                    let wait = if done > shown {
-                        next - now
-                    } else {
-                        PREVIEW_INTERVAL
-                    };
-                    std::thread::park_timeout(wait);
-                    continue;
-                }
-                if let Some(c) = send(&mut shown, &silent) {
-                    cost = Some(c);
-                    next = Instant::now() + PREVIEW_INTERVAL.max(4 * c);
-                }
+        let outcome = compute(&|id, values| {
+            let Ok((done, n)) = self.state.lock().map(|mut s| {
+                s.0[id] = Some(values.to_vec());
+                s.1 += 1;
+                (s.1, s.0.len())
+            }) else {
+                return;
+            };
+            if done == n {
+                return;
             }
-            work.join()
+            if let Ok(mut sch) = schedule.try_lock()
+                && done > sch.0
+                && Instant::now() >= sch.1
+                && let Some(c) = send(&mut sch.0, &silent)
+            {
+                sch.2 = Some(c);
+                sch.1 = Instant::now() + PREVIEW_INTERVAL.max(4 * c);
+            }
         });
-        let outcome = match outcome {
-            Ok(outcome) => outcome,
-            Err(panic) => std::panic::resume_unwind(panic),
-        };
+        let (mut shown, _, cost) = schedule.into_inner().unwrap_or((0, Instant::now(), None));
         if matches!(outcome, Err(Error::Cancelled)) && cost.is_some_and(|c| c < Duration::from_millis(100)) {
             let done = self.state.lock().map_or(0, |s| s.1);
             if done > shown {
