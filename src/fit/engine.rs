@@ -973,7 +973,9 @@ fn fit_to(model: ContactModel, radius: f64, data: &FitData, cost_tol: f64) -> Re
         } else {
             // Coarse to fine: on a long curve the steps far from the minimum are taken on every
             // fourth row (still hundreds), and the fit on all rows starts at that minimum,
-            // where it needs a step or two. The answer is the fit on all rows.
+            // where it needs a step or two. The answer is the fit on all rows. Hertz starts at
+            // the exact profile over the contact point, a step or two from its minimum: it
+            // gains nothing from the coarse stage.
             let problem = |stride| ClosedForm {
                 model,
                 radius,
@@ -982,7 +984,7 @@ fn fit_to(model: ContactModel, radius: f64, data: &FitData, cost_tol: f64) -> Re
                 stride,
                 last: None,
             };
-            let coarse = (n >= COARSE_ROWS)
+            let coarse = (n >= COARSE_ROWS && model != ContactModel::Hertz)
                 .then(|| {
                     let loose = LmOptions {
                         cost_tol: 1e-6,
