@@ -95,7 +95,7 @@ fn gram(jac: &DMatrix<f64>) -> DMatrix<f64> {
 /// closed form accumulates the normal equations in the same pass as the cost, and never forms
 /// the m × n Jacobian.
 pub trait LeastSquares {
-    /// The number of residuals m.
+    /// The number of residuals m (asked for after the first cost).
     fn rows(&self) -> usize;
     /// ½‖r(x)‖², or `None` where a residual is not finite.
     fn cost(&mut self, x: &[f64]) -> Option<f64>;
@@ -109,13 +109,13 @@ struct Dense<'a> {
     residuals: &'a dyn Fn(&[f64]) -> Vec<f64>,
     jacobian: Option<&'a JacobianFn<'a>>,
     fd_step: f64,
-    m: usize,
+    /// The residuals of the last cost.
     last: Vec<f64>,
 }
 
 impl LeastSquares for Dense<'_> {
     fn rows(&self) -> usize {
-        self.m
+        self.last.len()
     }
 
     fn cost(&mut self, x: &[f64]) -> Option<f64> {
@@ -150,12 +150,10 @@ pub fn levenberg_marquardt(
     x0: &[f64],
     opts: LmOptions,
 ) -> Result<LmSolution> {
-    let m = residuals(x0).len();
     let mut problem = Dense {
         residuals,
         jacobian,
         fd_step: opts.fd_step,
-        m,
         last: Vec::new(),
     };
     minimize(&mut problem, x0, opts)
@@ -171,6 +169,8 @@ pub fn levenberg_marquardt(
 /// As [`levenberg_marquardt`].
 pub fn minimize(problem: &mut dyn LeastSquares, x0: &[f64], opts: LmOptions) -> Result<LmSolution> {
     let n = x0.len();
+    let mut x = x0.to_vec();
+    let start = problem.cost(&x);
     let m = problem.rows();
     if m < n {
         return Err(Error::invalid(
@@ -179,8 +179,7 @@ pub fn minimize(problem: &mut dyn LeastSquares, x0: &[f64], opts: LmOptions) -> 
             format!("need at least {n} residuals for {n} parameters"),
         ));
     }
-    let mut x = x0.to_vec();
-    let Some(mut c) = problem.cost(&x) else {
+    let Some(mut c) = start else {
         return Err(Error::invalid(
             "x0",
             format!("{x0:?}"),
