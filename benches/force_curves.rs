@@ -1,6 +1,7 @@
 //! Measured force curves: one fit with the contact point and the baseline free of a 2000-point
 //! instrument curve (JKR/machine-stiffness on the retract, Hertz on the approach), the
-//! preprocessing alone, and a 128 × 128 force map (16 384 curves) fitted in parallel.
+//! preprocessing alone, the JKR fit alone of the prepared curve (as nanite's fit is timed), and
+//! a 128 × 128 force map (16 384 curves) fitted in parallel.
 //!
 //! The curves are made by the machine-stiffness model (R = 1 µm, ℰ = 2 MPa, w = 40 mJ/m²,
 //! k_s = 0.5 N/m) as an instrument records them: height and force with offsets and 1 % noise.
@@ -11,7 +12,7 @@ use std::hint::black_box;
 use std::path::Path;
 
 use adhesion::fit::instrument::{PrepareOptions, Synthetic, fit_all, fit_curve, prepare, synthetic_curve};
-use adhesion::fit::{FitModel, FitSettings};
+use adhesion::fit::{FitModel, FitSettings, fit_with};
 use adhesion::models::machine_stiffness::{Experiment, TipGeometry};
 use adhesion::readers::ForceCurve;
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -74,6 +75,16 @@ fn force_curves(c: &mut Criterion) {
             },
         );
     }
+    // The fit alone of the prepared curve, as nanite's `fit_model` is timed (its preprocessing
+    // apart): the like-for-like figure for `benches/nanite_compare.py`.
+    let (prepared, pre) = prepare(&one, path, &opts).unwrap();
+    let s = FitSettings {
+        spring_constant: Some(pre.spring_constant_n_per_m),
+        ..settings(FitModel::Jkr)
+    };
+    group.bench_function(format!("Jkr fit of the prepared {rows}-point curve"), |b| {
+        b.iter(|| black_box(fit_with(&prepared, path, &s).unwrap()));
+    });
     group.finish();
     // A 128 × 128 map: 64 distinct curves (moduli 1-3 MPa, noise seeds) repeated over the grid.
     let distinct: Vec<ForceCurve> = (0..64)

@@ -730,14 +730,19 @@ pub fn turning_row(curve: &Curve, contact_start: usize) -> usize {
     };
     let x_max = d[..n].iter().map(|v| v - d[c]).fold(0.0f64, f64::max);
     let y_max = f[..n].iter().map(|v| v - base).fold(0.0f64, f64::max);
-    let scaled = |v: f64, m: f64| if m > 0.0 { (v / m).max(0.0) } else { 0.0 };
+    // Each scaled to its largest value (0 where that is not positive), by the reciprocal.
+    let inverse = |m: f64| if m > 0.0 { 1.0 / m } else { 0.0 };
+    let (x_inv, y_inv) = (inverse(x_max), inverse(y_max));
     let mut best = (0, f64::NEG_INFINITY);
     for k in 0..n {
-        let x = scaled(d[k] - d[c], x_max);
-        let mut y = scaled(f[k] - base, y_max);
-        if y * y_max < spread {
-            y = 0.0;
-        }
+        let x = ((d[k] - d[c]) * x_inv).max(0.0);
+        let y_raw = f[k] - base;
+        // Forces within the baseline's spread count as zero.
+        let y = if y_raw < spread {
+            0.0
+        } else {
+            (y_raw * y_inv).max(0.0)
+        };
         let r = x * x + y * y;
         if r > best.1 {
             best = (k, r);

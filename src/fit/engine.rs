@@ -166,6 +166,8 @@ struct Model {
     inv_h_hat: f64,
     /// Maugis-Dugdale: the stable contact branch as (δ, P) with δ increasing [m, N].
     branch: Vec<(f64, f64)>,
+    /// JKR: the branch's table, looked up once per model rather than per row.
+    jkr: &'static JkrTable,
 }
 
 /// The stable branch of the Maugis-Dugdale curve (3.3) through deep contact, as (δ, P) in SI with
@@ -257,12 +259,13 @@ impl Model {
             } else {
                 Vec::new()
             },
+            jkr: JkrTable::get(),
         }
     }
 
     /// The model force without baseline at depth `d` and its derivatives (∂P/∂ln w,
     /// ∂P/∂ln ℰ, ∂P/∂d_c).
-    #[inline]
+    #[inline(always)]
     fn force(&self, d: f64, in_contact: bool) -> (f64, [f64; 3]) {
         let delta = d - self.dc;
         match self.model {
@@ -290,7 +293,7 @@ impl Model {
                 // P = P̂(ā³ − 2ā^(3/2)), δ = ĥ(ā² − (4/3)√ā) on the stable branch (Sec. 2.3),
                 // in s = √ā: P̄ = s³(s³ − 2), h̄ = s⁴ − (4/3)s.
                 let hb = delta * self.inv_h_hat;
-                let root = jkr_root_radius_at_depth(hb);
+                let root = self.jkr.root(hb);
                 let s = root.s;
                 let s3 = s * s * s;
                 let pb = s3 * (s3 - 2.0);
@@ -335,106 +338,112 @@ struct JkrRoot {
     on_branch: bool,
 }
 
-/// s = √ā on the stable JKR branch at normalised depth h̄ = ā² − (4/3)√ā (Sec. 2.3.1), with
-/// ds/dh̄; as [`sphere_radius_at_depth`] but fast: s and ds/du from a cubic Hermite table in
-/// u = √(h̄ − h̄_D) (where s is smooth: s − s_D ∝ u at the fold), then one Newton step on
-/// s⁴ − (4/3)s = h̄ with the tabulated ds/dh̄ = (ds/du)/(2u) as the inverse slope (its error,
-/// about 1e-6 relative, multiplies the table's 1e-9: one division per depth, not three); beyond
-/// the table from s⁴ ≈ h̄ + (4/3)h̄^(1/4) and two exact Newton steps. Depths at or below the
-/// fold h̄_D give s_D = √ā_D (the clamp of the residuals). Agrees with
-/// [`sphere_radius_at_depth`] to 1e-13 relative away from the fold, where the depth's
-/// round-off dominates both (unit test).
-#[inline]
-fn jkr_root_radius_at_depth(hb: f64) -> JkrRoot {
-    static TABLE: std::sync::OnceLock<JkrTable> = std::sync::OnceLock::new();
-    let t = TABLE.get_or_init(JkrTable::new);
-    let f = |s: f64| s * s * s * s - 4.0 / 3.0 * s - hb;
-    let dh = hb - t.h_d;
-    if dh.is_nan() || dh <= 0.0 {
-        return JkrRoot {
-            s: t.s_d,
-            ds_dh: 0.0,
-            on_branch: false,
-        };
-    }
-    let u = dh.sqrt();
-    let (s, ds_dh) = if u < t.u_max {
-        let x = u * t.inv_du;
-        let i = (x as usize).min(t.s.len() - 2);
-        let r = x - i as f64;
-        let (s0, s1) = (t.s[i], t.s[i + 1]);
-        let (m0, m1) = (t.ds[i] * t.du, t.ds[i + 1] * t.du);
-        let (r2, r3) = (r * r, r * r * r);
-        let s = (2.0 * r3 - 3.0 * r2 + 1.0) * s0
-            + (r3 - 2.0 * r2 + r) * m0
-            + (-2.0 * r3 + 3.0 * r2) * s1
-            + (r3 - r2) * m1;
-        // ds/du from the same cubic; ds/dh̄ = (ds/du)/(2u).
-        let ds_dr = 6.0 * (r2 - r) * (s0 - s1) + (3.0 * r2 - 4.0 * r + 1.0) * m0 + (3.0 * r2 - 2.0 * r) * m1;
-        let ds_dh = ds_dr * t.inv_du * 0.5 / u;
-        (s - f(s) * ds_dh, ds_dh)
-    } else {
-        let df = |s: f64| 4.0 * s * s * s - 4.0 / 3.0;
-        let mut s = (hb + 4.0 / 3.0 * hb.powf(0.25)).powf(0.25);
-        s -= f(s) / df(s);
-        s -= f(s) / df(s);
-        (s, 1.0 / df(s))
-    };
-    if s > t.s_d {
-        JkrRoot {
-            s,
-            ds_dh,
-            on_branch: true,
-        }
-    } else {
-        JkrRoot {
-            s: t.s_d,
-            ds_dh: 0.0,
-            on_branch: false,
-        }
-    }
-}
-
-/// The table of [`jkr_root_radius_at_depth`]: s and ds/du at u = k·du.
+/// The table of [`JkrTable::root`]: on each interval [k·du, (k+1)·du] of u the
+/// Hermite cubic of s through s and ds/du at its ends, as the coefficients of
+/// s = c₀ + c₁r + c₂r² + c₃r³ in r = u/du − k (Horner's form: six operations for s and ds/dr).
+#[derive(Debug)]
 struct JkrTable {
     h_d: f64,
     s_d: f64,
-    du: f64,
+    /// 1/(2·du): ds/dh̄ = (ds/dr)/(2u·du).
+    half_inv_du: f64,
     inv_du: f64,
     u_max: f64,
-    s: Vec<f64>,
-    ds: Vec<f64>,
+    cubic: Vec<[f64; 4]>,
 }
 
 impl JkrTable {
+    /// The table, built on first use.
+    fn get() -> &'static Self {
+        static TABLE: std::sync::OnceLock<JkrTable> = std::sync::OnceLock::new();
+        TABLE.get_or_init(JkrTable::new)
+    }
+
     fn new() -> Self {
         let s_d = sphere_depth_minimum_radius().sqrt();
         let h_d = s_d.powi(4) - 4.0 / 3.0 * s_d;
         let n = 2049;
         let u_max = 64.0;
         let du = u_max / (n - 1) as f64;
-        let mut s = Vec::with_capacity(n);
-        let mut ds = Vec::with_capacity(n);
-        for k in 0..n {
-            let u = k as f64 * du;
-            if k == 0 {
-                s.push(s_d);
-                // h̄ − h̄_D ≈ 6s_D²(s − s_D)² at the fold.
-                ds.push(1.0 / (6f64.sqrt() * s_d));
-            } else {
-                let si = sphere_radius_at_depth(h_d + u * u).sqrt();
-                s.push(si);
-                ds.push(2.0 * u / (4.0 * si.powi(3) - 4.0 / 3.0));
-            }
-        }
+        // s and its slope in r (ds/du·du) at the nodes.
+        let nodes: Vec<(f64, f64)> = (0..n)
+            .map(|k| {
+                let u = k as f64 * du;
+                if k == 0 {
+                    // h̄ − h̄_D ≈ 6s_D²(s − s_D)² at the fold.
+                    (s_d, du / (6f64.sqrt() * s_d))
+                } else {
+                    let si = sphere_radius_at_depth(h_d + u * u).sqrt();
+                    (si, du * 2.0 * u / (4.0 * si.powi(3) - 4.0 / 3.0))
+                }
+            })
+            .collect();
+        let cubic = nodes
+            .windows(2)
+            .map(|w| {
+                let ((s0, m0), (s1, m1)) = (w[0], w[1]);
+                [s0, m0, 3.0 * (s1 - s0) - 2.0 * m0 - m1, 2.0 * (s0 - s1) + m0 + m1]
+            })
+            .collect();
         Self {
             h_d,
             s_d,
-            du,
+            half_inv_du: 0.5 / du,
             inv_du: 1.0 / du,
             u_max,
-            s,
-            ds,
+            cubic,
+        }
+    }
+
+    /// s = √ā on the stable JKR branch at normalised depth h̄ = ā² − (4/3)√ā (Sec. 2.3.1), with
+    /// ds/dh̄; as [`sphere_radius_at_depth`] but fast: s and ds/du from a cubic Hermite table in
+    /// u = √(h̄ − h̄_D) (where s is smooth: s − s_D ∝ u at the fold), then one Newton step on
+    /// s⁴ − (4/3)s = h̄ with the tabulated ds/dh̄ = (ds/du)/(2u) as the inverse slope (its error,
+    /// about 1e-6 relative, multiplies the table's 1e-9: one division per depth, not three); beyond
+    /// the table from s⁴ ≈ h̄ + (4/3)h̄^(1/4) and two exact Newton steps. Depths at or below the
+    /// fold h̄_D give s_D = √ā_D (the clamp of the residuals). Agrees with
+    /// [`sphere_radius_at_depth`] to 1e-13 relative away from the fold, where the depth's
+    /// round-off dominates both (unit test).
+    #[inline(always)]
+    fn root(&self, hb: f64) -> JkrRoot {
+        let f = |s: f64| s * s * s * s - 4.0 / 3.0 * s - hb;
+        let dh = hb - self.h_d;
+        if dh.is_nan() || dh <= 0.0 {
+            return JkrRoot {
+                s: self.s_d,
+                ds_dh: 0.0,
+                on_branch: false,
+            };
+        }
+        let u = dh.sqrt();
+        let (s, ds_dh) = if u < self.u_max {
+            let x = u * self.inv_du;
+            let i = (x as usize).min(self.cubic.len() - 1);
+            let r = x - i as f64;
+            let [c0, c1, c2, c3] = self.cubic[i];
+            let s = c0 + r * (c1 + r * (c2 + r * c3));
+            let ds_dr = c1 + r * (2.0 * c2 + r * 3.0 * c3);
+            let ds_dh = ds_dr * self.half_inv_du / u;
+            (s - f(s) * ds_dh, ds_dh)
+        } else {
+            let df = |s: f64| 4.0 * s * s * s - 4.0 / 3.0;
+            let mut s = (hb + 4.0 / 3.0 * hb.powf(0.25)).powf(0.25);
+            s -= f(s) / df(s);
+            s -= f(s) / df(s);
+            (s, 1.0 / df(s))
+        };
+        if s > self.s_d {
+            JkrRoot {
+                s,
+                ds_dh,
+                on_branch: true,
+            }
+        } else {
+            JkrRoot {
+                s: self.s_d,
+                ds_dh: 0.0,
+                on_branch: false,
+            }
         }
     }
 }
@@ -479,56 +488,115 @@ fn model_at(model: ContactModel, radius: f64, s: Scales, x: &[f64]) -> (Model, f
     (Model::new(model, radius, &p, s.reach - p.dc), f0)
 }
 
-/// Every `stride`-th row's residual (model − measured)/force scale, with the model's derivatives
-/// of the row (∂P/∂ln w, ∂P/∂ln ℰ, ∂P/∂d_c): the one residual formula of the fit.
-fn rows<'a>(
-    m: &'a Model,
-    f0: f64,
-    data: &'a FitData,
-    s: Scales,
-    stride: usize,
-) -> impl Iterator<Item = (f64, [f64; 3])> + 'a {
+/// A row's residual (model − measured)/force scale with the model's derivatives of the row
+/// (∂P/∂ln w, ∂P/∂ln ℰ, ∂P/∂d_c): the one residual formula of the fit. `inv` is 1/F.
+#[inline(always)]
+fn row(m: &Model, f0: f64, inv: f64, (d, f, in_contact): (f64, f64, bool)) -> (f64, [f64; 3]) {
+    let (force, grad) = m.force(d, in_contact);
+    ((force + f0 - f) * inv, grad)
+}
+
+fn residuals(model: ContactModel, radius: f64, data: &FitData, s: Scales, x: &[f64]) -> Vec<f64> {
+    let (m, f0) = model_at(model, radius, s, x);
     let inv = 1.0 / s.force;
     data.depth
         .iter()
         .zip(data.force)
         .zip(data.in_contact)
-        .step_by(stride.max(1))
-        .map(move |((&d, &f), &c)| {
-            let (force, grad) = m.force(d, c);
-            ((force + f0 - f) * inv, grad)
-        })
+        .map(|((&d, &f), &c)| row(&m, f0, inv, (d, f, c)).0)
+        .collect()
 }
 
-fn residuals(model: ContactModel, radius: f64, data: &FitData, s: Scales, x: &[f64]) -> Vec<f64> {
-    let (m, f0) = model_at(model, radius, s, x);
-    rows(&m, f0, data, s, 1).map(|(r, _)| r).collect()
-}
+/// About the number of rows of the coarse stage and of the ranking of starts: every k-th row,
+/// k = ⌊n/250⌋, leaves 250 to 499 rows (a pass over them costs a fraction of one over all
+/// rows). Over ten noise seeds of the force-curve bench (2 006 rows) the fit on all rows then
+/// took 3.3 passes on average (3 or 4) from the coarse minimum, as from every fourth row
+/// (3.2); from every 15th row it took 4 on the first seed. (Means of runs of rows in place of
+/// every k-th row gave 3 passes on every seed, but as many more coarse ones: no gain.)
+const COARSE_TARGET_ROWS: usize = 250;
 
-/// The cost Σr² at `x` over every `stride`-th row (infinite where a residual is not finite).
-fn cost(model: ContactModel, radius: f64, data: &FitData, s: Scales, x: &[f64], stride: usize) -> f64 {
-    let (m, f0) = model_at(model, radius, s, x);
-    let sum: f64 = rows(&m, f0, data, s, stride).map(|(r, _)| r * r).sum();
-    if sum.is_finite() { sum } else { f64::INFINITY }
+/// The stride that leaves about [`COARSE_TARGET_ROWS`] of `n` rows; curves of fewer than
+/// twice as many rows are fitted on all rows at once.
+fn coarse_stride(n: usize) -> usize {
+    (n / COARSE_TARGET_ROWS).max(1)
 }
-
-/// Curves of at least this many rows are fitted coarse to fine (see [`fit_to`]).
-const COARSE_ROWS: usize = 400;
 
 /// The fit of a model whose rows give their derivatives in closed form (Hertz, DMT, JKR) as
 /// [`LeastSquares`] over every `stride`-th row: one pass over the rows gives the cost and the
 /// normal equations together, the m × n Jacobian never formed. The normal equations of the
 /// last cost are kept.
-struct ClosedForm<'a> {
+///
+/// The adhesive models' rows out of contact carry no model force (their residual is
+/// (F₀ − f)/F and their derivatives vanish, as [`Model::force`] gives them to [`row`]): they
+/// enter every pass through their count, mean and spread, summed once, and the pass runs over
+/// the rows in contact only.
+struct ClosedForm {
     model: ContactModel,
     radius: f64,
-    data: &'a FitData<'a>,
     s: Scales,
-    stride: usize,
+    /// The rows the pass runs over, (depth [m], force [N], in contact).
+    rows: Vec<(f64, f64, bool)>,
+    /// The rows out of contact summed once (adhesive models; zero for Hertz).
+    free: FreeRows,
+    /// The number of rows m.
+    m: usize,
     last: Option<(Vec<f64>, DMatrix<f64>, DVector<f64>)>,
 }
 
-impl ClosedForm<'_> {
+/// Rows out of contact of an adhesive model: their count, the mean of f/F and
+/// Σ(f/F − mean)², so that Σ(F₀/F − f/F)² = count·(F₀/F − mean)² + spread.
+#[derive(Debug, Clone, Copy, Default)]
+struct FreeRows {
+    count: f64,
+    mean: f64,
+    spread: f64,
+}
+
+impl ClosedForm {
+    fn new(model: ContactModel, radius: f64, data: &FitData, s: Scales, stride: usize) -> Self {
+        let m = data.depth.len().div_ceil(stride.max(1));
+        let all = data
+            .depth
+            .iter()
+            .zip(data.force)
+            .zip(data.in_contact)
+            .step_by(stride.max(1))
+            .map(|((&d, &f), &c)| (d, f, c));
+        if !model.adhesive() {
+            return Self {
+                model,
+                radius,
+                s,
+                rows: all.collect(),
+                free: FreeRows::default(),
+                m,
+                last: None,
+            };
+        }
+        let inv = 1.0 / s.force;
+        let mut rows = Vec::with_capacity(m);
+        let mut free = Vec::with_capacity(m);
+        for r in all {
+            if r.2 {
+                rows.push(r);
+            } else {
+                free.push(r.1 * inv);
+            }
+        }
+        let count = free.len() as f64;
+        let mean = free.iter().sum::<f64>() / count.max(1.0);
+        let spread = free.iter().map(|f| (f - mean).powi(2)).sum();
+        Self {
+            model,
+            radius,
+            s,
+            rows,
+            free: FreeRows { count, mean, spread },
+            m,
+            last: None,
+        }
+    }
+
     /// ½Σr², JᵀJ and Jᵀr at `x` in the fitted parameters (ln w, ln ℰ, d_c/L, F₀/F, or without
     /// ln w for Hertz).
     fn evaluate(&self, x: &[f64]) -> (f64, DMatrix<f64>, DVector<f64>) {
@@ -538,9 +606,9 @@ impl ClosedForm<'_> {
         let scale = [inv, inv, s.length * inv];
         // Rows of the Jacobian: (g₀, g₁, g₂)·scale, and 1 for the baseline F₀/F.
         let (mut a, mut b, mut sum_j) = ([0.0f64; 6], [0.0f64; 3], [0.0f64; 3]);
-        let (mut rr, mut sum_r, mut count) = (0.0, 0.0, 0.0);
-        for (r, g) in rows(&m, f0, self.data, s, self.stride) {
-            count += 1.0;
+        let (mut rr, mut sum_r) = (0.0, 0.0);
+        for &data_row in &self.rows {
+            let (r, g) = row(&m, f0, inv, data_row);
             let j = [g[0] * scale[0], g[1] * scale[1], g[2] * scale[2]];
             rr += r * r;
             sum_r += r;
@@ -555,11 +623,15 @@ impl ClosedForm<'_> {
                 sum_j[k] += j[k];
             }
         }
+        let free = self.free;
+        let offset = f0 * inv - free.mean;
+        rr += free.count * offset * offset + free.spread;
+        sum_r += free.count * offset;
         let full = [
             [a[0], a[1], a[2], sum_j[0]],
             [a[1], a[3], a[4], sum_j[1]],
             [a[2], a[4], a[5], sum_j[2]],
-            [sum_j[0], sum_j[1], sum_j[2], count],
+            [sum_j[0], sum_j[1], sum_j[2], self.m as f64],
         ];
         let full_b = [b[0], b[1], b[2], sum_r];
         // Hertz has no ln w: its parameters are the last three.
@@ -571,9 +643,9 @@ impl ClosedForm<'_> {
     }
 }
 
-impl LeastSquares for ClosedForm<'_> {
+impl LeastSquares for ClosedForm {
     fn rows(&self) -> usize {
-        self.data.depth.len().div_ceil(self.stride)
+        self.m
     }
 
     fn cost(&mut self, x: &[f64]) -> Option<f64> {
@@ -766,24 +838,10 @@ fn jkr_start(data: &FitData, radius: f64) -> Option<(f64, f64, f64, f64)> {
     }
     let p_hat = -p_min / 0.78;
     let w = p_hat / (1.5 * pi * radius);
-    // The deepest row: solve P̄ = ā³ − 2ā^(3/2) = p_max/P̂ for ā ≥ 1 (increasing there).
-    let target = p_max / p_hat;
-    let (mut lo, mut hi) = (1.0f64, 2.0f64);
-    while hi.powi(3) - 2.0 * hi.powf(1.5) < target {
-        hi *= 2.0;
-        if hi > 1e12 {
-            return None;
-        }
-    }
-    for _ in 0..100 {
-        let mid = 0.5 * (lo + hi);
-        if mid.powi(3) - 2.0 * mid.powf(1.5) < target {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    let a_max = 0.5 * (lo + hi);
+    // The deepest row: P̄ = ā³ − 2ā^(3/2) = p_max/P̂ for ā ≥ 1, a quadratic in t = ā^(3/2):
+    // t² − 2t = p_max/P̂, t = 1 + √(1 + p_max/P̂).
+    let t = 1.0 + (1.0 + p_max / p_hat).sqrt();
+    let a_max = t.powf(2.0 / 3.0);
     let hb_max = a_max * a_max - 4.0 / 3.0 * a_max.sqrt();
     // The zero crossing of the force on the in-contact rows nearest the deepest row's side.
     let hb_zero = 2f64.cbrt() * (2.0 / 3.0);
@@ -950,54 +1008,52 @@ fn fit_to(model: ContactModel, radius: f64, data: &FitData, cost_tol: f64) -> Re
         cost_tol,
         ..LmOptions::default()
     };
-    // Starts in order of their cost (over every fourth row: enough to rank starts that differ
-    // by tens of percent, at a quarter of the evaluations); the fit runs from the best, and from
-    // the next only where it fails.
-    let stride = if starts.len() > 1 { 4 } else { 1 };
-    let mut ranked: Vec<(f64, &Vec<f64>)> = starts
-        .iter()
-        .map(|x0| (cost(model, radius, data, s, x0, stride), x0))
-        .filter(|(c, _)| c.is_finite())
-        .collect();
-    ranked.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // Coarse to fine: on a long curve the steps far from the minimum are taken on about 250
+    // rows ([`coarse_stride`]), and the fit on all rows starts at that minimum, where it needs
+    // a step or two. The answer is the fit on all rows. Hertz starts at the exact profile over
+    // the contact point, a step or two from its minimum: it gains nothing from the coarse
+    // stage. The coarse rows also rank the starts (enough for starts that differ by tens of
+    // percent): the fit runs from the best, and from the next only where it fails.
+    let closed_form = model != ContactModel::MaugisDugdale;
+    let stride = coarse_stride(n);
+    let coarse_stage = stride > 1 && model != ContactModel::Hertz;
+    let mut coarse_rows = (closed_form && (starts.len() > 1 || coarse_stage))
+        .then(|| ClosedForm::new(model, radius, data, s, stride));
+    let mut all_rows = closed_form.then(|| ClosedForm::new(model, radius, data, s, 1));
+    let mut ranked: Vec<(f64, &Vec<f64>)> = starts.iter().map(|x0| (0.0, x0)).collect();
+    if let (Some(p), true) = (coarse_rows.as_mut(), starts.len() > 1) {
+        for (c, x0) in &mut ranked {
+            *c = p.cost(x0).unwrap_or(f64::INFINITY);
+        }
+        ranked.retain(|(c, _)| c.is_finite());
+        ranked.sort_by(|a, b| a.0.total_cmp(&b.0));
+    }
     // Maugis-Dugdale's cost has local minima in Z₀ (a JKR-like small range against the true
     // one): every start is run to its end and the lowest kept.
     let every_start = model == ContactModel::MaugisDugdale;
     let mut best: Option<LmSolution> = None;
     for (_, x0) in ranked {
-        let solved = if model == ContactModel::MaugisDugdale {
-            // The branch is a table: its derivatives are taken by differences.
-            let res = |x: &[f64]| residuals(model, radius, data, s, x);
-            let jac = |x: &[f64]| fd_jacobian(&res, x);
-            levenberg_marquardt(&res, Some(&jac), x0, opts)
-        } else {
-            // Coarse to fine: on a long curve the steps far from the minimum are taken on every
-            // fourth row (still hundreds), and the fit on all rows starts at that minimum,
-            // where it needs a step or two. The answer is the fit on all rows. Hertz starts at
-            // the exact profile over the contact point, a step or two from its minimum: it
-            // gains nothing from the coarse stage.
-            let problem = |stride| ClosedForm {
-                model,
-                radius,
-                data,
-                s,
-                stride,
-                last: None,
-            };
-            let coarse = (n >= COARSE_ROWS && model != ContactModel::Hertz)
-                .then(|| {
+        let solved = match (coarse_rows.as_mut(), all_rows.as_mut()) {
+            (_, None) => {
+                // The branch is a table: its derivatives are taken by differences.
+                let res = |x: &[f64]| residuals(model, radius, data, s, x);
+                let jac = |x: &[f64]| fd_jacobian(&res, x);
+                levenberg_marquardt(&res, Some(&jac), x0, opts)
+            }
+            (coarse_rows, Some(all_rows)) => {
+                let coarse = coarse_rows.filter(|_| coarse_stage).and_then(|p| {
                     let loose = LmOptions {
                         cost_tol: 1e-6,
                         ..opts
                     };
-                    minimize(&mut problem(4), x0, loose).ok()
+                    minimize(p, x0, loose).ok()
+                });
+                let fine = coarse.as_ref().map_or(x0.as_slice(), |c| c.x.as_slice());
+                minimize(all_rows, fine, opts).or_else(|e| match coarse {
+                    Some(_) => minimize(all_rows, x0, opts),
+                    None => Err(e),
                 })
-                .flatten();
-            let fine = coarse.as_ref().map_or(x0.as_slice(), |c| c.x.as_slice());
-            minimize(&mut problem(1), fine, opts).or_else(|e| match coarse {
-                Some(_) => minimize(&mut problem(1), x0, opts),
-                None => Err(e),
-            })
+            }
         };
         if let Ok(sol) = solved
             && best.as_ref().is_none_or(|b| sol.residual_norm < b.residual_norm)
@@ -1273,7 +1329,7 @@ mod tests {
             if hb > 1e8 {
                 break;
             }
-            let root = jkr_root_radius_at_depth(hb);
+            let root = JkrTable::get().root(hb);
             assert!(root.on_branch, "h̄ − h̄_D = {}", hb - h_d);
             let (a, b) = (root.s * root.s, sphere_radius_at_depth(hb));
             // ds/dh̄ = 1/(4s³ − 4/3), to the table's accuracy and, near the fold, to the
@@ -1295,7 +1351,7 @@ mod tests {
         }
         assert!(worst.0 < 1.0, "{worst:?}");
         for below in [h_d - 1.0, h_d, f64::NAN] {
-            let root = jkr_root_radius_at_depth(below);
+            let root = JkrTable::get().root(below);
             assert_eq!((root.s, root.ds_dh, root.on_branch), (s_d, 0.0, false), "{below}");
         }
     }

@@ -28,9 +28,10 @@ pub struct Predictions {
 /// Model errors (invalid parameters).
 pub fn predictions(x: &Experiment) -> Result<Predictions> {
     let jkr = jkr_predictions(x)?;
+    let (pull_in, pull_off) = x.instabilities()?;
     Ok(Predictions {
-        pull_in: x.pull_in()?,
-        pull_off: x.pull_off()?,
+        pull_in,
+        pull_off,
         jkr_pull_in_force: jkr.pull_in_force,
         jkr_pull_off_force: jkr.pull_off_force,
         jkr_pull_off_depth: jkr.pull_off_depth,

@@ -333,13 +333,17 @@ impl MachineStiffness {
     /// # Errors
     /// Root-finding failures (not expected for finite Δ̄).
     pub fn stationary_points(&self, delta: f64, xtol: f64) -> Result<Vec<State>> {
+        self.stationary_points_between(delta, xtol, &self.folds(xtol)?)
+    }
+
+    /// [`Self::stationary_points`] with the folds already found.
+    fn stationary_points_between(&self, delta: f64, xtol: f64, folds: &[f64]) -> Result<Vec<State>> {
         if !delta.is_finite() {
             return Err(Error::invalid("delta", delta, "must be finite"));
         }
-        let folds = self.folds(xtol)?;
         let f = |a: f64| self.stage_displacement(a) - delta;
         let mut ends = vec![0.0];
-        ends.extend(&folds);
+        ends.extend(folds);
         let mut roots = Vec::new();
         for w in ends.windows(2) {
             let (lo, hi) = (w[0], w[1]);
@@ -366,12 +370,17 @@ impl MachineStiffness {
     /// # Errors
     /// As [`Self::stationary_points`].
     pub fn solution_points(&self, delta: f64, xtol: f64) -> Result<Vec<State>> {
+        self.solution_points_between(delta, xtol, &self.folds(xtol)?)
+    }
+
+    /// [`Self::solution_points`] with the folds already found.
+    fn solution_points_between(&self, delta: f64, xtol: f64, folds: &[f64]) -> Result<Vec<State>> {
         let mut out = Vec::new();
         if delta < 0.0 {
             out.push(Self::free_state(delta));
         }
         out.extend(
-            self.stationary_points(delta, xtol)?
+            self.stationary_points_between(delta, xtol, folds)?
                 .into_iter()
                 .filter(|s| s.stable),
         );
@@ -384,8 +393,25 @@ impl MachineStiffness {
     /// # Errors
     /// [`Error::Unresolvable`] if there is no stable contact state at Δ̄ = 0 (not expected).
     pub fn pull_in(&self, xtol: f64) -> Result<Instability> {
+        self.pull_in_between(xtol, &self.folds(xtol)?)
+    }
+
+    /// Both instabilities, (pull-in, pull-off), the folds found once for the two.
+    ///
+    /// # Errors
+    /// As [`Self::pull_in`], [`Self::pull_off`].
+    pub fn instabilities(&self, xtol: f64) -> Result<(Instability, Instability)> {
+        let folds = self.folds(xtol)?;
+        Ok((
+            self.pull_in_between(xtol, &folds)?,
+            self.pull_off_between(xtol, &folds)?,
+        ))
+    }
+
+    /// [`Self::pull_in`] with the folds already found.
+    fn pull_in_between(&self, xtol: f64, folds: &[f64]) -> Result<Instability> {
         let after = self
-            .stationary_points(0.0, xtol)?
+            .stationary_points_between(0.0, xtol, folds)?
             .into_iter()
             .find(|s| s.stable)
             .ok_or_else(|| Error::Unresolvable {
@@ -411,7 +437,11 @@ impl MachineStiffness {
     /// # Errors
     /// [`Error::Unresolvable`] if ḡ has no root or no solution exists after the jump.
     pub fn pull_off(&self, xtol: f64) -> Result<Instability> {
-        let folds = self.folds(xtol)?;
+        self.pull_off_between(xtol, &self.folds(xtol)?)
+    }
+
+    /// [`Self::pull_off`] with the folds already found.
+    fn pull_off_between(&self, xtol: f64, folds: &[f64]) -> Result<Instability> {
         let &a_o = folds.last().ok_or_else(|| Error::Unresolvable {
             model: "machine stiffness",
             reason: format!("no pull-off fold (alpha = {})", self.alpha),
@@ -421,7 +451,7 @@ impl MachineStiffness {
             ..self.state(a_o)
         };
         let after = self
-            .solution_points(before.delta, xtol)?
+            .solution_points_between(before.delta, xtol, folds)?
             .into_iter()
             .rfind(|s| s.a < a_o - 10.0 * xtol)
             .ok_or_else(|| Error::Unresolvable {
@@ -783,6 +813,15 @@ impl Experiment {
     /// As [`MachineStiffness::pull_off`].
     pub fn pull_off(&self) -> Result<Instability> {
         Ok(self.instability_to_si(self.model()?.pull_off(1e-14)?))
+    }
+
+    /// Pull-in and pull-off in SI units, the folds found once for both.
+    ///
+    /// # Errors
+    /// As [`MachineStiffness::instabilities`].
+    pub fn instabilities(&self) -> Result<(Instability, Instability)> {
+        let (i, o) = self.model()?.instabilities(1e-14)?;
+        Ok((self.instability_to_si(i), self.instability_to_si(o)))
     }
 
     /// Hysteretic energy loss [J], Eq. (2.38) / (2.48).
