@@ -129,8 +129,9 @@ pub fn prepare(curve: &ForceCurve, path: &Path, opts: &PrepareOptions) -> Result
     } else {
         "height (piezo)"
     };
-    let mut height = Vec::new();
-    let mut force = Vec::new();
+    let samples: usize = segs.iter().map(|s| s.force.len()).sum();
+    let mut height = Vec::with_capacity(samples);
+    let mut force = Vec::with_capacity(samples);
     for s in &segs {
         let h = if measured {
             s.height_measured.as_deref()
