@@ -19,6 +19,29 @@
 //! stability test and the next tangent (`Energy::key`) keep the path to the digits and save
 //! 2-4 % of the factorisations: this cycle took 365 s before and 332 s after (single runs at a
 //! load average of 12-13 on the 2 cores; 51 s on a quiet machine before).
+//!
+//! Where a contact load step's iterations go (the coarse variant, traced iteration by
+//! iteration): the step starts from the tangent predictor (used in almost every contact step;
+//! a second-order predictor through the state before it cut the iterations by 2 % only), then
+//! 5-8 full Newton steps (line search t = 1) in which the largest gradient component bounces
+//! between 10 and 500 while the edge nodes settle on the steep repulsive wall (corrections of
+//! about 0.1 ζ0, the wall's own length scale), then a tail of 5-7 chord steps converging
+//! linearly (about 10× per step) from a gradient of 1 to the tolerance 1e-7: about 1 360 of
+//! the 3 865 iterations have a gradient below 0.02, where the energy (about 10⁵) no longer
+//! resolves a step's decrease. Such chord steps are now taken without the line search's
+//! energy evaluation (`newton/direct.rs`): the same path (P_adh −8.326694758259e-9 N, the two
+//! jumps at the same depths), 4 291 Newton iterations and 2 295 factorisations against 4 271
+//! and 2 309, and 52.5 s of CPU against 57.0 s (one run each, back to back, single runs of
+//! the bench cycle at a load average of 5-6 on the 2 cores: 64 s against 92 s of wall time).
+//! Refactorising sooner or later in the chord tail only trades iterations for
+//! factorisations (coarse variant: contraction 0.05: 3 186 iterations, 2 756 factorisations;
+//! 0.25: 3 865, 2 419; 0.5: 4 756, 2 145; the time within the noise). A threefold speed-up
+//! needs the bouncing phase gone: a local nonlinear solve of the wall nodes (each surface
+//! node's u_z to its own balance on the wall, as the iterative path's coordinate moves do,
+//! which needs `Energy::along_coordinate` of the body force element by element), or fewer
+//! bisections (319 minimisations for 121 targets and 8 jumps: the contact edge hopping node
+//! by node raises the jump measure against the tangent, and each false alarm costs a half
+//! step and a retry).
 
 mod common;
 
