@@ -8,6 +8,7 @@ use rayon::prelude::*;
 
 mod experiments;
 
+use self::experiments::XTOL;
 pub use self::experiments::{Fig2_8, Fig2_8Fit, Fig2_8FitParams, Fig2_8Params, FitModelChoice, demo_cycle};
 use super::{Registered, Scene, SceneDyn, SceneHeader};
 use crate::error::{Error, Result};
@@ -27,8 +28,6 @@ pub const SCENES: &[&dyn SceneDyn] = &[
     &Registered::<Fig2_8>::NEW,
     &Registered::<Fig2_8Fit>::NEW,
 ];
-
-const XTOL: f64 = 1e-14;
 
 // ---------------------------------------------------------------------------------------------
 // Figs. 2.4 and 2.6: states vs stage displacement.

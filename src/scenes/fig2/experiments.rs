@@ -3,7 +3,6 @@
 //! a second panel on the adhesive region where the instabilities the text discusses happen;
 //! and the fit of a measured (or, without a file, synthetic) force-indentation cycle.
 
-use super::XTOL;
 use crate::error::{Error, Result};
 use crate::figure::{COINCIDENCE_TOL, Figure, Legend, Panel, Style, number};
 use crate::fit::predictions::{ph_panel, predictions};
@@ -11,6 +10,9 @@ use crate::job::Job;
 use crate::models::machine_stiffness::{Experiment, TipGeometry};
 use crate::params::Range;
 use crate::scenes::{Scene, SceneHeader};
+
+/// The root tolerance of the machine-stiffness model in the chapter 2 scenes.
+pub(super) const XTOL: f64 = 1e-14;
 
 // ---------------------------------------------------------------------------------------------
 // Fig. 2.8: the experiments of section 2.4.

@@ -1,7 +1,7 @@
 //! Arrays of uncoupled springs on random rough surfaces (sections 5.4-5.5): the
 //! force-displacement cycles of Fig. 5.7.
 
-use super::{efficiencies, k_bar_of_n, mean_std, uncoupled_samples, unit_surfaces};
+use super::ensemble::{efficiencies, k_bar_of_n, mean_std, uncoupled_samples, unit_surfaces};
 use crate::error::Result;
 use crate::figure::{Axis, Figure, Legend, Panel, Series, Style};
 use crate::job::Job;

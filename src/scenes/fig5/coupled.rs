@@ -2,7 +2,7 @@
 //! ratio over the cycle (Fig. 5.11), and the accuracy of the coupled solver against its run
 //! time (Fig. 5.10-accuracy).
 
-use super::{cycle_window, k_bar_of_n};
+use super::ensemble::{cycle_window, k_bar_of_n};
 use crate::error::Result;
 use crate::figure::{Axis, Figure, Panel, Series, Style};
 use crate::job::Job;

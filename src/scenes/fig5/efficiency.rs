@@ -2,7 +2,7 @@
 //! stiffness (Fig. 5.8) and against the correlation length (Fig. 5.9), sweeps of many
 //! surface samples.
 
-use super::{efficiencies, k_bar_of_n, mean_std, uncoupled_samples, unit_surfaces};
+use super::ensemble::{efficiencies, k_bar_of_n, mean_std, uncoupled_samples, unit_surfaces};
 use crate::error::Result;
 use crate::figure::{Axis, Figure, Panel, Series, Style, number};
 use crate::job::Job;
