@@ -16,7 +16,7 @@ use crate::models::body_force_fe::body::FAR_POINTS;
 use crate::models::body_force_fe::tip::{FeGeometry, FeTip, FeTipParams};
 use crate::models::lennard_jones::LennardJones;
 use crate::params::{Range, require_below};
-use crate::scenes::groups::{ContactCriterion, DepthPath, ElasticTip, Interaction, SurfaceModel};
+use crate::scenes::groups::{ContactCriterion, DepthPath, ElasticTip, FeBulk, Interaction, SurfaceModel};
 use crate::scenes::{Scene, SceneHeader};
 
 /// The mesh of a scene's finite-element tip: the fine zone near the substrate, its surface
@@ -86,10 +86,11 @@ crate::scene_params! {
         step_over_sigma: f64 = 10.0, unit = "", range = Range::between(0.5, 100.0);
         /// Width of the surface elements over the contact zone [m].
         element_width: f64 = 3.3e-9, unit = "m", range = Range::between(1.0e-10, 1.0e-7);
-        /// Growth of the element size with the distance from the contact zone (excess stiffness over Hertz 0.15 % at 0.07).
-        grading: f64 = 0.07, unit = "", range = Range::between(0.05, 1.0);
-        /// Radius and height of the tip in units of R (excess stiffness over Hertz of the held top about 17 % R/h0).
-        size_over_radius: f64 = 128.0, unit = "", range = Range::between(2.0, 1000.0);
+        /// The bulk of the mesh.
+        group bulk: FeBulk { grading: 0.07, size_over_radius: 128.0 } help {
+            grading: "Growth of the element size with the distance from the contact zone (excess stiffness over Hertz 0.15 % at 0.07).",
+            size_over_radius: "Radius and height of the tip in units of R (excess stiffness over Hertz of the held top about 17 % R/h0).",
+        };
     }
 }
 
@@ -123,8 +124,7 @@ impl Scene for Fig4_4 {
     fn quick(p: &mut Self::Params) {
         p.depth_over_sigma = p.depth_over_sigma.min(60.0);
         p.step_over_sigma = p.step_over_sigma.max(6.0);
-        p.grading = p.grading.max(0.4);
-        p.size_over_radius = p.size_over_radius.min(6.0);
+        p.bulk.coarsen(0.4, 6.0);
         p.element_width = p.element_width.max(8e-9);
     }
 
@@ -162,8 +162,8 @@ impl Scene for Fig4_4 {
             &p.tip,
             &FeDiscretisation {
                 element_width: p.element_width / b,
-                grading: p.grading,
-                size_over_radius: p.size_over_radius,
+                grading: p.bulk.grading,
+                size_over_radius: p.bulk.size_over_radius,
                 ..mesh
             },
         )?;
@@ -302,10 +302,8 @@ crate::scene_params! {
         };
         /// Ring width of the surface model and element width of the finite-element model over the contact zone, in units of b = ζ0²E*/w.
         width: f64 = 0.25, unit = "", range = Range::between(0.05, 2.0);
-        /// Growth of the element size with the distance from the contact zone.
-        grading: f64 = 0.15, unit = "", range = Range::between(0.05, 1.0);
-        /// Radius and height of the finite-element tip in units of R.
-        size_over_radius: f64 = 20.0, unit = "", range = Range::between(2.0, 100.0);
+        /// The bulk of the finite-element mesh.
+        group bulk: FeBulk;
         /// Gradings of the mesh-convergence runs (shallow cycles to h = 0).
         convergence_gradings: Vec<f64> = vec![0.4, 0.3, 0.2, 0.15], unit = "", range = Range::between(0.05, 1.0);
         /// Tip sizes (over R) of the domain-convergence runs (shallow cycles to h = 0).
@@ -380,8 +378,7 @@ impl Scene for Fig4_5Models {
         p.path.h_min_over_zeta0 = p.path.h_min_over_zeta0.max(0.0);
         p.path.h_start_over_zeta0 = p.path.h_start_over_zeta0.min(9.0);
         p.path.step_over_zeta0 = p.path.step_over_zeta0.max(0.5);
-        p.grading = p.grading.max(0.5);
-        p.size_over_radius = p.size_over_radius.min(4.0);
+        p.bulk.coarsen(0.5, 4.0);
         p.convergence_study = 0;
     }
 
@@ -423,7 +420,7 @@ impl Scene for Fig4_5Models {
                 p.contact.contact_gap,
             )
         };
-        let fe_tip = fe_at(p.grading, p.size_over_radius)?;
+        let fe_tip = fe_at(p.bulk.grading, p.bulk.size_over_radius)?;
         // Progress: the full finite-element cycle, the surface model's, the shallow
         // finite-element cycles of the convergence study, the surface model's shallow cycle, by
         // their estimated costs. Measured: 3 788 unknowns took 7.6 times the surface model's
@@ -473,9 +470,9 @@ impl Scene for Fig4_5Models {
             (0.0, 1.0),
             |&(by_grading, v), part| {
                 let tip = if by_grading {
-                    fe_at(v, p.size_over_radius)?
+                    fe_at(v, p.bulk.size_over_radius)?
                 } else {
-                    fe_at(p.grading, v)?
+                    fe_at(p.bulk.grading, v)?
                 };
                 let c = run_cycle(&tip, &shallow, |f| {
                     part.progress(f, "convergence cycle");
@@ -617,10 +614,10 @@ crate::scene_params! {
         from DepthPath: step_over_zeta0: f64 = 0.25, help = "Depth step of the loading in units of ζ0.";
         /// Element width over the contact zone in units of b = ζ0²E*/w.
         width: f64 = 0.25, unit = "", range = Range::between(0.05, 2.0);
-        /// Growth of the element size with the distance from the contact zone.
-        grading: f64 = 0.15, unit = "", range = Range::between(0.05, 1.0);
-        /// Radius and height of the tip in units of R.
-        size_over_radius: f64 = 20.0, unit = "", range = Range::between(2.0, 100.0);
+        /// The bulk of the mesh.
+        group bulk: FeBulk help {
+            size_over_radius: "Radius and height of the tip in units of R.",
+        };
         /// Depth below the surface at which σ_zz is drawn, in units of ζ0 (below the interaction layer the column carries the whole traction).
         stress_depth_over_zeta0: f64 = 3.0, unit = "", range = Range::between(0.1, 50.0);
     }
@@ -657,8 +654,7 @@ impl Scene for Fig4_6 {
     fn quick(p: &mut Self::Params) {
         p.step_over_zeta0 = p.step_over_zeta0.max(0.5);
         p.width = p.width.max(0.5);
-        p.grading = p.grading.max(0.4);
-        p.size_over_radius = p.size_over_radius.min(5.0);
+        p.bulk.coarsen(0.4, 5.0);
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
@@ -682,8 +678,8 @@ impl Scene for Fig4_6 {
             &FeDiscretisation {
                 fine_radius: surface.params().fine_radius,
                 element_width: p.width,
-                grading: p.grading,
-                size_over_radius: p.size_over_radius,
+                grading: p.bulk.grading,
+                size_over_radius: p.bulk.size_over_radius,
                 quadrature_points: 4,
             },
         )?;
