@@ -300,6 +300,23 @@ pub fn require_below<T: PartialOrd + ToString>(lo_name: &str, lo: T, hi_name: &s
     Ok(())
 }
 
+/// A cross-field check of two parameters that bound an interval which may be a single point:
+/// `Ok` unless `hi < lo`, then [`Error::InvalidParameter`] naming `hi_name` with "must not be
+/// below `lo_name`".
+///
+/// # Errors
+/// As above.
+pub fn require_not_below<T: PartialOrd + ToString>(hi_name: &str, hi: T, lo_name: &str, lo: T) -> Result<()> {
+    if hi < lo {
+        return Err(Error::invalid(
+            hi_name,
+            hi,
+            format!("must not be below {lo_name}"),
+        ));
+    }
+    Ok(())
+}
+
 /// A check of a list parameter: `Ok` unless `values` is empty, then
 /// [`Error::InvalidParameter`] naming `name` with "must not be empty".
 ///

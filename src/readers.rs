@@ -41,15 +41,13 @@ use std::path::Path;
 pub(crate) mod archive;
 mod chiaro;
 mod hdf5;
-mod igor;
+pub(crate) mod igor;
 mod jpk;
 mod ntmdt;
 mod properties;
 mod tab;
 mod text;
 mod workshop;
-
-pub(crate) use igor::{version as igor_version, wave as igor_wave};
 
 /// The kind of a segment of a force-distance curve.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]

@@ -6,9 +6,10 @@
 //! `run(&Params, &Job) -> Result<Figure>`. The terminal UI and the headless exporter list the
 //! same registry through the object-safe [`SceneDyn`].
 //!
-//! Adding a scene: implement [`Scene`] for a unit struct in the chapter's file under `scenes/`,
-//! add it to that file's `SCENES` list, and add `presets/<id>.toml`. A scene made of many
-//! independent points also implements [`sweep::Sweep`] and is listed as `Swept::<S>::NEW`, which
+//! Adding a scene: declare it with [`crate::scene!`] (its id, chapter, title, caption, results
+//! and parameter struct) and implement [`Scene`] (its checks and run) beside it, in the
+//! chapter's file under `scenes/`; add it to that file's `SCENES` list, and add
+//! `presets/<id>.toml`. A scene made of many independent points also implements [`sweep::Sweep`] and is listed as `Swept::<S>::NEW`, which
 //! lets it run in shards (a job array on a cluster) and be merged.
 
 use std::marker::PhantomData;
@@ -28,8 +29,9 @@ pub mod figc;
 pub mod groups;
 pub mod sweep;
 
-/// A figure of the dissertation, computed.
-pub trait Scene: Send + Sync + 'static {
+/// What the registry lists of a scene: its id, chapter, title, caption, result names and
+/// parameter struct. Declared with [`crate::scene!`] beside the scene's [`Scene`] impl.
+pub trait SceneHeader {
     /// Parameter struct (declared with [`crate::scene_params!`]).
     type Params: Params;
     /// Id, the dissertation's figure number: `fig1.1`, `fig2.5-accuracy`, `figC.2`.
@@ -46,9 +48,14 @@ pub trait Scene: Send + Sync + 'static {
     /// `--all` runs it in its quick form, and `--describe` says so.
     const SWEEP: bool = false;
     /// Whether one run takes minutes at the defaults (the finite-element scenes): `--all` runs
-    /// it in its quick form, and `--describe` says so. Sweeps are long by [`Scene::SWEEP`].
+    /// it in its quick form, and `--describe` says so. Sweeps are long by
+    /// [`SceneHeader::SWEEP`].
     const LONG: bool = false;
+}
 
+/// A figure of the dissertation, computed: the checks, quick form and run of a scene whose
+/// header ([`SceneHeader`]) is declared with [`crate::scene!`].
+pub trait Scene: SceneHeader + Send + Sync + 'static {
     /// Checks across fields (ranges of single fields are checked by their specs).
     ///
     /// # Errors
@@ -75,6 +82,78 @@ pub trait Scene: Send + Sync + 'static {
     fn run(params: &Self::Params, job: &Job) -> Result<Figure>;
 }
 
+/// Declare a scene: its unit struct and its [`SceneHeader`] (id, chapter, parameter struct,
+/// title, caption, results; `sweep: true` or `long: true` for scenes of minutes), written once
+/// in this order. The scene's checks and run follow in its `impl Scene`.
+///
+/// ```
+/// use adhesion::error::Result;
+/// use adhesion::figure::Figure;
+/// use adhesion::job::Job;
+/// use adhesion::params::Range;
+/// use adhesion::scenes::{Scene, SceneHeader};
+///
+/// adhesion::scene_params! {
+///     /// Parameters of an example scene.
+///     pub struct ExampleParams {
+///         /// Number of points.
+///         points: usize = 20, unit = "", range = Range::between(2.0, 100.0);
+///     }
+/// }
+///
+/// adhesion::scene! {
+///     /// An example scene.
+///     pub struct Example {
+///         id: "example",
+///         chapter: "1",
+///         params: ExampleParams,
+///         title: "An example",
+///         caption: "Nothing, drawn.",
+///         results: &[("points_count", "points drawn")],
+///     }
+/// }
+///
+/// impl Scene for Example {
+///     fn run(p: &Self::Params, _job: &Job) -> Result<Figure> {
+///         let mut fig = Figure::new(Self::ID, Self::TITLE);
+///         fig.result("points_count", p.points as f64);
+///         Ok(fig)
+///     }
+/// }
+/// assert_eq!(Example::ID, "example");
+/// assert!(!Example::SWEEP);
+/// ```
+#[macro_export]
+macro_rules! scene {
+    (
+        $(#[$meta:meta])*
+        $vis:vis struct $name:ident {
+            id: $id:expr,
+            chapter: $chapter:expr,
+            params: $params:ty,
+            title: $title:expr,
+            caption: $caption:expr,
+            results: $results:expr,
+            $(sweep: $sweep:expr,)?
+            $(long: $long:expr,)?
+        }
+    ) => {
+        $(#[$meta])*
+        $vis struct $name;
+
+        impl $crate::scenes::SceneHeader for $name {
+            type Params = $params;
+            const ID: &'static str = $id;
+            const CHAPTER: &'static str = $chapter;
+            const TITLE: &'static str = $title;
+            const CAPTION: &'static str = $caption;
+            const RESULTS: &'static [(&'static str, &'static str)] = $results;
+            $(const SWEEP: bool = $sweep;)?
+            $(const LONG: bool = $long;)?
+        }
+    };
+}
+
 /// Static description of a scene.
 #[derive(Debug, Clone, Copy)]
 pub struct SceneInfo {
@@ -88,9 +167,9 @@ pub struct SceneInfo {
     pub caption: &'static str,
     /// Result names and meanings.
     pub results: &'static [(&'static str, &'static str)],
-    /// A sweep of many runs ([`Scene::SWEEP`]).
+    /// A sweep of many runs ([`SceneHeader::SWEEP`]).
     pub sweep: bool,
-    /// A single run of minutes at the defaults ([`Scene::LONG`]).
+    /// A single run of minutes at the defaults ([`SceneHeader::LONG`]).
     pub long: bool,
 }
 

@@ -11,46 +11,27 @@
 //! system fonts.
 
 mod draw;
+mod frame;
 mod heat;
 mod legend;
 mod place;
 
 use std::path::Path;
 
-use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use self::draw::{
     Anchor, Baseline, Label, draw_arrow_head, draw_hatched, draw_label, draw_marker, draw_polyline,
     draw_ring, draw_styled_line, fill_polygon, pixel_runs,
 };
+use self::frame::{Area, Draw, Frame, Metrics, err, ipt, rgb};
+pub use self::frame::{PALETTE, palette};
 pub use self::heat::viridis;
 use self::heat::{draw_heat, draw_heat_raster, embed_images};
-pub use self::legend::{PanelLayout, panel_layouts};
-use self::legend::{draw_legend, plan_legend};
+use self::legend::{LegendPlan, draw_legend, plan_legend};
 use super::axes::{padded_range, ticks};
 use crate::error::{Error, Result};
 use crate::figure::{FieldKind, Figure, Panel, Scale, Style};
-
-/// The colour palette (Okabe-Ito, colour-blind safe, plus neutrals). Index with
-/// [`palette`]; indices wrap around.
-pub const PALETTE: [(u8, u8, u8); 10] = [
-    (0, 114, 178),   // blue
-    (213, 94, 0),    // vermillion
-    (0, 158, 115),   // bluish green
-    (204, 121, 167), // reddish purple
-    (230, 159, 0),   // orange
-    (86, 180, 233),  // sky blue
-    (140, 86, 75),   // brown
-    (0, 0, 0),       // black
-    (128, 128, 128), // grey
-    (188, 189, 34),  // olive
-];
-
-/// Palette colour `k` (wrapping).
-pub fn palette(k: usize) -> (u8, u8, u8) {
-    PALETTE[k % PALETTE.len()]
-}
 
 /// Width of a figure in one journal column (mm).
 pub const COLUMN_MM: f64 = 90.0;
@@ -159,22 +140,6 @@ fn panel_size(fig: &Figure, width_mm: f64) -> (f64, f64) {
     (w, (PANEL_ASPECT * w).max(PANEL_MIN_H))
 }
 
-/// Layout of one drawing: pixels per layout unit, the panel size, and for SVG output the
-/// raster images of the fields and the texts.
-struct Metrics {
-    s: f64,
-    /// Width and height of a panel (layout units).
-    panel: (f64, f64),
-    /// `Some` when drawing SVG: the heat maps go in as embedded PNG images, collected here.
-    images: Option<std::rc::Rc<std::cell::RefCell<Vec<String>>>>,
-    /// `Some` when drawing SVG: the labels in math markup, as `<text>` elements with
-    /// `<tspan>`s, appended after the drawing.
-    texts: Option<std::rc::Rc<std::cell::RefCell<Vec<String>>>>,
-    /// Rasterise strokes and fills here with anti-aliasing (PNG); `false` hands them to the
-    /// backend as shapes (SVG).
-    aa: bool,
-}
-
 impl Metrics {
     /// The metrics of a PNG of `fig` at the print size `print`.
     fn png(fig: &Figure, print: &Print) -> Self {
@@ -185,12 +150,6 @@ impl Metrics {
             texts: None,
             aa: true,
         }
-    }
-    fn px(&self, v: f64) -> i32 {
-        (v * self.s).round() as i32
-    }
-    fn font(&self, size: f64) -> f64 {
-        size * self.s
     }
 }
 
@@ -384,17 +343,6 @@ pub fn write_svg(fig: &Figure, path: &Path) -> Result<()> {
     super::write_atomic(path, text.as_bytes())
 }
 
-type Area<DB> = DrawingArea<DB, Shift>;
-type Draw<T> = std::result::Result<T, String>;
-
-fn err<E: std::fmt::Display>(e: E) -> String {
-    e.to_string()
-}
-
-fn rgb(c: (u8, u8, u8)) -> RGBColor {
-    RGBColor(c.0, c.1, c.2)
-}
-
 /// Draw the whole figure onto `root` with the given metrics.
 fn draw_with<DB: DrawingBackend>(root: &Area<DB>, fig: &Figure, m: Metrics) -> Draw<()> {
     root.fill(&WHITE).map_err(err)?;
@@ -558,82 +506,6 @@ fn shown_panels(fig: &Figure) -> Vec<std::borrow::Cow<'_, Panel>> {
         .collect()
 }
 
-/// Pixel mapping of a panel's plotting rectangle.
-#[derive(Debug, Clone, Copy)]
-struct Frame {
-    x0: f64,
-    x1: f64,
-    y0: f64,
-    y1: f64,
-    /// Data ranges (log10 for log axes).
-    xr: (f64, f64),
-    yr: (f64, f64),
-    xlog: bool,
-    ylog: bool,
-}
-
-impl Frame {
-    fn tx(&self, x: f64) -> Option<f64> {
-        let v = if self.xlog {
-            if x <= 0.0 {
-                return None;
-            }
-            x.log10()
-        } else {
-            x
-        };
-        v.is_finite()
-            .then(|| self.x0 + (v - self.xr.0) / (self.xr.1 - self.xr.0) * (self.x1 - self.x0))
-    }
-    fn ty(&self, y: f64) -> Option<f64> {
-        let v = if self.ylog {
-            if y <= 0.0 {
-                return None;
-            }
-            y.log10()
-        } else {
-            y
-        };
-        v.is_finite()
-            .then(|| self.y1 - (v - self.yr.0) / (self.yr.1 - self.yr.0) * (self.y1 - self.y0))
-    }
-    fn map(&self, p: (f64, f64)) -> Option<(f64, f64)> {
-        Some((self.tx(p.0)?, self.ty(p.1)?))
-    }
-    fn inside(&self, p: (f64, f64)) -> bool {
-        p.0 >= self.x0 - 0.5 && p.0 <= self.x1 + 0.5 && p.1 >= self.y0 - 0.5 && p.1 <= self.y1 + 0.5
-    }
-    /// Clip a segment to the frame (Liang-Barsky).
-    fn clip(&self, a: (f64, f64), b: (f64, f64)) -> Option<((f64, f64), (f64, f64))> {
-        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-        let mut t0: f64 = 0.0;
-        let mut t1: f64 = 1.0;
-        for (p, q) in [
-            (-dx, a.0 - self.x0),
-            (dx, self.x1 - a.0),
-            (-dy, a.1 - self.y0),
-            (dy, self.y1 - a.1),
-        ] {
-            if p == 0.0 {
-                if q < 0.0 {
-                    return None;
-                }
-            } else {
-                let r = q / p;
-                if p < 0.0 {
-                    t0 = t0.max(r);
-                } else {
-                    t1 = t1.min(r);
-                }
-            }
-        }
-        (t0 <= t1).then_some(((a.0 + t0 * dx, a.1 + t0 * dy), (a.0 + t1 * dx, a.1 + t1 * dy)))
-    }
-}
-
-fn ipt(p: (f64, f64)) -> (i32, i32) {
-    (p.0.round() as i32, p.1.round() as i32)
-}
 /// The outer edges of the cells centred on the grid values `g` (half a spacing beyond the first
 /// and the last, geometric on a log axis); `None` for fewer than two values.
 fn cell_edges(g: &[f64], scale: Scale) -> Option<(f64, f64)> {
@@ -723,7 +595,7 @@ fn panel_frame(panel: &Panel, w: f64, h: f64, m: &Metrics) -> Option<(Frame, boo
 struct PanelPlan {
     frame: Frame,
     colors: Vec<usize>,
-    legend: Vec<legend::LegendPlan>,
+    legend: Vec<LegendPlan>,
     x_ticks: (super::axes::Ticks, Option<i32>),
     y_ticks: (super::axes::Ticks, Option<i32>),
     /// Marker and contour labels with their places.
@@ -852,6 +724,97 @@ fn panel_plans(fig: &Figure, m: &Metrics) -> Vec<Option<PanelPlan>> {
             plan_panel(panel, f64::from(w), f64::from(ph), m)
         })
         .collect()
+}
+
+/// Where each panel's frame, legend and texts go, as the PNG renderer draws them (pixels of
+/// the panel's own area at the PNG scale), with the pixel positions of every series point and
+/// marker inside the frame and of everything drawn as data. `None` for a panel with nothing to
+/// draw.
+pub fn panel_layouts(fig: &Figure) -> Vec<Option<PanelLayout>> {
+    let m = Metrics::png(fig, &Print::default());
+    let pw = m.px(m.panel.0);
+    let panels = shown_panels(fig);
+    panel_plans(fig, &m)
+        .into_iter()
+        .zip(panels.iter())
+        .enumerate()
+        .map(|(k, (plan, panel))| {
+            let plan = plan?;
+            let frame = plan.frame;
+            let (_, _, width) = panel_slot(fig.panels.len(), k, pw);
+            let points = panel
+                .series
+                .iter()
+                .flat_map(|s| s.points.iter().filter_map(|&p| frame.map(p)))
+                .chain(panel.markers.iter().filter_map(|mk| frame.map((mk.x, mk.y))))
+                .filter(|p| frame.inside(*p))
+                .collect();
+            let font = m.font(TICK_TEXT);
+            let ticks = vec![
+                tick_boxes(
+                    &plan.x_ticks.0,
+                    &|v| frame.tx(v),
+                    true,
+                    (frame.y1 + 5.0 * m.s, 0.0),
+                    font,
+                ),
+                tick_boxes(
+                    &plan.y_ticks.0,
+                    &|v| frame.ty(v),
+                    false,
+                    (0.0, frame.x0 - 5.0 * m.s),
+                    font,
+                ),
+            ];
+            let head = heading(panel, frame.x0, f64::from(width), &m);
+            let boxes: Vec<_> = plan
+                .legend
+                .iter()
+                .filter(|b| !b.is_footer())
+                .map(|b| b.rect())
+                .collect();
+            Some(PanelLayout {
+                frame: (frame.x0, frame.x1, frame.y0, frame.y1),
+                legend: plan.legend.first().map(LegendPlan::rect),
+                notes: plan.legend.get(1).map(LegendPlan::rect),
+                points,
+                boxes,
+                texts: plan.texts.iter().map(|t| (t.text.clone(), t.rect())).collect(),
+                data: plan.data,
+                ticks,
+                heading_right: head.right(),
+                width: f64::from(width),
+            })
+        })
+        .collect()
+}
+
+/// A panel's layout in pixels ([`panel_layouts`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PanelLayout {
+    /// Plotting frame: left, right, top, bottom.
+    pub frame: (f64, f64, f64, f64),
+    /// Legend box (with the panel's notes, unless they have a box of their own): left, top,
+    /// right, bottom.
+    pub legend: Option<(f64, f64, f64, f64)>,
+    /// The notes' own box, where they did not fit in the legend's.
+    pub notes: Option<(f64, f64, f64, f64)>,
+    /// Every series point and marker inside the frame.
+    pub points: Vec<(f64, f64)>,
+    /// The legend's boxes drawn in the frame (left, top, right, bottom).
+    pub boxes: Vec<(f64, f64, f64, f64)>,
+    /// The texts drawn beside markers and contour lines, with their boxes (left, top, right,
+    /// bottom).
+    pub texts: Vec<(String, (f64, f64, f64, f64))>,
+    /// Everything drawn as data, as pixel points: curves (a point every 8 pixels along them),
+    /// markers, arrows, contour lines.
+    pub data: Vec<(f64, f64)>,
+    /// The boxes of the tick labels of the x and the y axis, in order along each.
+    pub ticks: Vec<Vec<(f64, f64, f64, f64)>>,
+    /// The right edge of the panel's heading.
+    pub heading_right: f64,
+    /// The width of the panel's area.
+    pub width: f64,
 }
 
 fn draw_panel<DB: DrawingBackend>(area: &Area<DB>, panel: &Panel, m: &Metrics) -> Draw<()> {

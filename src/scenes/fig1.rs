@@ -1,7 +1,7 @@
 //! Chapter 1 scenes: the classical P-h curves (Fig. 1.1) and the Fuller-Tabor force-separation
 //! curves of a rough surface (Fig. 1.4b).
 
-use super::{Registered, Scene, SceneDyn};
+use super::{Registered, Scene, SceneDyn, SceneHeader};
 use crate::error::Result;
 use crate::figure::{Axis, Figure, Marker, MarkerShape, Panel, Series, Style};
 use crate::job::Job;
@@ -41,49 +41,39 @@ crate::scene_params! {
     }
 }
 
-/// Fig. 1.1: Hertz, JKR and DMT force-indentation curves with the JKR instabilities.
-pub struct Fig1_1;
+crate::scene! {
+    /// Fig. 1.1: Hertz, JKR and DMT force-indentation curves with the JKR instabilities.
+    pub struct Fig1_1 {
+        id: "fig1.1",
+        chapter: "1",
+        params: Fig1_1Params,
+        title: "Hertz, JKR and DMT force-indentation curves",
+        caption: "Contact force vs indentation depth by Hertz (1.1), JKR (1.2) and DMT (1.7). \
+            JKR pull-in A->B (1.3) and pull-off D->E (1.4) in displacement control; adhesive forces at C (JKR, 1.5) \
+            and F (DMT). The shaded loop is the JKR hysteresis (1.6).",
+        results: &[
+            ("jkr_pull_in_radius_norm", "a_B / a0, a0 = (pi R^2 w/E*)^(1/3), Eq. (1.3)"),
+            ("jkr_pull_in_depth_norm", "h_B / h0, h0 = (pi^2 R w^2/E*^2)^(1/3), Eq. (1.3)"),
+            ("jkr_pull_in_force_norm", "P_B / (pi w R), Eq. (1.3)"),
+            ("jkr_pull_off_radius_norm", "a_D / a0, Eq. (1.4)"),
+            ("jkr_pull_off_depth_norm", "h_D / h0, Eq. (1.4)"),
+            ("jkr_pull_off_force_norm", "P_D / (pi w R), Eq. (1.4)"),
+            ("jkr_adhesive_force_radius_norm", "a_C / a0, Eq. (1.5)"),
+            ("jkr_adhesive_force_depth_norm", "h_C / h0, Eq. (1.5)"),
+            ("jkr_adhesive_force_norm", "P_C / (pi w R), Eq. (1.5)"),
+            ("dmt_adhesive_force_norm", "P_F / (pi w R), Eq. (1.7)"),
+            ("jkr_hysteresis_norm", "H / (R^4 w^5/E*^2)^(1/3), closed form of Eq. (1.6)"),
+            ("jkr_hysteresis_loop_norm", "H / (R^4 w^5/E*^2)^(1/3), quadrature of the displacement-controlled loop"),
+            ("jkr_pull_off_force_N", "P_D in newtons"),
+            ("jkr_adhesive_force_N", "P_C in newtons"),
+            ("jkr_pull_off_depth_m", "h_D in metres"),
+            ("jkr_hysteresis_J", "H in joules, Eq. (1.6)"),
+            ("tabor_parameter_norm", "mu_T of Eq. (1.8)"),
+        ],
+    }
+}
 
 impl Scene for Fig1_1 {
-    type Params = Fig1_1Params;
-    const ID: &'static str = "fig1.1";
-    const CHAPTER: &'static str = "1";
-    const TITLE: &'static str = "Hertz, JKR and DMT force-indentation curves";
-    const CAPTION: &'static str = "Contact force vs indentation depth by Hertz (1.1), JKR (1.2) and DMT (1.7). \
-        JKR pull-in A->B (1.3) and pull-off D->E (1.4) in displacement control; adhesive forces at C (JKR, 1.5) \
-        and F (DMT). The shaded loop is the JKR hysteresis (1.6).";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        (
-            "jkr_pull_in_radius_norm",
-            "a_B / a0, a0 = (pi R^2 w/E*)^(1/3), Eq. (1.3)",
-        ),
-        (
-            "jkr_pull_in_depth_norm",
-            "h_B / h0, h0 = (pi^2 R w^2/E*^2)^(1/3), Eq. (1.3)",
-        ),
-        ("jkr_pull_in_force_norm", "P_B / (pi w R), Eq. (1.3)"),
-        ("jkr_pull_off_radius_norm", "a_D / a0, Eq. (1.4)"),
-        ("jkr_pull_off_depth_norm", "h_D / h0, Eq. (1.4)"),
-        ("jkr_pull_off_force_norm", "P_D / (pi w R), Eq. (1.4)"),
-        ("jkr_adhesive_force_radius_norm", "a_C / a0, Eq. (1.5)"),
-        ("jkr_adhesive_force_depth_norm", "h_C / h0, Eq. (1.5)"),
-        ("jkr_adhesive_force_norm", "P_C / (pi w R), Eq. (1.5)"),
-        ("dmt_adhesive_force_norm", "P_F / (pi w R), Eq. (1.7)"),
-        (
-            "jkr_hysteresis_norm",
-            "H / (R^4 w^5/E*^2)^(1/3), closed form of Eq. (1.6)",
-        ),
-        (
-            "jkr_hysteresis_loop_norm",
-            "H / (R^4 w^5/E*^2)^(1/3), quadrature of the displacement-controlled loop",
-        ),
-        ("jkr_pull_off_force_N", "P_D in newtons"),
-        ("jkr_adhesive_force_N", "P_C in newtons"),
-        ("jkr_pull_off_depth_m", "h_D in metres"),
-        ("jkr_hysteresis_J", "H in joules, Eq. (1.6)"),
-        ("tabor_parameter_norm", "mu_T of Eq. (1.8)"),
-    ];
-
     fn validate(p: &Self::Params) -> Result<()> {
         SphereContact::new(p.radius, p.modulus, p.work_of_adhesion)?;
         Ok(())
@@ -266,44 +256,28 @@ crate::scene_params! {
     }
 }
 
-/// Fig. 1.4b: Fuller-Tabor force-separation curves for two roughness values.
-pub struct Fig1_4b;
+crate::scene! {
+    /// Fig. 1.4b: Fuller-Tabor force-separation curves for two roughness values.
+    pub struct Fig1_4b {
+        id: "fig1.4b",
+        chapter: "1",
+        params: Fig1_4bParams,
+        title: "Fuller-Tabor force-separation curves of rough surfaces",
+        caption: "Total force vs separation of a Greenwood-Williamson rough surface with JKR \
+            asperities (1.9)-(1.15), approach and retraction (arrows), for two roughness values: \
+            the adhesive force and the energy loss fall as sigma_rms grows.",
+        results: &[
+            ("adhesive_force_1_norm", "most negative force on unloading, P/(N P_o), roughness 1"),
+            ("adhesive_force_2_norm", "most negative force on unloading, P/(N P_o), roughness 2"),
+            ("energy_loss_1_norm", "energy lost over the cycle / (N P_o h_o), roughness 1"),
+            ("energy_loss_2_norm", "energy lost over the cycle / (N P_o h_o), roughness 2"),
+            ("contact_fraction_1_norm", "fraction of asperities touched at d_min (1.10), roughness 1"),
+            ("contact_fraction_2_norm", "fraction of asperities touched at d_min (1.10), roughness 2"),
+        ],
+    }
+}
 
 impl Scene for Fig1_4b {
-    type Params = Fig1_4bParams;
-    const ID: &'static str = "fig1.4b";
-    const CHAPTER: &'static str = "1";
-    const TITLE: &'static str = "Fuller-Tabor force-separation curves of rough surfaces";
-    const CAPTION: &'static str = "Total force vs separation of a Greenwood-Williamson rough surface with JKR \
-        asperities (1.9)-(1.15), approach and retraction (arrows), for two roughness values: \
-        the adhesive force and the energy loss fall as sigma_rms grows.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        (
-            "adhesive_force_1_norm",
-            "most negative force on unloading, P/(N P_o), roughness 1",
-        ),
-        (
-            "adhesive_force_2_norm",
-            "most negative force on unloading, P/(N P_o), roughness 2",
-        ),
-        (
-            "energy_loss_1_norm",
-            "energy lost over the cycle / (N P_o h_o), roughness 1",
-        ),
-        (
-            "energy_loss_2_norm",
-            "energy lost over the cycle / (N P_o h_o), roughness 2",
-        ),
-        (
-            "contact_fraction_1_norm",
-            "fraction of asperities touched at d_min (1.10), roughness 1",
-        ),
-        (
-            "contact_fraction_2_norm",
-            "fraction of asperities touched at d_min (1.10), roughness 2",
-        ),
-    ];
-
     fn validate(p: &Self::Params) -> Result<()> {
         require_below(
             "min_separation_ho",

@@ -8,8 +8,9 @@ use rayon::prelude::*;
 
 mod experiments;
 
+use self::experiments::XTOL;
 pub use self::experiments::{Fig2_8, Fig2_8Fit, Fig2_8FitParams, Fig2_8Params, FitModelChoice, demo_cycle};
-use super::{Registered, Scene, SceneDyn};
+use super::{Registered, Scene, SceneDyn, SceneHeader};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Figure, Marker, MarkerShape, Panel, Series, Style};
 use crate::job::Job;
@@ -27,8 +28,6 @@ pub const SCENES: &[&dyn SceneDyn] = &[
     &Registered::<Fig2_8>::NEW,
     &Registered::<Fig2_8Fit>::NEW,
 ];
-
-const XTOL: f64 = 1e-14;
 
 // ---------------------------------------------------------------------------------------------
 // Figs. 2.4 and 2.6: states vs stage displacement.
@@ -254,19 +253,21 @@ crate::scene_params! {
     }
 }
 
-/// Fig. 2.4: spherical tip, contact radius, depth and force vs stage displacement.
-pub struct Fig2_4;
+crate::scene! {
+    /// Fig. 2.4: spherical tip, contact radius, depth and force vs stage displacement.
+    pub struct Fig2_4 {
+        id: "fig2.4",
+        chapter: "2",
+        params: Fig2_4Params,
+        title: "Spherical tip with machine stiffness: states vs stage displacement",
+        caption: "Contact radius (b), indentation depth (c) and force (d) vs stage displacement \
+            for a spherical tip, Eqs. (2.34)-(2.36): stationary points (circles), solution points (dots), \
+            the pull-in at zero stage displacement (triangles) and the pull-off at the fold a_o (squares).",
+        results: BRANCH_RESULTS,
+    }
+}
 
 impl Scene for Fig2_4 {
-    type Params = Fig2_4Params;
-    const ID: &'static str = "fig2.4";
-    const CHAPTER: &'static str = "2";
-    const TITLE: &'static str = "Spherical tip with machine stiffness: states vs stage displacement";
-    const CAPTION: &'static str = "Contact radius (b), indentation depth (c) and force (d) vs stage displacement \
-        for a spherical tip, Eqs. (2.34)-(2.36): stationary points (circles), solution points (dots), \
-        the pull-in at zero stage displacement (triangles) and the pull-off at the fold a_o (squares).";
-    const RESULTS: &'static [(&'static str, &'static str)] = BRANCH_RESULTS;
-
     fn quick(p: &mut Self::Params) {
         p.path.quick();
     }
@@ -287,19 +288,21 @@ crate::scene_params! {
     }
 }
 
-/// Fig. 2.6: conical tip, as Fig. 2.4.
-pub struct Fig2_6;
+crate::scene! {
+    /// Fig. 2.6: conical tip, as Fig. 2.4.
+    pub struct Fig2_6 {
+        id: "fig2.6",
+        chapter: "2",
+        params: Fig2_6Params,
+        title: "Conical tip with machine stiffness: states vs stage displacement",
+        caption: "Contact radius (b), indentation depth (c) and force (d) vs stage displacement \
+            for a conical tip, Eqs. (2.44)-(2.46): stationary points (circles), solution points (dots), \
+            the pull-in (triangles) and the pull-off (squares).",
+        results: BRANCH_RESULTS,
+    }
+}
 
 impl Scene for Fig2_6 {
-    type Params = Fig2_6Params;
-    const ID: &'static str = "fig2.6";
-    const CHAPTER: &'static str = "2";
-    const TITLE: &'static str = "Conical tip with machine stiffness: states vs stage displacement";
-    const CAPTION: &'static str = "Contact radius (b), indentation depth (c) and force (d) vs stage displacement \
-        for a conical tip, Eqs. (2.44)-(2.46): stationary points (circles), solution points (dots), \
-        the pull-in (triangles) and the pull-off (squares).";
-    const RESULTS: &'static [(&'static str, &'static str)] = BRANCH_RESULTS;
-
     fn quick(p: &mut Self::Params) {
         p.path.quick();
     }
@@ -517,17 +520,19 @@ macro_rules! alpha_sweep_scene {
         $name:ident, id = $id:literal, shape = $shape:expr, fits = $fits:expr,
         title = $title:literal, caption = $caption:literal
     ) => {
-        $(#[$doc])*
-        pub struct $name;
+        crate::scene! {
+            $(#[$doc])*
+            pub struct $name {
+                id: $id,
+                chapter: "2",
+                params: AlphaSweepParams,
+                title: $title,
+                caption: $caption,
+                results: SWEEP_RESULTS,
+            }
+        }
 
         impl Scene for $name {
-            type Params = AlphaSweepParams;
-            const ID: &'static str = $id;
-            const CHAPTER: &'static str = "2";
-            const TITLE: &'static str = $title;
-            const CAPTION: &'static str = $caption;
-            const RESULTS: &'static [(&'static str, &'static str)] = SWEEP_RESULTS;
-
             fn quick(p: &mut Self::Params) {
                 p.points = p.points.min(12);
             }
@@ -582,11 +587,6 @@ crate::scene_params! {
     }
 }
 
-/// fig2.5-accuracy: error of the pull-off force and the hysteresis against run time, as the
-/// root-finding tolerance, the Gauss-Legendre order and the loop sampling vary; the fits (2.37),
-/// (2.39) as the cheapest method.
-pub struct Fig2_5Accuracy;
-
 /// A family of method settings: its name, the quantity its setting is (an axis title), and
 /// each setting's value with the method it stands for.
 type Family = (&'static str, &'static str, Vec<(f64, Method)>);
@@ -626,39 +626,30 @@ fn run_method(method: Method, m: &MachineStiffness) -> Result<(f64, f64)> {
     })
 }
 
-impl Scene for Fig2_5Accuracy {
-    type Params = Fig2_5AccuracyParams;
-    const ID: &'static str = "fig2.5-accuracy";
-    const CHAPTER: &'static str = "2";
-    const TITLE: &'static str =
-        "Spherical tip: accuracy against run time of the pull-off force and hysteresis";
-    const CAPTION: &'static str = "Largest relative error over a set of alpha values of the pull-off force and the \
-        hysteresis (2.38) of the sphere, as the root-finding tolerance (Brent), the Gauss-Legendre order, \
-        or the sampling of the loop-area method vary, against each setting (a)-(c) and the run time (d); \
-        the fits (2.37), (2.39) are the cheapest method.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        (
-            "reference_time_s",
-            "run time of the reference computation for the whole alpha set",
-        ),
-        (
-            "fits_pull_off_max_rel_error_norm",
-            "largest relative error of (2.37b)",
-        ),
-        (
-            "fits_hysteresis_max_rel_error_norm",
-            "largest relative error of (2.39)",
-        ),
-        (
-            "tolerance_1e-8_pull_off_max_rel_error_norm",
-            "pull-off error with xtol = 1e-8",
-        ),
-        (
-            "order_8_hysteresis_max_rel_error_norm",
-            "hysteresis error with 8 Gauss-Legendre points",
-        ),
-    ];
+crate::scene! {
+    /// fig2.5-accuracy: error of the pull-off force and the hysteresis against run time, as the
+    /// root-finding tolerance, the Gauss-Legendre order and the loop sampling vary; the fits (2.37),
+    /// (2.39) as the cheapest method.
+    pub struct Fig2_5Accuracy {
+        id: "fig2.5-accuracy",
+        chapter: "2",
+        params: Fig2_5AccuracyParams,
+        title: "Spherical tip: accuracy against run time of the pull-off force and hysteresis",
+        caption: "Largest relative error over a set of alpha values of the pull-off force and the \
+            hysteresis (2.38) of the sphere, as the root-finding tolerance (Brent), the Gauss-Legendre order, \
+            or the sampling of the loop-area method vary, against each setting (a)-(c) and the run time (d); \
+            the fits (2.37), (2.39) are the cheapest method.",
+        results: &[
+            ("reference_time_s", "run time of the reference computation for the whole alpha set"),
+            ("fits_pull_off_max_rel_error_norm", "largest relative error of (2.37b)"),
+            ("fits_hysteresis_max_rel_error_norm", "largest relative error of (2.39)"),
+            ("tolerance_1e-8_pull_off_max_rel_error_norm", "pull-off error with xtol = 1e-8"),
+            ("order_8_hysteresis_max_rel_error_norm", "hysteresis error with 8 Gauss-Legendre points"),
+        ],
+    }
+}
 
+impl Scene for Fig2_5Accuracy {
     fn validate(p: &Self::Params) -> Result<()> {
         require_below("alpha_min", p.alpha_min, "alpha_max", p.alpha_max)
     }

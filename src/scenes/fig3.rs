@@ -2,7 +2,7 @@
 //! and its empirical fit (Fig. 3.5), and the accuracy against cost of the loss evaluations.
 
 use super::sweep::{Sweep, Swept};
-use super::{Registered, Scene, SceneDyn};
+use super::{Registered, Scene, SceneDyn, SceneHeader};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Field, FieldKind, Figure, Marker, MarkerShape, Panel, Series, Style};
 use crate::job::Job;
@@ -186,33 +186,29 @@ crate::scene_params! {
     }
 }
 
-/// Fig. 3.4: MD equilibrium P-h curves with their limits.
-pub struct Fig3_4;
+crate::scene! {
+    /// Fig. 3.4: MD equilibrium P-h curves with their limits.
+    pub struct Fig3_4 {
+        id: "fig3.4",
+        chapter: "3",
+        params: Fig3_4Params,
+        title: "Maugis-Dugdale equilibrium P-h curves",
+        caption: "Equilibrium P-h curves of the MD theory (3.3), both branches: (a) several chi at fixed ell \
+            with the JKR (chi -> infinity) and DMT (chi -> 0) limits; (b) several ell at fixed chi with the Hertz limit \
+            (ell -> 0). Stable solid, unstable dashed; pull-in at the onset depth Z0, pull-off at the fold; the shaded \
+            loop is the loss (3.4).",
+        results: &[
+            ("loss_a_first_norm", "loss (3.4) of the first curve of panel (a)"),
+            ("loss_a_last_norm", "loss (3.4) of the last curve of panel (a)"),
+            ("jkr_limit_loss_a_norm", "JKR limit (3.5a) 0.5262 ell^(5/3) of panel (a)"),
+            ("dmt_limit_loss_a_first_norm", "DMT limit (3.5b) 5.8483 chi^5 of the first curve of (a)"),
+            ("loss_b_first_norm", "loss (3.4) of the first curve of panel (b)"),
+            ("loss_b_last_norm", "loss (3.4) of the last curve of panel (b)"),
+        ],
+    }
+}
 
 impl Scene for Fig3_4 {
-    type Params = Fig3_4Params;
-    const ID: &'static str = "fig3.4";
-    const CHAPTER: &'static str = "3";
-    const TITLE: &'static str = "Maugis-Dugdale equilibrium P-h curves";
-    const CAPTION: &'static str = "Equilibrium P-h curves of the MD theory (3.3), both branches: (a) several chi at fixed ell \
-        with the JKR (chi -> infinity) and DMT (chi -> 0) limits; (b) several ell at fixed chi with the Hertz limit \
-        (ell -> 0). Stable solid, unstable dashed; pull-in at the onset depth Z0, pull-off at the fold; the shaded \
-        loop is the loss (3.4).";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        ("loss_a_first_norm", "loss (3.4) of the first curve of panel (a)"),
-        ("loss_a_last_norm", "loss (3.4) of the last curve of panel (a)"),
-        (
-            "jkr_limit_loss_a_norm",
-            "JKR limit (3.5a) 0.5262 ell^(5/3) of panel (a)",
-        ),
-        (
-            "dmt_limit_loss_a_first_norm",
-            "DMT limit (3.5b) 5.8483 chi^5 of the first curve of (a)",
-        ),
-        ("loss_b_first_norm", "loss (3.4) of the first curve of panel (b)"),
-        ("loss_b_last_norm", "loss (3.4) of the last curve of panel (b)"),
-    ];
-
     fn validate(p: &Self::Params) -> Result<()> {
         check_list("chis_a", &p.chis_a)?;
         check_list("ells_b", &p.ells_b)?;
@@ -359,33 +355,26 @@ crate::scene_params! {
     }
 }
 
-/// Fig. 3.5: the loss per asperity, its small-χ limit and the empirical fit.
-pub struct Fig3_5;
+crate::scene! {
+    /// Fig. 3.5: the loss per asperity, its small-χ limit and the empirical fit.
+    pub struct Fig3_5 {
+        id: "fig3.5",
+        chapter: "3",
+        params: Fig3_5Params,
+        title: "Energy loss per asperity of the Maugis-Dugdale theory",
+        caption: "Normalized loss per asperity (3.4): (a) exact values for several ell at small chi and \
+            the limit 5.8483 chi^5 (3.5b); (b) exact values (symbols) and the empirical function (3.6) (lines).",
+        results: &[
+            ("c1_norm", "c1 of (3.6), exact 544/(3 pi^3) (printed 5.8483)"),
+            ("c2_norm", "c2 of (3.6), from the limit (3.5a) (printed 4.2415)"),
+            ("jkr_constant_norm", "limit (3.5a), (1 + 3 2^(5/3))/20 (printed 0.5262)"),
+            ("max_empirical_error_plotted_percent", "largest |(3.6)/exact - 1| over the points of (b)"),
+            ("max_empirical_error_plotted_s_norm", "s = chi^3/ell where it occurs"),
+        ],
+    }
+}
 
 impl Scene for Fig3_5 {
-    type Params = Fig3_5Params;
-    const ID: &'static str = "fig3.5";
-    const CHAPTER: &'static str = "3";
-    const TITLE: &'static str = "Energy loss per asperity of the Maugis-Dugdale theory";
-    const CAPTION: &'static str = "Normalized loss per asperity (3.4): (a) exact values for several ell at small chi and \
-        the limit 5.8483 chi^5 (3.5b); (b) exact values (symbols) and the empirical function (3.6) (lines).";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        ("c1_norm", "c1 of (3.6), exact 544/(3 pi^3) (printed 5.8483)"),
-        ("c2_norm", "c2 of (3.6), from the limit (3.5a) (printed 4.2415)"),
-        (
-            "jkr_constant_norm",
-            "limit (3.5a), (1 + 3 2^(5/3))/20 (printed 0.5262)",
-        ),
-        (
-            "max_empirical_error_plotted_percent",
-            "largest |(3.6)/exact - 1| over the points of (b)",
-        ),
-        (
-            "max_empirical_error_plotted_s_norm",
-            "s = chi^3/ell where it occurs",
-        ),
-    ];
-
     fn validate(p: &Self::Params) -> Result<()> {
         check_list("ells_a", &p.ells_a)?;
         check_list("ells_b", &p.ells_b)?;
@@ -510,9 +499,6 @@ crate::scene_params! {
     }
 }
 
-/// Accuracy against cost of the loss per asperity: quadrature, table, empirical (3.6).
-pub struct Fig3_5Accuracy;
-
 /// Seconds per call of `f` over `inputs` (the minimum of a few repetitions).
 fn time_per_call(inputs: &[f64], f: &dyn Fn(f64) -> f64) -> f64 {
     let mut best = f64::INFINITY;
@@ -528,43 +514,33 @@ fn time_per_call(inputs: &[f64], f: &dyn Fn(f64) -> f64) -> f64 {
     best
 }
 
-impl Scene for Fig3_5Accuracy {
-    type Params = Fig3_5AccuracyParams;
-    const ID: &'static str = "fig3.5-accuracy";
-    const CHAPTER: &'static str = "3";
-    const TITLE: &'static str = "Loss per asperity: accuracy against cost";
-    const CAPTION: &'static str = "Relative error of the loss per asperity against the quadrature of (3.4): (a) over \
-        s = chi^3/ell for the tables and the empirical function (3.6); (b) the largest error against the cost per \
-        evaluation; (c) fig3.8c: the largest error of the loss per nominal area (3.19) over a (Z0, sigma_rms) grid \
-        with the table and with (3.6), against the quadrature at every node, vs the run time per grid point.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        (
-            "grid_table_max_error_norm",
-            "fig3.8c grid: largest |table/quadrature - 1| of the loss per area",
-        ),
-        (
-            "grid_empirical_max_error_norm",
-            "fig3.8c grid: largest |(3.6)/quadrature - 1| of the loss per area",
-        ),
-        (
-            "grid_quadrature_cost_s",
-            "fig3.8c: run time per grid point, quadrature",
-        ),
-        ("grid_table_cost_s", "fig3.8c: run time per grid point, table"),
-        ("grid_empirical_cost_s", "fig3.8c: run time per grid point, (3.6)"),
-        (
-            "empirical_max_error_norm",
-            "largest |(3.6)/exact - 1| on the scan",
-        ),
-        (
-            "table_max_error_norm",
-            "largest |table/exact - 1| on the scan, densest table",
-        ),
-        ("exact_cost_s", "cost of one exact evaluation"),
-        ("table_cost_s", "cost of one table evaluation"),
-        ("empirical_cost_s", "cost of one evaluation of (3.6)"),
-    ];
+crate::scene! {
+    /// Accuracy against cost of the loss per asperity: quadrature, table, empirical (3.6).
+    pub struct Fig3_5Accuracy {
+        id: "fig3.5-accuracy",
+        chapter: "3",
+        params: Fig3_5AccuracyParams,
+        title: "Loss per asperity: accuracy against cost",
+        caption: "Relative error of the loss per asperity against the quadrature of (3.4): (a) over \
+            s = chi^3/ell for the tables and the empirical function (3.6); (b) the largest error against the cost per \
+            evaluation; (c) fig3.8c: the largest error of the loss per nominal area (3.19) over a (Z0, sigma_rms) grid \
+            with the table and with (3.6), against the quadrature at every node, vs the run time per grid point.",
+        results: &[
+            ("grid_table_max_error_norm", "fig3.8c grid: largest |table/quadrature - 1| of the loss per area"),
+            ("grid_empirical_max_error_norm", "fig3.8c grid: largest |(3.6)/quadrature - 1| of the loss per area"),
+            ("grid_quadrature_cost_s", "fig3.8c: run time per grid point, quadrature"),
+            ("grid_table_cost_s", "fig3.8c: run time per grid point, table"),
+            ("grid_empirical_cost_s", "fig3.8c: run time per grid point, (3.6)"),
+            ("empirical_max_error_norm", "largest |(3.6)/exact - 1| on the scan"),
+            ("table_max_error_norm", "largest |table/exact - 1| on the scan, densest table"),
+            ("exact_cost_s", "cost of one exact evaluation"),
+            ("table_cost_s", "cost of one table evaluation"),
+            ("empirical_cost_s", "cost of one evaluation of (3.6)"),
+        ],
+    }
+}
 
+impl Scene for Fig3_5Accuracy {
     fn validate(p: &Self::Params) -> Result<()> {
         require_below("s_min", p.s_min, "s_max", p.s_max)?;
         if p.table_densities.is_empty() {
@@ -914,73 +890,42 @@ fn loss_label(method: LossMethod) -> &'static str {
     }
 }
 
-/// Fig. 3.8: depth-dependent loss, loss per area, and its contour over (Z₀, σ_rms).
-pub struct Fig3_8;
+crate::scene! {
+    /// Fig. 3.8: depth-dependent loss, loss per area, and its contour over (Z₀, σ_rms).
+    pub struct Fig3_8 {
+        id: "fig3.8",
+        chapter: "3",
+        params: Fig3_8Params,
+        title: "Depth-dependent hysteresis at large roughness",
+        caption: "(a) Depth-dependent loss (3.15) vs maximum depth for (Z0, sigma_rms) = (24 nm, 12.2 nm) \
+            and (96 nm, 3 nm); (b) loss per nominal area (3.19), the measured 0.0241 J/m^2 dashed; (c) contour of the \
+            loss per area over (Z0, sigma_rms) with the measured level as its own line. PSD (3.16)-(3.17) scaled by k, \
+            Nayak statistics (3.7)-(3.11), JKR area (B.2). MD loss per asperity: the empirical (3.6), as the \
+            dissertation's figure; the exact loss (3.4) is drawn beside it (lighter lines in (b), the dashed measured line in (c)): \
+            with it the two pairs no longer agree (0.0221 vs 0.0375 J/m^2) and lie off the measured line.",
+        results: &[
+            ("loss_per_area_1_J_per_m2", "loss per nominal area (3.19) at the first pair, chosen loss"),
+            ("loss_per_area_2_J_per_m2", "loss per nominal area (3.19) at the second pair, chosen loss"),
+            ("loss_per_area_1_empirical_J_per_m2", "the same with the empirical loss (3.6)"),
+            ("loss_per_area_2_empirical_J_per_m2", "the same with the empirical loss (3.6)"),
+            ("loss_per_area_1_exact_J_per_m2", "the same with the exact loss (3.4), table"),
+            ("loss_per_area_2_exact_J_per_m2", "the same with the exact loss (3.4), table"),
+            ("asperity_density_per_m2", "eta (3.9), independent of k (printed 101.4 um^-2)"),
+            ("m0_unscaled_m2", "m0 of (3.16)-(3.17) at k = 1 (printed 2.1 nm^2)"),
+            ("m2_unscaled_norm", "m2 at k = 1 (printed 1.3e-3)"),
+            ("m4_unscaled_per_m2", "m4 at k = 1 (printed 4.3 um^-2)"),
+            ("nayak_alpha_norm", "Nayak's alpha = m0 m4/m2^2"),
+            ("base_rms_m", "RMS height the k = 1 moments stand for: measured_rms, or the height map's"),
+            ("chi_1_norm", "chi (3.2) at the first pair"),
+            ("chi_2_norm", "chi (3.2) at the second pair"),
+            ("area_bracket_min_norm", "bracket of (B.2.2) at depth_max (printed 1.19)"),
+            ("area_bracket_max_norm", "bracket of (B.2.2) as |h_min| -> 0 (printed 1.33)"),
+            ("ell_jkr_norm", "ell_JKR = pi w/(E* R_t) of B.2 (printed 3.35e-3)"),
+        ],
+    }
+}
 
 impl Scene for Fig3_8 {
-    type Params = Fig3_8Params;
-    const ID: &'static str = "fig3.8";
-    const CHAPTER: &'static str = "3";
-    const TITLE: &'static str = "Depth-dependent hysteresis at large roughness";
-    const CAPTION: &'static str = "(a) Depth-dependent loss (3.15) vs maximum depth for (Z0, sigma_rms) = (24 nm, 12.2 nm) \
-        and (96 nm, 3 nm); (b) loss per nominal area (3.19), the measured 0.0241 J/m^2 dashed; (c) contour of the \
-        loss per area over (Z0, sigma_rms) with the measured level as its own line. PSD (3.16)-(3.17) scaled by k, \
-        Nayak statistics (3.7)-(3.11), JKR area (B.2). MD loss per asperity: the empirical (3.6), as the \
-        dissertation's figure; the exact loss (3.4) is drawn beside it (lighter lines in (b), the dashed measured line in (c)): \
-        with it the two pairs no longer agree (0.0221 vs 0.0375 J/m^2) and lie off the measured line.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        (
-            "loss_per_area_1_J_per_m2",
-            "loss per nominal area (3.19) at the first pair, chosen loss",
-        ),
-        (
-            "loss_per_area_2_J_per_m2",
-            "loss per nominal area (3.19) at the second pair, chosen loss",
-        ),
-        (
-            "loss_per_area_1_empirical_J_per_m2",
-            "the same with the empirical loss (3.6)",
-        ),
-        (
-            "loss_per_area_2_empirical_J_per_m2",
-            "the same with the empirical loss (3.6)",
-        ),
-        (
-            "loss_per_area_1_exact_J_per_m2",
-            "the same with the exact loss (3.4), table",
-        ),
-        (
-            "loss_per_area_2_exact_J_per_m2",
-            "the same with the exact loss (3.4), table",
-        ),
-        (
-            "asperity_density_per_m2",
-            "eta (3.9), independent of k (printed 101.4 um^-2)",
-        ),
-        (
-            "m0_unscaled_m2",
-            "m0 of (3.16)-(3.17) at k = 1 (printed 2.1 nm^2)",
-        ),
-        ("m2_unscaled_norm", "m2 at k = 1 (printed 1.3e-3)"),
-        ("m4_unscaled_per_m2", "m4 at k = 1 (printed 4.3 um^-2)"),
-        ("nayak_alpha_norm", "Nayak's alpha = m0 m4/m2^2"),
-        (
-            "base_rms_m",
-            "RMS height the k = 1 moments stand for: measured_rms, or the height map's",
-        ),
-        ("chi_1_norm", "chi (3.2) at the first pair"),
-        ("chi_2_norm", "chi (3.2) at the second pair"),
-        (
-            "area_bracket_min_norm",
-            "bracket of (B.2.2) at depth_max (printed 1.19)",
-        ),
-        (
-            "area_bracket_max_norm",
-            "bracket of (B.2.2) as |h_min| -> 0 (printed 1.33)",
-        ),
-        ("ell_jkr_norm", "ell_JKR = pi w/(E* R_t) of B.2 (printed 3.35e-3)"),
-    ];
-
     fn validate(p: &Self::Params) -> Result<()> {
         require_below("range_min", p.range_min, "range_max", p.range_max)?;
         require_below("sigma_min", p.sigma_min, "sigma_max", p.sigma_max)?;

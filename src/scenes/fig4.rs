@@ -19,7 +19,7 @@ use std::f64::consts::PI;
 
 use super::fig3::{draw_by_stability, draw_md};
 use super::sweep::Swept;
-use super::{Registered, Scene, SceneDyn};
+use super::{Registered, Scene, SceneDyn, SceneHeader};
 use crate::error::Result;
 use crate::figure::{Axis, Figure, Marker, MarkerShape, Panel, Series, Style};
 use crate::job::Job;
@@ -325,56 +325,40 @@ fn draw_cycle(panel: &mut Panel, cycle: &TipCycle, name: &str, color: usize, sca
     }
 }
 
-/// Fig. 4.5: the smooth tip, surface model against Maugis-Dugdale.
-pub struct Fig4_5;
+crate::scene! {
+    /// Fig. 4.5: the smooth tip, surface model against Maugis-Dugdale.
+    pub struct Fig4_5 {
+        id: "fig4.5",
+        chapter: "4",
+        params: Fig4_5Params,
+        title: "Smooth tip: Lennard-Jones surface model against Maugis-Dugdale",
+        caption: "Displacement-controlled cycle of a smooth paraboloidal tip (R = 5 um, E = 4.4 MPa, \
+            nu = 0.25) against a rigid flat with the Lennard-Jones interaction (C6 = 3, C12 = 1, sigma = 1 nm, \
+            A_H = 2e-21 J), computed with the axisymmetric surface model (the body force (4.15) integrated \
+            through a column is the traction (4.19)) or, with model = fe, the dissertation's finite-element \
+            model (section 4.2.2), against the Maugis-Dugdale curve (3.3) at the same \
+            ell and chi (4.25): (a) P-h, (b) P-a with a the radius where the gap is below sigma. The model's \
+            path is the measured one: stable states solid, jumps dashed; the MD reference shows its unstable \
+            branch dashed and its loss shaded.",
+        results: &[
+            ("tabor_parameter_norm", "mu_T = (R w^2/(E*^2 zeta0^3))^(1/3), Eq. (1.8)"),
+            ("ell_norm", "ell = pi w/(E* R), Eq. (4.25)"),
+            ("chi_norm", "chi = w/(E* delta0), delta0 = (9 sqrt 3/16) zeta0, Eq. (4.25)"),
+            ("adhesive_force_norm", "P_adh/(pi w R) of the surface model (JKR 1.5, DMT 2)"),
+            ("md_adhesive_force_norm", "pull-off force of the MD theory / (pi w R)"),
+            ("hysteresis_norm", "H/(2E* R^3), loop area of the surface model"),
+            ("md_loss_norm", "loss of the MD theory (3.4) / (2E* R^3)"),
+            ("pull_in_depth_norm", "h/R at the pull-in of the surface model"),
+            ("pull_off_depth_norm", "h/R at the pull-off of the surface model"),
+            ("jumps_count", "jumps on the cycle (2: one pull-in, one pull-off)"),
+            ("rings_count", "rings of the surface model (0 with model = fe)"),
+            ("unknowns_count", "unknowns of the model: rings (surface) or nodal displacements (fe)"),
+            ("all_states_stable_count", "1 when every state was certified stable"),
+        ],
+    }
+}
 
 impl Scene for Fig4_5 {
-    type Params = Fig4_5Params;
-    const ID: &'static str = "fig4.5";
-    const CHAPTER: &'static str = "4";
-    const TITLE: &'static str = "Smooth tip: Lennard-Jones surface model against Maugis-Dugdale";
-    const CAPTION: &'static str = "Displacement-controlled cycle of a smooth paraboloidal tip (R = 5 um, E = 4.4 MPa, \
-        nu = 0.25) against a rigid flat with the Lennard-Jones interaction (C6 = 3, C12 = 1, sigma = 1 nm, \
-        A_H = 2e-21 J), computed with the axisymmetric surface model (the body force (4.15) integrated \
-        through a column is the traction (4.19)) or, with model = fe, the dissertation's finite-element \
-        model (section 4.2.2), against the Maugis-Dugdale curve (3.3) at the same \
-        ell and chi (4.25): (a) P-h, (b) P-a with a the radius where the gap is below sigma. The model's \
-        path is the measured one: stable states solid, jumps dashed; the MD reference shows its unstable \
-        branch dashed and its loss shaded.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        (
-            "tabor_parameter_norm",
-            "mu_T = (R w^2/(E*^2 zeta0^3))^(1/3), Eq. (1.8)",
-        ),
-        ("ell_norm", "ell = pi w/(E* R), Eq. (4.25)"),
-        (
-            "chi_norm",
-            "chi = w/(E* delta0), delta0 = (9 sqrt 3/16) zeta0, Eq. (4.25)",
-        ),
-        (
-            "adhesive_force_norm",
-            "P_adh/(pi w R) of the surface model (JKR 1.5, DMT 2)",
-        ),
-        (
-            "md_adhesive_force_norm",
-            "pull-off force of the MD theory / (pi w R)",
-        ),
-        ("hysteresis_norm", "H/(2E* R^3), loop area of the surface model"),
-        ("md_loss_norm", "loss of the MD theory (3.4) / (2E* R^3)"),
-        ("pull_in_depth_norm", "h/R at the pull-in of the surface model"),
-        ("pull_off_depth_norm", "h/R at the pull-off of the surface model"),
-        ("jumps_count", "jumps on the cycle (2: one pull-in, one pull-off)"),
-        ("rings_count", "rings of the surface model (0 with model = fe)"),
-        (
-            "unknowns_count",
-            "unknowns of the model: rings (surface) or nodal displacements (fe)",
-        ),
-        (
-            "all_states_stable_count",
-            "1 when every state was certified stable",
-        ),
-    ];
-
     fn quick(p: &mut Self::Params) {
         p.path.h_min_over_zeta0 = p.path.h_min_over_zeta0.max(-3.0);
         p.path.step_over_zeta0 = p.path.step_over_zeta0.max(0.25);
@@ -603,51 +587,38 @@ fn marked_states(cycle: &TipCycle, radius: f64) -> [Option<TipState>; 4] {
     ]
 }
 
-/// Fig. 4.7: depth-dependent hysteresis of a wavy tip, surface model against (4.26).
-pub struct Fig4_7;
+crate::scene! {
+    /// Fig. 4.7: depth-dependent hysteresis of a wavy tip, surface model against (4.26).
+    pub struct Fig4_7 {
+        id: "fig4.7",
+        chapter: "4",
+        params: Fig4_7Params,
+        title: "Wavy tip: depth-dependent hysteresis",
+        caption: "Displacement-controlled cycles of a wavy tip (4.10) (R = 10 um, E = 2.2 MPa, nu = 0.25, \
+            A = 1.25 nm, lambda = 0.125 um; C6 = 3, C12 = 1, sigma = 1 nm, A_H = 1e-21 J) with the axisymmetric \
+            surface model (model = fe: the dissertation's finite-element model): (a) cycles to |h_min|/R = 1.5e-4 (thin) and 7e-4 (thick): more asperity-level \
+            instabilities and more loss for the deeper cycle (DDH); A, B: the states before and after the pull-in \
+            nearest h/R = -4e-4; C, D: the loading and unloading states at h/R = 6e-5; (b) the deep cycle against \
+            the wavy JKR theory (4.26) (ERRATA reading, ell printed as chi), stable solid, unstable dashed.",
+        results: &[
+            ("adhesive_force_1_norm", "P_adh/(2E*R^2) of the shallow cycle"),
+            ("adhesive_force_2_norm", "P_adh/(2E*R^2) of the deep cycle"),
+            ("hysteresis_1_norm", "H/(2E*R^3) of the shallow cycle"),
+            ("hysteresis_2_norm", "H/(2E*R^3) of the deep cycle"),
+            ("jumps_1_count", "jumps of the shallow cycle"),
+            ("jumps_2_count", "jumps of the deep cycle"),
+            ("theory_adhesive_force_2_norm", "P_adh/(2E*R^2) of (4.26) to the deep depth"),
+            ("theory_hysteresis_1_norm", "loop area of (4.26) to the shallow depth / (2E*R^3)"),
+            ("theory_hysteresis_2_norm", "loop area of (4.26) to the deep depth / (2E*R^3)"),
+            ("theory_jumps_2_count", "jumps of (4.26) to the deep depth"),
+            ("ell_norm", "ell = pi w/(E* R) (printed as chi in the caption)"),
+            ("asperity_radius_ratio_norm", "R_a/R = lambda^2/(4 pi^2 A R), section 4.5.1"),
+            ("all_states_stable_count", "1 when every state of both cycles was certified stable"),
+        ],
+    }
+}
 
 impl Scene for Fig4_7 {
-    type Params = Fig4_7Params;
-    const ID: &'static str = "fig4.7";
-    const CHAPTER: &'static str = "4";
-    const TITLE: &'static str = "Wavy tip: depth-dependent hysteresis";
-    const CAPTION: &'static str = "Displacement-controlled cycles of a wavy tip (4.10) (R = 10 um, E = 2.2 MPa, nu = 0.25, \
-        A = 1.25 nm, lambda = 0.125 um; C6 = 3, C12 = 1, sigma = 1 nm, A_H = 1e-21 J) with the axisymmetric \
-        surface model (model = fe: the dissertation's finite-element model): (a) cycles to |h_min|/R = 1.5e-4 (thin) and 7e-4 (thick): more asperity-level \
-        instabilities and more loss for the deeper cycle (DDH); A, B: the states before and after the pull-in \
-        nearest h/R = -4e-4; C, D: the loading and unloading states at h/R = 6e-5; (b) the deep cycle against \
-        the wavy JKR theory (4.26) (ERRATA reading, ell printed as chi), stable solid, unstable dashed.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        ("adhesive_force_1_norm", "P_adh/(2E*R^2) of the shallow cycle"),
-        ("adhesive_force_2_norm", "P_adh/(2E*R^2) of the deep cycle"),
-        ("hysteresis_1_norm", "H/(2E*R^3) of the shallow cycle"),
-        ("hysteresis_2_norm", "H/(2E*R^3) of the deep cycle"),
-        ("jumps_1_count", "jumps of the shallow cycle"),
-        ("jumps_2_count", "jumps of the deep cycle"),
-        (
-            "theory_adhesive_force_2_norm",
-            "P_adh/(2E*R^2) of (4.26) to the deep depth",
-        ),
-        (
-            "theory_hysteresis_1_norm",
-            "loop area of (4.26) to the shallow depth / (2E*R^3)",
-        ),
-        (
-            "theory_hysteresis_2_norm",
-            "loop area of (4.26) to the deep depth / (2E*R^3)",
-        ),
-        ("theory_jumps_2_count", "jumps of (4.26) to the deep depth"),
-        ("ell_norm", "ell = pi w/(E* R) (printed as chi in the caption)"),
-        (
-            "asperity_radius_ratio_norm",
-            "R_a/R = lambda^2/(4 pi^2 A R), section 4.5.1",
-        ),
-        (
-            "all_states_stable_count",
-            "1 when every state of both cycles was certified stable",
-        ),
-    ];
-
     fn quick(p: &mut Self::Params) {
         p.depth_1_over_radius = p.depth_1_over_radius.min(5.0e-5);
         p.depth_2_over_radius = p.depth_2_over_radius.min(1.5e-4);
@@ -826,29 +797,31 @@ impl Scene for Fig4_7 {
     }
 }
 
-/// Fig. 4.8: the deformed surface at the states A-D of Fig. 4.7a.
-pub struct Fig4_8;
+crate::scene! {
+    /// Fig. 4.8: the deformed surface at the states A-D of Fig. 4.7a.
+    pub struct Fig4_8 {
+        id: "fig4.8",
+        chapter: "4",
+        params: Fig4_7Params,
+        title: "Wavy tip: surface profiles at the states A-D",
+        caption: "Gap between the deformed wavy tip and the substrate against the radius at the states \
+            of Fig. 4.7a on the deep cycle (surface model, or the finite-element model with model = fe; only the \
+            deep cycle's |h_min| is used): (a) A and B \
+            just before and after a pull-in near h/R = -4e-4, the contact grows across an asperity by a finite \
+            amount; (b) C (loading) and D (unloading) at the same depth h/R = 6e-5, two metastable states with \
+            different contact regions. The dotted line is the contact threshold sigma (section 4.2.2).",
+        results: &[
+            ("contact_radius_a_nm", "contact radius at A"),
+            ("contact_radius_b_nm", "contact radius at B"),
+            ("contact_radius_c_nm", "contact radius at C"),
+            ("contact_radius_d_nm", "contact radius at D"),
+            ("depth_ab_norm", "h/R of the jump A -> B"),
+            ("depth_cd_norm", "h/R of the states C and D"),
+        ],
+    }
+}
 
 impl Scene for Fig4_8 {
-    type Params = Fig4_7Params;
-    const ID: &'static str = "fig4.8";
-    const CHAPTER: &'static str = "4";
-    const TITLE: &'static str = "Wavy tip: surface profiles at the states A-D";
-    const CAPTION: &'static str = "Gap between the deformed wavy tip and the substrate against the radius at the states \
-        of Fig. 4.7a on the deep cycle (surface model, or the finite-element model with model = fe; only the \
-        deep cycle's |h_min| is used): (a) A and B \
-        just before and after a pull-in near h/R = -4e-4, the contact grows across an asperity by a finite \
-        amount; (b) C (loading) and D (unloading) at the same depth h/R = 6e-5, two metastable states with \
-        different contact regions. The dotted line is the contact threshold sigma (section 4.2.2).";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        ("contact_radius_a_nm", "contact radius at A"),
-        ("contact_radius_b_nm", "contact radius at B"),
-        ("contact_radius_c_nm", "contact radius at C"),
-        ("contact_radius_d_nm", "contact radius at D"),
-        ("depth_ab_norm", "h/R of the jump A -> B"),
-        ("depth_cd_norm", "h/R of the states C and D"),
-    ];
-
     fn quick(p: &mut Self::Params) {
         Fig4_7::quick(p);
     }

@@ -11,7 +11,7 @@ use std::f64::consts::FRAC_PI_2;
 use std::path::Path;
 
 use super::sweep::{Sweep, Swept};
-use super::{Registered, Scene, SceneDyn};
+use super::{Registered, Scene, SceneDyn, SceneHeader};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Field, FieldKind, Figure, Marker, MarkerShape, Panel, Series, Style};
 use crate::job::Job;
@@ -528,17 +528,19 @@ fn assemble_map(
 /// A peel-force scene along one substrate profile: the curves of [`run_curves`].
 macro_rules! peel_curves_scene {
     ($(#[$doc:meta])* $name:ident, $id:literal, $profile:expr, $title:literal, $caption:literal) => {
-        $(#[$doc])*
-        pub struct $name;
+        crate::scene! {
+            $(#[$doc])*
+            pub struct $name {
+                id: $id,
+                chapter: "6",
+                params: PeelCurvesParams,
+                title: $title,
+                caption: $caption,
+                results: CURVES_RESULTS,
+            }
+        }
 
         impl Scene for $name {
-            type Params = PeelCurvesParams;
-            const ID: &'static str = $id;
-            const CHAPTER: &'static str = "6";
-            const TITLE: &'static str = $title;
-            const CAPTION: &'static str = $caption;
-            const RESULTS: &'static [(&'static str, &'static str)] = CURVES_RESULTS;
-
             fn validate(p: &Self::Params) -> Result<()> {
                 validate_curves(p, &$profile)
             }
@@ -562,17 +564,19 @@ macro_rules! peel_curves_scene {
 /// profile's optimum-angle fit `$fit` (equation `$fit_eq`).
 macro_rules! peel_map_scene {
     ($(#[$doc:meta])* $name:ident, $id:literal, $profile:expr, $fit:path, $fit_eq:literal, $title:literal, $caption:literal) => {
-        $(#[$doc])*
-        pub struct $name;
+        crate::scene! {
+            $(#[$doc])*
+            pub struct $name {
+                id: $id,
+                chapter: "6",
+                params: PeelMapParams,
+                title: $title,
+                caption: $caption,
+                results: MAP_RESULTS,
+            }
+        }
 
         impl Scene for $name {
-            type Params = PeelMapParams;
-            const ID: &'static str = $id;
-            const CHAPTER: &'static str = "6";
-            const TITLE: &'static str = $title;
-            const CAPTION: &'static str = $caption;
-            const RESULTS: &'static [(&'static str, &'static str)] = MAP_RESULTS;
-
             fn validate(p: &Self::Params) -> Result<()> {
                 profile_of(&p.profile_file, &$profile).map(|_| ())
             }
@@ -685,48 +689,29 @@ crate::scene_params! {
     }
 }
 
-/// Beyond the dissertation's figures: the limits of Sec. 6.4 reached from (6.17)-(6.18).
-pub struct Fig6Limits;
+crate::scene! {
+    /// Beyond the dissertation's figures: the limits of Sec. 6.4 reached from (6.17)-(6.18).
+    pub struct Fig6Limits {
+        id: "fig6.3-limits",
+        chapter: "6",
+        params: LimitsParams,
+        title: "Flat and steep limits of the peel-force and adhesion enhancement",
+        caption: "Enhancement of (a) the effective peel force F_max/F_flat, (6.17)/(6.11), and (b) the \
+            effective work w_e/w, (6.18), vs aspect ratio A at θ = π/2 for the sinusoid and the zigzag (or a profile file); dotted: the steep \
+            limits α (6.29) and β (6.31) approached as A grows, and 1 as A → 0 (6.28a), (6.30a).",
+        results: &[
+            ("alpha_norm", "alpha = F_max,steep/F_max,flat, Eq. (6.29), first w"),
+            ("alpha_approx_norm", "the small-w approximation sqrt(2/w) of (6.29)"),
+            ("beta_norm", "beta = w_e,steep/w_e,flat = 1 + sqrt(2/w), Eq. (6.31)"),
+            ("sinusoid_force_ratio_at_max_aspect_ratio_norm", "F_max/F_flat of (6.17) on the sinusoid at the largest A"),
+            ("sinusoid_work_ratio_at_max_aspect_ratio_norm", "w_e/w of (6.18) on the sinusoid at the largest A"),
+            ("zigzag_force_ratio_at_max_aspect_ratio_norm", "F_max/F_flat on the zigzag (or the profile file) at the largest A"),
+            ("zigzag_work_ratio_at_max_aspect_ratio_norm", "w_e/w on the zigzag (or the profile file) at the largest A"),
+        ],
+    }
+}
 
 impl Scene for Fig6Limits {
-    type Params = LimitsParams;
-    const ID: &'static str = "fig6.3-limits";
-    const CHAPTER: &'static str = "6";
-    const TITLE: &'static str = "Flat and steep limits of the peel-force and adhesion enhancement";
-    const CAPTION: &'static str = "Enhancement of (a) the effective peel force F_max/F_flat, (6.17)/(6.11), and (b) the \
-        effective work w_e/w, (6.18), vs aspect ratio A at θ = π/2 for the sinusoid and the zigzag (or a profile file); dotted: the steep \
-        limits α (6.29) and β (6.31) approached as A grows, and 1 as A → 0 (6.28a), (6.30a).";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        (
-            "alpha_norm",
-            "alpha = F_max,steep/F_max,flat, Eq. (6.29), first w",
-        ),
-        (
-            "alpha_approx_norm",
-            "the small-w approximation sqrt(2/w) of (6.29)",
-        ),
-        (
-            "beta_norm",
-            "beta = w_e,steep/w_e,flat = 1 + sqrt(2/w), Eq. (6.31)",
-        ),
-        (
-            "sinusoid_force_ratio_at_max_aspect_ratio_norm",
-            "F_max/F_flat of (6.17) on the sinusoid at the largest A",
-        ),
-        (
-            "sinusoid_work_ratio_at_max_aspect_ratio_norm",
-            "w_e/w of (6.18) on the sinusoid at the largest A",
-        ),
-        (
-            "zigzag_force_ratio_at_max_aspect_ratio_norm",
-            "F_max/F_flat on the zigzag (or the profile file) at the largest A",
-        ),
-        (
-            "zigzag_work_ratio_at_max_aspect_ratio_norm",
-            "w_e/w on the zigzag (or the profile file) at the largest A",
-        ),
-    ];
-
     fn validate(p: &Self::Params) -> Result<()> {
         require_below(
             "aspect_ratio_min",

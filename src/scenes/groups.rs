@@ -147,6 +147,30 @@ impl FeMesh {
 }
 
 crate::param_group! {
+    /// The bulk of a finite-element tip in the scenes that run the finite-element model alone
+    /// or beside the surface model (Figs. 4.4-4.6): how fast its elements grow away from the
+    /// contact zone and how large the modelled tip is. The mesh of
+    /// [`crate::models::body_force_fe`] takes any positive grading and any tip wider than its
+    /// fine zone, and refuses one of too many elements with a one-line error; the tip's size
+    /// reaches 1000 R as [`FeMesh`]'s does (fig4.4's Hertz check wants 128 R by default).
+    pub struct FeBulk {
+        /// Growth of the element size with the distance from the contact zone.
+        grading: f64 = 0.15, unit = "", range = Range::between(0.05, 1.0);
+        /// Radius and height of the finite-element tip in units of R.
+        size_over_radius: f64 = 20.0, unit = "", range = Range::between(2.0, 1000.0);
+    }
+}
+
+impl FeBulk {
+    /// The quick form of the bulk: a grading of at least `grading`, a tip of at most
+    /// `size_over_radius` R.
+    pub fn coarsen(&mut self, grading: f64, size_over_radius: f64) {
+        self.grading = self.grading.max(grading);
+        self.size_over_radius = self.size_over_radius.min(size_over_radius);
+    }
+}
+
+crate::param_group! {
     /// The surface samples of an uncoupled spring array (section 5.5.2): N x N springs on
     /// `samples` Gaussian surfaces of seeds `seed .. seed + samples`, the same surfaces at every
     /// point of a study (common random numbers). Defaults: Figs. 5.7-5.9's.

@@ -50,10 +50,8 @@ mod opdx;
 mod plu;
 mod sdf;
 mod sur;
-mod text;
+pub(crate) mod text;
 mod x3p;
-
-pub(crate) use text::CSV_HEADER;
 
 /// A text height map's header and heights ([`text`]), for [`crate::surface::io::parse_csv`].
 ///
@@ -337,7 +335,7 @@ pub fn detect(bytes: &[u8], path: &Path) -> Result<Format> {
     if bytes.starts_with(mnt::OLE_MAGIC) {
         return Ok(Format::Mnt);
     }
-    if bytes.len() >= 8 && crate::readers::igor_version(bytes).is_some() {
+    if bytes.len() >= 8 && crate::readers::igor::version(bytes).is_some() {
         return Ok(Format::Ibw);
     }
     if plu::looks_like(bytes) {

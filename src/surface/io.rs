@@ -19,7 +19,7 @@ use super::formats::gsf::GSF_MAGIC;
 /// Magic first line of a Gwyddion simple field file.
 pub use super::formats::gsf::parse_gsf;
 /// Start of the header comment written by [`to_csv`].
-const CSV_HEADER: &str = super::formats::CSV_HEADER;
+const CSV_HEADER: &str = super::formats::text::CSV_HEADER;
 
 /// File formats of height maps.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -575,16 +575,18 @@ mod tests {
         }
     }
 
-    struct Span;
+    crate::scene! {
+        struct Span {
+            id: "span",
+            chapter: "1",
+            params: SpanParams,
+            title: "span",
+            caption: "a scene with lo < hi",
+            results: &[],
+        }
+    }
 
     impl crate::scenes::Scene for Span {
-        type Params = SpanParams;
-        const ID: &'static str = "span";
-        const CHAPTER: &'static str = "1";
-        const TITLE: &'static str = "span";
-        const CAPTION: &'static str = "a scene with lo < hi";
-        const RESULTS: &'static [(&'static str, &'static str)] = &[];
-
         fn validate(p: &SpanParams) -> crate::error::Result<()> {
             if p.lo < p.hi {
                 Ok(())

@@ -417,9 +417,9 @@ fn fig4_4_deviation_from_hertz_falls_with_the_bulk_mesh() {
     use adhesion::scenes::fig4::fe::{Fig4_4, Fig4_4Params};
     let mut p = Fig4_4Params::default();
     Fig4_4::quick(&mut p);
-    let coarse_grading = p.grading;
+    let coarse_grading = p.bulk.grading;
     let coarse = Fig4_4::run(&p, &Job::quiet()).expect("coarse");
-    p.grading = 0.25;
+    p.bulk.grading = 0.25;
     let fine = Fig4_4::run(&p, &Job::quiet()).expect("fine");
     let dev = |f: &adhesion::figure::Figure| f.result_value("hertz_deviation_norm").expect("result");
     eprintln!(

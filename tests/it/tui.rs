@@ -13,7 +13,7 @@ use adhesion::figure::{Axis, Figure, Panel, Series, Style};
 use adhesion::job::Job;
 use adhesion::params::Range;
 use adhesion::scenes::sweep::{Sweep, Swept};
-use adhesion::scenes::{self, Registered, Scene, SceneDyn};
+use adhesion::scenes::{self, Registered, Scene, SceneDyn, SceneHeader};
 use adhesion::tui::app::{App, FigureState, Focus, Mode, Page};
 use adhesion::tui::session::Session;
 use ratatui::Terminal;
@@ -39,8 +39,17 @@ adhesion::scene_params! {
     }
 }
 
-/// A scene for the UI tests: two panels, a preview, and runs that wait for cancellation.
-pub(crate) struct Probe;
+adhesion::scene! {
+    /// A scene for the UI tests: two panels, a preview, and runs that wait for cancellation.
+    pub(crate) struct Probe {
+        id: "probe",
+        chapter: "1",
+        params: ProbeParams,
+        title: "Probe scene",
+        caption: "A sine, for the terminal UI tests.",
+        results: &[("amplitude_m", "the amplitude")],
+    }
+}
 
 fn sine(amplitude: f64, n: usize) -> Vec<(f64, f64)> {
     (0..n)
@@ -52,13 +61,6 @@ fn sine(amplitude: f64, n: usize) -> Vec<(f64, f64)> {
 }
 
 impl Scene for Probe {
-    type Params = ProbeParams;
-    const ID: &'static str = "probe";
-    const CHAPTER: &'static str = "1";
-    const TITLE: &'static str = "Probe scene";
-    const CAPTION: &'static str = "A sine, for the terminal UI tests.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[("amplitude_m", "the amplitude")];
-
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
         let mut first = Panel::new(Axis::linear("x", ""), Axis::linear("y", "m"));
         first.label = "(a)".into();
@@ -1249,21 +1251,23 @@ adhesion::scene_params! {
     }
 }
 
-/// A sweep for the UI tests: point `id` gives `id²` once the test has released it
-/// (`SWEEP_GATE` > `id`), and waits (cancellable) until then.
-pub(crate) struct ProbeSweep;
+adhesion::scene! {
+    /// A sweep for the UI tests: point `id` gives `id²` once the test has released it
+    /// (`SWEEP_GATE` > `id`), and waits (cancellable) until then.
+    pub(crate) struct ProbeSweep {
+        id: "probe-sweep",
+        chapter: "1",
+        params: ProbeSweepParams,
+        title: "Probe sweep",
+        caption: "Squares, point by point, for the terminal UI tests.",
+        results: &[("sum_norm", "the sum of the squares")],
+    }
+}
 
 /// Points of the probe sweep released so far.
 static SWEEP_GATE: AtomicUsize = AtomicUsize::new(0);
 
 impl Scene for ProbeSweep {
-    type Params = ProbeSweepParams;
-    const ID: &'static str = "probe-sweep";
-    const CHAPTER: &'static str = "1";
-    const TITLE: &'static str = "Probe sweep";
-    const CAPTION: &'static str = "Squares, point by point, for the terminal UI tests.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[("sum_norm", "the sum of the squares")];
-
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
         adhesion::scenes::sweep::run::<Self>(p, job)
     }

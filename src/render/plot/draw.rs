@@ -10,7 +10,7 @@
 use plotters::prelude::*;
 use plotters::style::RGBAColor;
 
-use super::{Area, Draw, Frame, Metrics, err, ipt};
+use super::frame::{Area, Draw, Frame, Metrics, err, ipt};
 use crate::figure::{MarkerShape, Style};
 use crate::render::raster;
 

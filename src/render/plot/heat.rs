@@ -4,7 +4,7 @@
 
 use plotters::prelude::*;
 
-use super::{Area, Draw, Frame, err, ipt, rgb};
+use super::frame::{Area, Draw, Frame, err, ipt, rgb};
 use crate::figure::Field;
 
 /// Replace the placeholder rectangles of the heat maps (fill `#0102kk`, k the image index) by

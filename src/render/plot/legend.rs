@@ -7,8 +7,8 @@ use super::draw::{
     Anchor, Baseline, Label, draw_hatched, draw_label, draw_marker, draw_pixel_line, draw_polyline,
     draw_ring, fill_polygon, pixel_runs,
 };
-use super::{Area, Draw, Frame, Metrics, Print, err, ipt, palette, panel_slot, rgb};
-use crate::figure::{Figure, Legend, MarkerShape, Panel, Style};
+use super::frame::{Area, Draw, Frame, Metrics, err, ipt, palette, rgb};
+use crate::figure::{Legend, MarkerShape, Panel, Style};
 
 /// What a legend entry shows before its text.
 #[derive(Clone)]
@@ -335,97 +335,6 @@ fn free_place(
         .into_iter()
         .find(|(_, x, y)| clear(*x, *y))
         .map(|(_, x, y)| (x, y))
-}
-
-/// Where each panel's frame, legend and texts go, as the PNG renderer draws them (pixels of
-/// the panel's own area at the PNG scale), with the pixel positions of every series point and
-/// marker inside the frame and of everything drawn as data. `None` for a panel with nothing to
-/// draw.
-pub fn panel_layouts(fig: &Figure) -> Vec<Option<PanelLayout>> {
-    let m = Metrics::png(fig, &Print::default());
-    let pw = m.px(m.panel.0);
-    let panels = super::shown_panels(fig);
-    super::panel_plans(fig, &m)
-        .into_iter()
-        .zip(panels.iter())
-        .enumerate()
-        .map(|(k, (plan, panel))| {
-            let plan = plan?;
-            let frame = plan.frame;
-            let (_, _, width) = panel_slot(fig.panels.len(), k, pw);
-            let points = panel
-                .series
-                .iter()
-                .flat_map(|s| s.points.iter().filter_map(|&p| frame.map(p)))
-                .chain(panel.markers.iter().filter_map(|mk| frame.map((mk.x, mk.y))))
-                .filter(|p| frame.inside(*p))
-                .collect();
-            let font = m.font(super::TICK_TEXT);
-            let ticks = vec![
-                super::tick_boxes(
-                    &plan.x_ticks.0,
-                    &|v| frame.tx(v),
-                    true,
-                    (frame.y1 + 5.0 * m.s, 0.0),
-                    font,
-                ),
-                super::tick_boxes(
-                    &plan.y_ticks.0,
-                    &|v| frame.ty(v),
-                    false,
-                    (0.0, frame.x0 - 5.0 * m.s),
-                    font,
-                ),
-            ];
-            let head = super::heading(panel, frame.x0, f64::from(width), &m);
-            let boxes: Vec<_> = plan
-                .legend
-                .iter()
-                .filter(|b| !b.is_footer())
-                .map(|b| b.rect())
-                .collect();
-            Some(PanelLayout {
-                frame: (frame.x0, frame.x1, frame.y0, frame.y1),
-                legend: plan.legend.first().map(|l| (l.x, l.y, l.x + l.w, l.y + l.h)),
-                notes: plan.legend.get(1).map(|l| (l.x, l.y, l.x + l.w, l.y + l.h)),
-                points,
-                boxes,
-                texts: plan.texts.iter().map(|t| (t.text.clone(), t.rect())).collect(),
-                data: plan.data,
-                ticks,
-                heading_right: head.right(),
-                width: f64::from(width),
-            })
-        })
-        .collect()
-}
-
-/// A panel's layout in pixels ([`panel_layouts`]).
-#[derive(Debug, Clone, PartialEq)]
-pub struct PanelLayout {
-    /// Plotting frame: left, right, top, bottom.
-    pub frame: (f64, f64, f64, f64),
-    /// Legend box (with the panel's notes, unless they have a box of their own): left, top,
-    /// right, bottom.
-    pub legend: Option<(f64, f64, f64, f64)>,
-    /// The notes' own box, where they did not fit in the legend's.
-    pub notes: Option<(f64, f64, f64, f64)>,
-    /// Every series point and marker inside the frame.
-    pub points: Vec<(f64, f64)>,
-    /// The legend's boxes drawn in the frame (left, top, right, bottom).
-    pub boxes: Vec<(f64, f64, f64, f64)>,
-    /// The texts drawn beside markers and contour lines, with their boxes (left, top, right,
-    /// bottom).
-    pub texts: Vec<(String, (f64, f64, f64, f64))>,
-    /// Everything drawn as data, as pixel points: curves (a point every 8 pixels along them),
-    /// markers, arrows, contour lines.
-    pub data: Vec<(f64, f64)>,
-    /// The boxes of the tick labels of the x and the y axis, in order along each.
-    pub ticks: Vec<Vec<(f64, f64, f64, f64)>>,
-    /// The right edge of the panel's heading.
-    pub heading_right: f64,
-    /// The width of the panel's area.
-    pub width: f64,
 }
 
 pub(super) fn draw_legend<DB: DrawingBackend>(area: &Area<DB>, plan: &LegendPlan, m: &Metrics) -> Draw<()> {

@@ -6,7 +6,7 @@
 
 use plotters::style::RGBColor;
 
-use super::{Frame, Metrics};
+use super::frame::{Frame, Metrics};
 
 /// A text to place: what it says, how it is drawn, and the points it may sit beside.
 pub(super) struct Request {

@@ -3,14 +3,16 @@
 //! a second panel on the adhesive region where the instabilities the text discusses happen;
 //! and the fit of a measured (or, without a file, synthetic) force-indentation cycle.
 
-use super::XTOL;
 use crate::error::{Error, Result};
 use crate::figure::{COINCIDENCE_TOL, Figure, Legend, Panel, Style, number};
 use crate::fit::predictions::{ph_panel, predictions};
 use crate::job::Job;
 use crate::models::machine_stiffness::{Experiment, TipGeometry};
 use crate::params::Range;
-use crate::scenes::Scene;
+use crate::scenes::{Scene, SceneHeader};
+
+/// The root tolerance of the machine-stiffness model in the chapter 2 scenes.
+pub(super) const XTOL: f64 = 1e-14;
 
 // ---------------------------------------------------------------------------------------------
 // Fig. 2.8: the experiments of section 2.4.
@@ -106,74 +108,40 @@ fn adhesive_region(panel: &Panel, label: &str, title: &str) -> Panel {
     zoom
 }
 
-/// Fig. 2.8: P-h cycles of the machine-stiffness model and of JKR at the best-fit parameters of
-/// Sec. 2.4, with the pull-off squares.
-pub struct Fig2_8;
+crate::scene! {
+    /// Fig. 2.8: P-h cycles of the machine-stiffness model and of JKR at the best-fit parameters of
+    /// Sec. 2.4, with the pull-off squares.
+    pub struct Fig2_8 {
+        id: "fig2.8",
+        chapter: "2",
+        params: Fig2_8Params,
+        title: "Machine-stiffness model and JKR at the best fits of section 2.4",
+        caption: "Contact force vs indentation depth of the machine-stiffness model \
+            ((2.31b)-(2.32b) with the jumps of Sec. 2.3.1, blue) and of JKR ((1.2), red) at the best-fit \
+            parameters of Sec. 2.4: (a), (b) Sun et al., R = 58 nm; (c), (d) Notbohm et al., R = 2.5 um; \
+            (a), (c) the whole cycle, (b), (d) its adhesive region, with the pull-off forces and depth jumps \
+            against the text's. Where the JKR curve lies on the model's (the same P-h relation) it is dashed. \
+            Squares: the state just before the pull-off. Measured curves: `--fit FILE.csv` or scene fig2.8-fit.",
+        results: &[
+            ("sun_alpha_norm", "alpha = k_s/k_hat, Sun et al."),
+            ("sun_pull_off_force_nN", "machine-stiffness pull-off force, Sun et al. (printed -14.73)"),
+            ("sun_jkr_pull_off_force_nN", "JKR pull-off -5 pi w R/6, Sun et al. (printed -9.59)"),
+            ("sun_pull_in_force_nN", "machine-stiffness pull-in force, Sun et al."),
+            ("sun_pull_off_force_exact_sphere_nN", "pull-off force with the exact spherical profile (2.28)"),
+            ("sun_pull_in_depth_jump_nm", "depth change in the pull-in, Sun et al. (printed 27.4)"),
+            ("sun_pull_off_depth_jump_nm", "|depth change| in the pull-off, Sun et al. (printed 26)"),
+            ("notbohm_alpha_norm", "alpha = k_s/k_hat, Notbohm et al."),
+            ("notbohm_pull_off_force_nN", "machine-stiffness pull-off force, Notbohm et al. (printed -281.5)"),
+            ("notbohm_jkr_pull_off_force_nN", "JKR pull-off -5 pi w R/6, Notbohm et al. (printed -167.5)"),
+            ("notbohm_pull_in_force_nN", "machine-stiffness pull-in force, Notbohm et al."),
+            ("notbohm_pull_off_force_exact_sphere_nN", "pull-off force with the exact spherical profile (2.28)"),
+            ("notbohm_pull_in_depth_jump_um", "depth change in the pull-in, Notbohm et al. (printed 0.19)"),
+            ("notbohm_pull_off_depth_jump_um", "|depth change| in the pull-off, Notbohm et al. (printed 0.42)"),
+        ],
+    }
+}
 
 impl Scene for Fig2_8 {
-    type Params = Fig2_8Params;
-    const ID: &'static str = "fig2.8";
-    const CHAPTER: &'static str = "2";
-    const TITLE: &'static str = "Machine-stiffness model and JKR at the best fits of section 2.4";
-    const CAPTION: &'static str = "Contact force vs indentation depth of the machine-stiffness model \
-        ((2.31b)-(2.32b) with the jumps of Sec. 2.3.1, blue) and of JKR ((1.2), red) at the best-fit \
-        parameters of Sec. 2.4: (a), (b) Sun et al., R = 58 nm; (c), (d) Notbohm et al., R = 2.5 um; \
-        (a), (c) the whole cycle, (b), (d) its adhesive region, with the pull-off forces and depth jumps \
-        against the text's. Where the JKR curve lies on the model's (the same P-h relation) it is dashed. \
-        Squares: the state just before the pull-off. Measured curves: `--fit FILE.csv` or scene fig2.8-fit.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        ("sun_alpha_norm", "alpha = k_s/k_hat, Sun et al."),
-        (
-            "sun_pull_off_force_nN",
-            "machine-stiffness pull-off force, Sun et al. (printed -14.73)",
-        ),
-        (
-            "sun_jkr_pull_off_force_nN",
-            "JKR pull-off -5 pi w R/6, Sun et al. (printed -9.59)",
-        ),
-        (
-            "sun_pull_in_force_nN",
-            "machine-stiffness pull-in force, Sun et al.",
-        ),
-        (
-            "sun_pull_off_force_exact_sphere_nN",
-            "pull-off force with the exact spherical profile (2.28)",
-        ),
-        (
-            "sun_pull_in_depth_jump_nm",
-            "depth change in the pull-in, Sun et al. (printed 27.4)",
-        ),
-        (
-            "sun_pull_off_depth_jump_nm",
-            "|depth change| in the pull-off, Sun et al. (printed 26)",
-        ),
-        ("notbohm_alpha_norm", "alpha = k_s/k_hat, Notbohm et al."),
-        (
-            "notbohm_pull_off_force_nN",
-            "machine-stiffness pull-off force, Notbohm et al. (printed -281.5)",
-        ),
-        (
-            "notbohm_jkr_pull_off_force_nN",
-            "JKR pull-off -5 pi w R/6, Notbohm et al. (printed -167.5)",
-        ),
-        (
-            "notbohm_pull_in_force_nN",
-            "machine-stiffness pull-in force, Notbohm et al.",
-        ),
-        (
-            "notbohm_pull_off_force_exact_sphere_nN",
-            "pull-off force with the exact spherical profile (2.28)",
-        ),
-        (
-            "notbohm_pull_in_depth_jump_um",
-            "depth change in the pull-in, Notbohm et al. (printed 0.19)",
-        ),
-        (
-            "notbohm_pull_off_depth_jump_um",
-            "|depth change| in the pull-off, Notbohm et al. (printed 0.42)",
-        ),
-    ];
-
     fn quick(p: &mut Self::Params) {
         p.points = p.points.min(40);
     }
@@ -303,10 +271,6 @@ crate::scene_params! {
     }
 }
 
-/// fig2.8-fit: fit a measured force-indentation cycle (appendix A.4) and draw it against both
-/// models, as `adhesion --headless --fit FILE.csv` does.
-pub struct Fig2_8Fit;
-
 /// The synthetic demonstration cycle of [`Fig2_8Fit`]: the model's cycle with seeded Gaussian
 /// force noise (standard deviation `noise` × max |P|; the same cycle on every run and platform).
 ///
@@ -326,55 +290,40 @@ pub fn demo_cycle(x: &Experiment, noise: f64, samples: usize) -> Result<crate::f
     Ok(curve)
 }
 
-impl Scene for Fig2_8Fit {
-    type Params = Fig2_8FitParams;
-    const ID: &'static str = "fig2.8-fit";
-    const CHAPTER: &'static str = "2";
-    const TITLE: &'static str = "Fit of a measured force-indentation cycle (your data)";
-    const CAPTION: &'static str = "A measured cycle (CSV: depth and force columns with units; positive depth is \
-        indentation) fitted for the work of adhesion and the plane-strain modulus by Levenberg-Marquardt on the \
-        contact relation (2.31b)-(2.32b), appendix A.4, with the contact point and the force baseline free; \
-        the in-contact part is found automatically and the retract is fitted. Drawn against \
-        the machine-stiffness model and JKR at the fitted parameters, with their predicted jumps.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        ("work_of_adhesion_J_per_m2", "fitted w"),
-        ("work_of_adhesion_std_error_J_per_m2", "standard error of w"),
-        (
-            "plane_strain_modulus_Pa",
-            "fitted plane-strain modulus E/(1-nu^2)",
-        ),
-        ("plane_strain_modulus_std_error_Pa", "its standard error"),
-        ("rms_residual_N", "root-mean-square force residual"),
-        ("points_used_count", "rows fitted (in and out of contact)"),
-        (
-            "contact_point_m",
-            "fitted contact point, in the data's depth origin",
-        ),
-        ("contact_point_std_error_m", "its standard error"),
-        ("baseline_N", "fitted force baseline"),
-        (
-            "measured_pull_off_force_N",
-            "measured pull-off: the retract's force minimum",
-        ),
-        ("jkr_pull_off_force_N", "JKR pull-off -5 pi w R/6 at the fit"),
-        (
-            "pull_in_force_N",
-            "machine-stiffness pull-in force (k_s > 0 only)",
-        ),
-        (
-            "pull_in_depth_jump_m",
-            "machine-stiffness depth change at the pull-in (k_s > 0 only)",
-        ),
-        (
-            "pull_off_force_N",
-            "machine-stiffness pull-off force (k_s > 0 only)",
-        ),
-        (
-            "pull_off_depth_jump_m",
-            "machine-stiffness depth change at the pull-off (k_s > 0 only)",
-        ),
-    ];
+crate::scene! {
+    /// fig2.8-fit: fit a measured force-indentation cycle (appendix A.4) and draw it against both
+    /// models, as `adhesion --headless --fit FILE.csv` does.
+    pub struct Fig2_8Fit {
+        id: "fig2.8-fit",
+        chapter: "2",
+        params: Fig2_8FitParams,
+        title: "Fit of a measured force-indentation cycle (your data)",
+        caption: "A measured cycle (CSV: depth and force columns with units; positive depth is \
+            indentation) fitted for the work of adhesion and the plane-strain modulus by Levenberg-Marquardt on the \
+            contact relation (2.31b)-(2.32b), appendix A.4, with the contact point and the force baseline free; \
+            the in-contact part is found automatically and the retract is fitted. Drawn against \
+            the machine-stiffness model and JKR at the fitted parameters, with their predicted jumps.",
+        results: &[
+            ("work_of_adhesion_J_per_m2", "fitted w"),
+            ("work_of_adhesion_std_error_J_per_m2", "standard error of w"),
+            ("plane_strain_modulus_Pa", "fitted plane-strain modulus E/(1-nu^2)"),
+            ("plane_strain_modulus_std_error_Pa", "its standard error"),
+            ("rms_residual_N", "root-mean-square force residual"),
+            ("points_used_count", "rows fitted (in and out of contact)"),
+            ("contact_point_m", "fitted contact point, in the data's depth origin"),
+            ("contact_point_std_error_m", "its standard error"),
+            ("baseline_N", "fitted force baseline"),
+            ("measured_pull_off_force_N", "measured pull-off: the retract's force minimum"),
+            ("jkr_pull_off_force_N", "JKR pull-off -5 pi w R/6 at the fit"),
+            ("pull_in_force_N", "machine-stiffness pull-in force (k_s > 0 only)"),
+            ("pull_in_depth_jump_m", "machine-stiffness depth change at the pull-in (k_s > 0 only)"),
+            ("pull_off_force_N", "machine-stiffness pull-off force (k_s > 0 only)"),
+            ("pull_off_depth_jump_m", "machine-stiffness depth change at the pull-off (k_s > 0 only)"),
+        ],
+    }
+}
 
+impl Scene for Fig2_8Fit {
     fn validate(p: &Self::Params) -> Result<()> {
         if p.model == FitModelChoice::MachineStiffness && p.spring_constant == 0.0 {
             return Err(Error::invalid(

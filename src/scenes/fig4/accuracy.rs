@@ -21,8 +21,8 @@ use crate::job::Job;
 use crate::models::axisymmetric::cycle::{CycleOptions, run_cycle};
 use crate::models::lennard_jones::LennardJones;
 use crate::params::Range;
-use crate::scenes::Scene;
 use crate::scenes::groups::{ContactCriterion, DepthPath, ElasticTip, Interaction, SurfaceModel};
+use crate::scenes::{Scene, SceneHeader};
 
 crate::scene_params! {
     /// Parameters of scene fig4.5-accuracy: the smooth tip of Fig. 4.5 (its caption) cycled to
@@ -449,112 +449,51 @@ fn cost_panel(s: &Sweep) -> Panel {
     d
 }
 
-/// Fig4.5-accuracy: error and spurious instabilities of the surface model against the ring
-/// width, the depth step and the Gauss points, and against run time.
-pub struct Fig4_5Accuracy;
+crate::scene! {
+    /// Fig4.5-accuracy: error and spurious instabilities of the surface model against the ring
+    /// width, the depth step and the Gauss points, and against run time.
+    pub struct Fig4_5Accuracy {
+        id: "fig4.5-accuracy",
+        chapter: "4",
+        params: Fig4_5AccuracyParams,
+        title: "Smooth tip: accuracy against speed of the surface model",
+        caption: "The displacement-controlled cycle of the smooth tip of Fig. 4.5 (R = 5 um, E = 4.4 MPa, \
+            nu = 0.25, C6 = 3, C12 = 1, sigma = 1 nm, A_H = 2e-21 J; from 12 zeta0 apart to 3 zeta0 deep) with the \
+            axisymmetric surface model over its discretisation: ring width h in units of b = zeta0^2 E*/w, depth step, \
+            Gauss points per interval of the interaction (4.4). The exact cycle has two jumps (pull-in, pull-off); \
+            every further jump is spurious, the contact edge hopping from ring to ring. (a) relative error of the \
+            adhesive force P_adh and of the hysteresis H against h, (b) spurious jumps against h, (c) spurious jumps \
+            against the step, (d) error against run time, (e) error against the step. Reference: the finest ring \
+            width of the sweep (a, d) and the finest step (d, e).",
+        results: &[
+            ("reference_ring_width_norm", "finest ring width of the sweep, h/b (the reference of the width sweeps)"),
+            ("reference_step_norm", "finest depth step of the sweep / zeta0 (the reference of the step sweep)"),
+            ("reference_adhesive_force_norm", "P_adh/(pi w R) on the finest ring width at the default step"),
+            ("reference_hysteresis_norm", "H/(2E* R^3) on the finest ring width at the default step"),
+            ("default_adhesive_force_error_norm", "relative error of P_adh at the default ring width against the finest (same step)"),
+            ("default_hysteresis_error_norm", "relative error of H at the default ring width against the finest (same step)"),
+            ("default_step_adhesive_force_error_norm", "relative error of P_adh at the default step against the finest (same ring width)"),
+            ("default_step_hysteresis_error_norm", "relative error of H at the default step against the finest (same ring width)"),
+            ("default_spurious_jumps_count", "jumps beyond pull-in and pull-off on the default grid"),
+            ("reference_spurious_jumps_count", "jumps beyond pull-in and pull-off on the finest ring width"),
+            ("coarsest_spurious_jumps_count", "spurious jumps on the coarsest ring width (default Gauss points and step)"),
+            ("coarsest_adhesive_force_error_norm", "relative error of P_adh on the coarsest ring width"),
+            ("coarsest_hysteresis_error_norm", "relative error of H on the coarsest ring width"),
+            ("coarsest_clean_ring_width_norm", "largest ring width h/b without spurious jumps (default Gauss points and step; 0: none)"),
+            ("coarsest_step_spurious_jumps_count", "spurious jumps at the coarsest step (default ring width)"),
+            ("fewest_points_spurious_jumps_count", "spurious jumps at the default ring width with the fewest Gauss points of the sweep"),
+            ("default_run_time_s", "run time of the default grid (tip and cycle; 0 when not measured)"),
+            ("reference_run_time_s", "run time of the finest ring width (0 when not measured)"),
+            ("default_newton_iterations_count", "Newton iterations of the default grid's cycle"),
+            ("reference_newton_iterations_count", "Newton iterations of the finest ring width's cycle"),
+            ("runs_count", "cycles run"),
+            ("all_states_stable_count", "1 when every state of every cycle was certified stable"),
+        ],
+        sweep: true,
+    }
+}
 
 impl Scene for Fig4_5Accuracy {
-    type Params = Fig4_5AccuracyParams;
-    const ID: &'static str = "fig4.5-accuracy";
-    const CHAPTER: &'static str = "4";
-    const TITLE: &'static str = "Smooth tip: accuracy against speed of the surface model";
-    const SWEEP: bool = true;
-    const CAPTION: &'static str = "The displacement-controlled cycle of the smooth tip of Fig. 4.5 (R = 5 um, E = 4.4 MPa, \
-        nu = 0.25, C6 = 3, C12 = 1, sigma = 1 nm, A_H = 2e-21 J; from 12 zeta0 apart to 3 zeta0 deep) with the \
-        axisymmetric surface model over its discretisation: ring width h in units of b = zeta0^2 E*/w, depth step, \
-        Gauss points per interval of the interaction (4.4). The exact cycle has two jumps (pull-in, pull-off); \
-        every further jump is spurious, the contact edge hopping from ring to ring. (a) relative error of the \
-        adhesive force P_adh and of the hysteresis H against h, (b) spurious jumps against h, (c) spurious jumps \
-        against the step, (d) error against run time, (e) error against the step. Reference: the finest ring \
-        width of the sweep (a, d) and the finest step (d, e).";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        (
-            "reference_ring_width_norm",
-            "finest ring width of the sweep, h/b (the reference of the width sweeps)",
-        ),
-        (
-            "reference_step_norm",
-            "finest depth step of the sweep / zeta0 (the reference of the step sweep)",
-        ),
-        (
-            "reference_adhesive_force_norm",
-            "P_adh/(pi w R) on the finest ring width at the default step",
-        ),
-        (
-            "reference_hysteresis_norm",
-            "H/(2E* R^3) on the finest ring width at the default step",
-        ),
-        (
-            "default_adhesive_force_error_norm",
-            "relative error of P_adh at the default ring width against the finest (same step)",
-        ),
-        (
-            "default_hysteresis_error_norm",
-            "relative error of H at the default ring width against the finest (same step)",
-        ),
-        (
-            "default_step_adhesive_force_error_norm",
-            "relative error of P_adh at the default step against the finest (same ring width)",
-        ),
-        (
-            "default_step_hysteresis_error_norm",
-            "relative error of H at the default step against the finest (same ring width)",
-        ),
-        (
-            "default_spurious_jumps_count",
-            "jumps beyond pull-in and pull-off on the default grid",
-        ),
-        (
-            "reference_spurious_jumps_count",
-            "jumps beyond pull-in and pull-off on the finest ring width",
-        ),
-        (
-            "coarsest_spurious_jumps_count",
-            "spurious jumps on the coarsest ring width (default Gauss points and step)",
-        ),
-        (
-            "coarsest_adhesive_force_error_norm",
-            "relative error of P_adh on the coarsest ring width",
-        ),
-        (
-            "coarsest_hysteresis_error_norm",
-            "relative error of H on the coarsest ring width",
-        ),
-        (
-            "coarsest_clean_ring_width_norm",
-            "largest ring width h/b without spurious jumps (default Gauss points and step; 0: none)",
-        ),
-        (
-            "coarsest_step_spurious_jumps_count",
-            "spurious jumps at the coarsest step (default ring width)",
-        ),
-        (
-            "fewest_points_spurious_jumps_count",
-            "spurious jumps at the default ring width with the fewest Gauss points of the sweep",
-        ),
-        (
-            "default_run_time_s",
-            "run time of the default grid (tip and cycle; 0 when not measured)",
-        ),
-        (
-            "reference_run_time_s",
-            "run time of the finest ring width (0 when not measured)",
-        ),
-        (
-            "default_newton_iterations_count",
-            "Newton iterations of the default grid's cycle",
-        ),
-        (
-            "reference_newton_iterations_count",
-            "Newton iterations of the finest ring width's cycle",
-        ),
-        ("runs_count", "cycles run"),
-        (
-            "all_states_stable_count",
-            "1 when every state of every cycle was certified stable",
-        ),
-    ];
-
     /// A shallow cycle over three ring widths around the default 0.25 b (fig4.5's) and a
     /// finer one as the reference, two steps around the default, one Gauss-point count.
     fn quick(p: &mut Self::Params) {

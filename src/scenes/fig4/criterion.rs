@@ -23,8 +23,8 @@ use crate::models::axisymmetric::cycle::{CycleOptions, TipCycle, TipState, run_c
 use crate::models::axisymmetric::tip::{Tip, TipParams};
 use crate::models::lennard_jones::{InstabilityCriterion, LennardJones, TractionLaw};
 use crate::params::Range;
-use crate::scenes::Scene;
 use crate::scenes::groups::{ContactCriterion, DepthPath, ElasticTip, Interaction, SurfaceModel};
+use crate::scenes::{Scene, SceneHeader};
 
 /// The cycles start at h = (START_PER_TABOR μ_T + START_OFFSET) ζ0: beyond the JKR pull-off
 /// separation of a displacement-controlled tip, (3/4)π^(2/3) μ_T ζ0 = 1.61 μ_T ζ0, and beyond
@@ -358,109 +358,51 @@ fn same_tabor(a: f64, b: f64) -> bool {
     (a - b).abs() <= 1e-9 * b.abs()
 }
 
-/// Fig. 4.3: critical separation against the Tabor parameter; the parabola error before
-/// pull-in.
-pub struct Fig4_3;
+crate::scene! {
+    /// Fig. 4.3: critical separation against the Tabor parameter; the parabola error before
+    /// pull-in.
+    pub struct Fig4_3 {
+        id: "fig4.3",
+        chapter: "4",
+        params: Fig4_3Params,
+        title: "Critical separation of the instabilities against the Tabor parameter",
+        caption: "(a) Dimensionless critical separation z_c/zeta0 against the Tabor parameter mu_T: \
+            the roots of (4.23) (parabolic tip, Boussinesq point load; pull-in red, pull-off blue; solid with the \
+            printed traction (4.19), dotted with the consistent one) and, as circles, the gap at the apex of the last \
+            state before the pull-in and pull-off jumps of displacement-controlled cycles of the smooth tip of Fig. 4.5 \
+            (R = 5 um, C6 = 3, C12 = 1, sigma = 1 nm, A_H = 2e-21 J) with the axisymmetric surface model, mu_T set \
+            through E* by (1.8). (b) Relative error (4.24) between the deformed gap profile just before the pull-in \
+            at mu_T = 5 and the parabola through its apex.",
+        results: &[
+            ("critical_tabor_norm", "mu_T* of (4.23), printed traction, unrounded coefficients"),
+            ("double_root_norm", "z_c/zeta0 at mu_T* (the double root of (4.23))"),
+            ("critical_tabor_consistent_norm", "mu_T* of (4.23) with the consistent traction (ERRATA (4.19))"),
+            ("double_root_consistent_norm", "z_c/zeta0 at mu_T* with the consistent traction"),
+            ("onset_tabor_low_norm", "surface model: largest mu_T found without a jump below the first with one (0: none)"),
+            ("onset_tabor_high_norm", "surface model: smallest mu_T found with a jump (0: none)"),
+            ("cycles_count", "surface-model cycles of panel (a) (bisection not counted)"),
+            ("cycles_with_jumps_count", "of them, cycles with at least one jump"),
+            ("pull_in_ratio_min_norm", "smallest z_c(model)/z_c(4.23) at pull-in, printed traction"),
+            ("pull_in_ratio_max_norm", "largest z_c(model)/z_c(4.23) at pull-in, printed traction"),
+            ("pull_in_consistent_ratio_min_norm", "smallest z_c(model)/z_c(4.23) at pull-in, consistent traction"),
+            ("pull_in_consistent_ratio_max_norm", "largest z_c(model)/z_c(4.23) at pull-in, consistent traction"),
+            ("pull_in_exponent_norm", "p of a fit z_c ~ mu_T^p to the model's pull-in separations (0: fewer than 2)"),
+            ("pull_in_exponent_criterion_norm", "p of the same fit to the pull-in roots of (4.23) at the same mu_T"),
+            ("pull_off_gap_min_norm", "smallest z_c/zeta0 at pull-off (model)"),
+            ("pull_off_gap_max_norm", "largest z_c/zeta0 at pull-off (model)"),
+            ("pull_in_gap_norm", "z_c/zeta0 before pull-in at the mu_T of panel (b) (model; 0: no pull-in)"),
+            ("criterion_pull_in_gap_norm", "pull-in root of (4.23) at the mu_T of panel (b), printed traction"),
+            ("error_max_norm", "largest err(r) of (4.24), z0 the deformed apex gap (text: below 0.05, at the centre)"),
+            ("error_max_radius_nm", "radius of the largest err(r)"),
+            ("error_max_radius_norm", "radius of the largest err(r) / sqrt(2 R z_c)"),
+            ("apex_displacement_norm", "u(0)/z_c before pull-in: err(0) when z0 is the undeformed apex gap"),
+            ("all_states_stable_count", "1 when every state of every cycle was certified stable"),
+        ],
+        sweep: true,
+    }
+}
 
 impl Scene for Fig4_3 {
-    type Params = Fig4_3Params;
-    const ID: &'static str = "fig4.3";
-    const CHAPTER: &'static str = "4";
-    const TITLE: &'static str = "Critical separation of the instabilities against the Tabor parameter";
-    const SWEEP: bool = true;
-    const CAPTION: &'static str = "(a) Dimensionless critical separation z_c/zeta0 against the Tabor parameter mu_T: \
-        the roots of (4.23) (parabolic tip, Boussinesq point load; pull-in red, pull-off blue; solid with the \
-        printed traction (4.19), dotted with the consistent one) and, as circles, the gap at the apex of the last \
-        state before the pull-in and pull-off jumps of displacement-controlled cycles of the smooth tip of Fig. 4.5 \
-        (R = 5 um, C6 = 3, C12 = 1, sigma = 1 nm, A_H = 2e-21 J) with the axisymmetric surface model, mu_T set \
-        through E* by (1.8). (b) Relative error (4.24) between the deformed gap profile just before the pull-in \
-        at mu_T = 5 and the parabola through its apex.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        (
-            "critical_tabor_norm",
-            "mu_T* of (4.23), printed traction, unrounded coefficients",
-        ),
-        (
-            "double_root_norm",
-            "z_c/zeta0 at mu_T* (the double root of (4.23))",
-        ),
-        (
-            "critical_tabor_consistent_norm",
-            "mu_T* of (4.23) with the consistent traction (ERRATA (4.19))",
-        ),
-        (
-            "double_root_consistent_norm",
-            "z_c/zeta0 at mu_T* with the consistent traction",
-        ),
-        (
-            "onset_tabor_low_norm",
-            "surface model: largest mu_T found without a jump below the first with one (0: none)",
-        ),
-        (
-            "onset_tabor_high_norm",
-            "surface model: smallest mu_T found with a jump (0: none)",
-        ),
-        (
-            "cycles_count",
-            "surface-model cycles of panel (a) (bisection not counted)",
-        ),
-        (
-            "cycles_with_jumps_count",
-            "of them, cycles with at least one jump",
-        ),
-        (
-            "pull_in_ratio_min_norm",
-            "smallest z_c(model)/z_c(4.23) at pull-in, printed traction",
-        ),
-        (
-            "pull_in_ratio_max_norm",
-            "largest z_c(model)/z_c(4.23) at pull-in, printed traction",
-        ),
-        (
-            "pull_in_consistent_ratio_min_norm",
-            "smallest z_c(model)/z_c(4.23) at pull-in, consistent traction",
-        ),
-        (
-            "pull_in_consistent_ratio_max_norm",
-            "largest z_c(model)/z_c(4.23) at pull-in, consistent traction",
-        ),
-        (
-            "pull_in_exponent_norm",
-            "p of a fit z_c ~ mu_T^p to the model's pull-in separations (0: fewer than 2)",
-        ),
-        (
-            "pull_in_exponent_criterion_norm",
-            "p of the same fit to the pull-in roots of (4.23) at the same mu_T",
-        ),
-        ("pull_off_gap_min_norm", "smallest z_c/zeta0 at pull-off (model)"),
-        ("pull_off_gap_max_norm", "largest z_c/zeta0 at pull-off (model)"),
-        (
-            "pull_in_gap_norm",
-            "z_c/zeta0 before pull-in at the mu_T of panel (b) (model; 0: no pull-in)",
-        ),
-        (
-            "criterion_pull_in_gap_norm",
-            "pull-in root of (4.23) at the mu_T of panel (b), printed traction",
-        ),
-        (
-            "error_max_norm",
-            "largest err(r) of (4.24), z0 the deformed apex gap (text: below 0.05, at the centre)",
-        ),
-        ("error_max_radius_nm", "radius of the largest err(r)"),
-        (
-            "error_max_radius_norm",
-            "radius of the largest err(r) / sqrt(2 R z_c)",
-        ),
-        (
-            "apex_displacement_norm",
-            "u(0)/z_c before pull-in: err(0) when z0 is the undeformed apex gap",
-        ),
-        (
-            "all_states_stable_count",
-            "1 when every state of every cycle was certified stable",
-        ),
-    ];
-
     fn quick(p: &mut Self::Params) {
         p.tabor_parameters = vec![0.5, 2.0];
         p.ring_width = p.ring_width.max(0.5);

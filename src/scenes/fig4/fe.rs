@@ -16,8 +16,8 @@ use crate::models::body_force_fe::body::FAR_POINTS;
 use crate::models::body_force_fe::tip::{FeGeometry, FeTip, FeTipParams};
 use crate::models::lennard_jones::LennardJones;
 use crate::params::{Range, require_below};
-use crate::scenes::Scene;
-use crate::scenes::groups::{ContactCriterion, DepthPath, ElasticTip, Interaction, SurfaceModel};
+use crate::scenes::groups::{ContactCriterion, DepthPath, ElasticTip, FeBulk, Interaction, SurfaceModel};
+use crate::scenes::{Scene, SceneHeader};
 
 /// The mesh of a scene's finite-element tip: the fine zone near the substrate, its surface
 /// elements, the bulk and the modelled size of the tip.
@@ -86,58 +86,45 @@ crate::scene_params! {
         step_over_sigma: f64 = 10.0, unit = "", range = Range::between(0.5, 100.0);
         /// Width of the surface elements over the contact zone [m].
         element_width: f64 = 3.3e-9, unit = "m", range = Range::between(1.0e-10, 1.0e-7);
-        /// Growth of the element size with the distance from the contact zone (excess stiffness over Hertz 0.15 % at 0.07).
-        grading: f64 = 0.07, unit = "", range = Range::between(0.05, 1.0);
-        /// Radius and height of the tip in units of R (excess stiffness over Hertz of the held top about 17 % R/h0).
-        size_over_radius: f64 = 128.0, unit = "", range = Range::between(2.0, 1000.0);
+        /// The bulk of the mesh.
+        group bulk: FeBulk { grading: 0.07, size_over_radius: 128.0 } help {
+            grading: "Growth of the element size with the distance from the contact zone (excess stiffness over Hertz 0.15 % at 0.07).",
+            size_over_radius: "Radius and height of the tip in units of R (excess stiffness over Hertz of the held top about 17 % R/h0).",
+        };
     }
 }
 
-/// Fig. 4.4: the finite-element tip without attraction against Hertz.
-pub struct Fig4_4;
+crate::scene! {
+    /// Fig. 4.4: the finite-element tip without attraction against Hertz.
+    pub struct Fig4_4 {
+        id: "fig4.4",
+        chapter: "4",
+        params: Fig4_4Params,
+        title: "Adhesionless finite-element contact against Hertz",
+        caption: "Finite-element model of the tip (axisymmetric linear triangles, the repulsive \
+            body force of (4.15) with C6 = 0; R = 10 um, E = 1.1 MPa, nu = 0.25, C12 = 1, sigma = 1 nm, A_H = 2e-21 J) \
+            pressed against the rigid flat, against Hertz (3.3 with ell = chi = 0): (a) force against penetration, \
+            (b) force against contact radius (gap below sigma, section 4.2.2). The soft repulsive wall has no sharp \
+            surface: Hertz is drawn from one wall position fitted at the deepest state. No jump occurs.",
+        results: &[
+            ("hertz_deviation_norm", "largest |P - P_Hertz|/P over the deeper two thirds of the path"),
+            ("wall_offset_norm", "fitted wall position / sigma (depth where Hertz starts)"),
+            ("radius_deviation_norm", "largest |a - sqrt(R d)|/sqrt(R d) over the same states"),
+            ("unknowns_count", "displacement unknowns of the mesh"),
+            ("triangles_count", "triangles of the mesh"),
+            ("jumps_count", "states reached from an unstable start (0: no instability; the adhesionless energy is convex)"),
+            ("all_states_stable_count", "1 when every state was certified stable"),
+            ("run_time_s", "wall-clock time of the loading path"),
+        ],
+        long: true,
+    }
+}
 
 impl Scene for Fig4_4 {
-    type Params = Fig4_4Params;
-    const ID: &'static str = "fig4.4";
-    const CHAPTER: &'static str = "4";
-    const LONG: bool = true;
-    const TITLE: &'static str = "Adhesionless finite-element contact against Hertz";
-    const CAPTION: &'static str = "Finite-element model of the tip (axisymmetric linear triangles, the repulsive \
-        body force of (4.15) with C6 = 0; R = 10 um, E = 1.1 MPa, nu = 0.25, C12 = 1, sigma = 1 nm, A_H = 2e-21 J) \
-        pressed against the rigid flat, against Hertz (3.3 with ell = chi = 0): (a) force against penetration, \
-        (b) force against contact radius (gap below sigma, section 4.2.2). The soft repulsive wall has no sharp \
-        surface: Hertz is drawn from one wall position fitted at the deepest state. No jump occurs.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        (
-            "hertz_deviation_norm",
-            "largest |P - P_Hertz|/P over the deeper two thirds of the path",
-        ),
-        (
-            "wall_offset_norm",
-            "fitted wall position / sigma (depth where Hertz starts)",
-        ),
-        (
-            "radius_deviation_norm",
-            "largest |a - sqrt(R d)|/sqrt(R d) over the same states",
-        ),
-        ("unknowns_count", "displacement unknowns of the mesh"),
-        ("triangles_count", "triangles of the mesh"),
-        (
-            "jumps_count",
-            "states reached from an unstable start (0: no instability; the adhesionless energy is convex)",
-        ),
-        (
-            "all_states_stable_count",
-            "1 when every state was certified stable",
-        ),
-        ("run_time_s", "wall-clock time of the loading path"),
-    ];
-
     fn quick(p: &mut Self::Params) {
         p.depth_over_sigma = p.depth_over_sigma.min(60.0);
         p.step_over_sigma = p.step_over_sigma.max(6.0);
-        p.grading = p.grading.max(0.4);
-        p.size_over_radius = p.size_over_radius.min(6.0);
+        p.bulk.coarsen(0.4, 6.0);
         p.element_width = p.element_width.max(8e-9);
     }
 
@@ -175,8 +162,8 @@ impl Scene for Fig4_4 {
             &p.tip,
             &FeDiscretisation {
                 element_width: p.element_width / b,
-                grading: p.grading,
-                size_over_radius: p.size_over_radius,
+                grading: p.bulk.grading,
+                size_over_radius: p.bulk.size_over_radius,
                 ..mesh
             },
         )?;
@@ -315,10 +302,8 @@ crate::scene_params! {
         };
         /// Ring width of the surface model and element width of the finite-element model over the contact zone, in units of b = ζ0²E*/w.
         width: f64 = 0.25, unit = "", range = Range::between(0.05, 2.0);
-        /// Growth of the element size with the distance from the contact zone.
-        grading: f64 = 0.15, unit = "", range = Range::between(0.05, 1.0);
-        /// Radius and height of the finite-element tip in units of R.
-        size_over_radius: f64 = 20.0, unit = "", range = Range::between(2.0, 100.0);
+        /// The bulk of the finite-element mesh.
+        group bulk: FeBulk;
         /// Gradings of the mesh-convergence runs (shallow cycles to h = 0).
         convergence_gradings: Vec<f64> = vec![0.4, 0.3, 0.2, 0.15], unit = "", range = Range::between(0.05, 1.0);
         /// Tip sizes (over R) of the domain-convergence runs (shallow cycles to h = 0).
@@ -352,56 +337,48 @@ fn summary(c: &TipCycle) -> (f64, f64, f64, f64) {
     (c.adhesive_force(), c.hysteresis(), pull_in, pull_off)
 }
 
-/// Fig. 4.5 in both models: the surface model against the finite-element model.
-pub struct Fig4_5Models;
+crate::scene! {
+    /// Fig. 4.5 in both models: the surface model against the finite-element model.
+    pub struct Fig4_5Models {
+        id: "fig4.5-models",
+        chapter: "4",
+        params: Fig4_5ModelsParams,
+        title: "Smooth tip: finite-element model against the surface model",
+        caption: "The cycle of Fig. 4.5 (R = 5 um, E = 4.4 MPa, nu = 0.25, C6 = 3, C12 = 1, sigma = 1 nm, \
+            A_H = 2e-21 J) computed with the dissertation's finite-element model (an axisymmetric tip with the body \
+            force (4.15)) and with the surface model that draws the other chapter 4 figures (the body force \
+            integrated through a column, the traction (4.19)). (a) P-h cycles of both; with convergence_study = 1 \
+            (the default; not in the quick form, which draws (a) alone) the adhesive force of \
+            shallow finite-element cycles (to h = 0) (b) against the number of unknowns as the bulk mesh is refined \
+            (grading) and (c) against the tip's size r0 = h0, with the surface model's value for reference. The two \
+            models differ only through the strain of the surface layer (order p/E) and the finite tip.",
+        results: &[
+            ("fe_adhesive_force_norm", "P_adh/(pi w R), finite elements"),
+            ("surface_adhesive_force_norm", "P_adh/(pi w R), surface model"),
+            ("fe_hysteresis_norm", "H/(2E* R^3), finite elements"),
+            ("surface_hysteresis_norm", "H/(2E* R^3), surface model"),
+            ("fe_pull_in_depth_nm", "depth of the pull-in, finite elements"),
+            ("surface_pull_in_depth_nm", "depth of the pull-in, surface model"),
+            ("fe_pull_off_depth_nm", "depth of the last pull-off, finite elements"),
+            ("surface_pull_off_depth_nm", "depth of the last pull-off, surface model"),
+            ("fe_jumps_count", "jumps of the finite-element cycle"),
+            ("surface_jumps_count", "jumps of the surface-model cycle"),
+            ("fe_unknowns_count", "unknowns of the finite-element model"),
+            ("surface_unknowns_count", "rings of the surface model"),
+            ("fe_time_s", "run time of the finite-element cycle"),
+            ("surface_time_s", "run time of the surface-model cycle"),
+            ("all_states_stable_count", "1 when every state of both cycles was certified stable"),
+        ],
+        sweep: true,
+    }
+}
 
 impl Scene for Fig4_5Models {
-    type Params = Fig4_5ModelsParams;
-    const ID: &'static str = "fig4.5-models";
-    const CHAPTER: &'static str = "4";
-    const TITLE: &'static str = "Smooth tip: finite-element model against the surface model";
-    const SWEEP: bool = true;
-    const CAPTION: &'static str = "The cycle of Fig. 4.5 (R = 5 um, E = 4.4 MPa, nu = 0.25, C6 = 3, C12 = 1, sigma = 1 nm, \
-        A_H = 2e-21 J) computed with the dissertation's finite-element model (an axisymmetric tip with the body \
-        force (4.15)) and with the surface model that draws the other chapter 4 figures (the body force \
-        integrated through a column, the traction (4.19)). (a) P-h cycles of both; with convergence_study = 1 \
-        (the default; not in the quick form, which draws (a) alone) the adhesive force of \
-        shallow finite-element cycles (to h = 0) (b) against the number of unknowns as the bulk mesh is refined \
-        (grading) and (c) against the tip's size r0 = h0, with the surface model's value for reference. The two \
-        models differ only through the strain of the surface layer (order p/E) and the finite tip.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        ("fe_adhesive_force_norm", "P_adh/(pi w R), finite elements"),
-        ("surface_adhesive_force_norm", "P_adh/(pi w R), surface model"),
-        ("fe_hysteresis_norm", "H/(2E* R^3), finite elements"),
-        ("surface_hysteresis_norm", "H/(2E* R^3), surface model"),
-        ("fe_pull_in_depth_nm", "depth of the pull-in, finite elements"),
-        ("surface_pull_in_depth_nm", "depth of the pull-in, surface model"),
-        (
-            "fe_pull_off_depth_nm",
-            "depth of the last pull-off, finite elements",
-        ),
-        (
-            "surface_pull_off_depth_nm",
-            "depth of the last pull-off, surface model",
-        ),
-        ("fe_jumps_count", "jumps of the finite-element cycle"),
-        ("surface_jumps_count", "jumps of the surface-model cycle"),
-        ("fe_unknowns_count", "unknowns of the finite-element model"),
-        ("surface_unknowns_count", "rings of the surface model"),
-        ("fe_time_s", "run time of the finite-element cycle"),
-        ("surface_time_s", "run time of the surface-model cycle"),
-        (
-            "all_states_stable_count",
-            "1 when every state of both cycles was certified stable",
-        ),
-    ];
-
     fn quick(p: &mut Self::Params) {
         p.path.h_min_over_zeta0 = p.path.h_min_over_zeta0.max(0.0);
         p.path.h_start_over_zeta0 = p.path.h_start_over_zeta0.min(9.0);
         p.path.step_over_zeta0 = p.path.step_over_zeta0.max(0.5);
-        p.grading = p.grading.max(0.5);
-        p.size_over_radius = p.size_over_radius.min(4.0);
+        p.bulk.coarsen(0.5, 4.0);
         p.convergence_study = 0;
     }
 
@@ -443,7 +420,7 @@ impl Scene for Fig4_5Models {
                 p.contact.contact_gap,
             )
         };
-        let fe_tip = fe_at(p.grading, p.size_over_radius)?;
+        let fe_tip = fe_at(p.bulk.grading, p.bulk.size_over_radius)?;
         // Progress: the full finite-element cycle, the surface model's, the shallow
         // finite-element cycles of the convergence study, the surface model's shallow cycle, by
         // their estimated costs. Measured: 3 788 unknowns took 7.6 times the surface model's
@@ -493,9 +470,9 @@ impl Scene for Fig4_5Models {
             (0.0, 1.0),
             |&(by_grading, v), part| {
                 let tip = if by_grading {
-                    fe_at(v, p.size_over_radius)?
+                    fe_at(v, p.bulk.size_over_radius)?
                 } else {
-                    fe_at(p.grading, v)?
+                    fe_at(p.bulk.grading, v)?
                 };
                 let c = run_cycle(&tip, &shallow, |f| {
                     part.progress(f, "convergence cycle");
@@ -637,49 +614,47 @@ crate::scene_params! {
         from DepthPath: step_over_zeta0: f64 = 0.25, help = "Depth step of the loading in units of ζ0.";
         /// Element width over the contact zone in units of b = ζ0²E*/w.
         width: f64 = 0.25, unit = "", range = Range::between(0.05, 2.0);
-        /// Growth of the element size with the distance from the contact zone.
-        grading: f64 = 0.15, unit = "", range = Range::between(0.05, 1.0);
-        /// Radius and height of the tip in units of R.
-        size_over_radius: f64 = 20.0, unit = "", range = Range::between(2.0, 100.0);
+        /// The bulk of the mesh.
+        group bulk: FeBulk help {
+            size_over_radius: "Radius and height of the tip in units of R.",
+        };
         /// Depth below the surface at which σ_zz is drawn, in units of ζ0 (below the interaction layer the column carries the whole traction).
         stress_depth_over_zeta0: f64 = 3.0, unit = "", range = Range::between(0.1, 50.0);
     }
 }
 
-/// Fig. 4.6: u_z in the tip and σ_zz along the interface after the pull-in.
-pub struct Fig4_6;
+crate::scene! {
+    /// Fig. 4.6: u_z in the tip and σ_zz along the interface after the pull-in.
+    pub struct Fig4_6 {
+        id: "fig4.6",
+        chapter: "4",
+        params: Fig4_6Params,
+        title: "Fields in the tip after the pull-in (finite elements)",
+        caption: "The smooth tip of Fig. 4.5 (finite-element model) loaded past its pull-in: (a) the \
+            vertical displacement u_z in the tip near the contact (the neck-like profile of the contact zone), \
+            (b) the normal stress sigma_zz along the interface, taken just above the interaction layer (the tip's \
+            bottom face is traction free; the body force builds sigma_zz up through the layer): compressive in the \
+            centre, tensile with a concentration at the contact edge, as in the classical adhesive contact; (c) the \
+            gap of the deformed surface near the contact against the undeformed tip's at the same depth: the \
+            neck-like profile (also drawn in (a)).",
+        results: &[
+            ("contact_radius_m", "radius where the gap is below sigma"),
+            ("depth_m", "depth h of the state"),
+            ("force_N", "force P of the state (compressive positive)"),
+            ("peak_tension_MPa", "largest tensile sigma_zz on the line of panel (b)"),
+            ("peak_tension_radius_m", "its radius"),
+            ("centre_stress_MPa", "sigma_zz at the axis on that line"),
+            ("unknowns_count", "displacement unknowns of the mesh"),
+        ],
+        long: true,
+    }
+}
 
 impl Scene for Fig4_6 {
-    type Params = Fig4_6Params;
-    const ID: &'static str = "fig4.6";
-    const CHAPTER: &'static str = "4";
-    const LONG: bool = true;
-    const TITLE: &'static str = "Fields in the tip after the pull-in (finite elements)";
-    const CAPTION: &'static str = "The smooth tip of Fig. 4.5 (finite-element model) loaded past its pull-in: (a) the \
-        vertical displacement u_z in the tip near the contact (the neck-like profile of the contact zone), \
-        (b) the normal stress sigma_zz along the interface, taken just above the interaction layer (the tip's \
-        bottom face is traction free; the body force builds sigma_zz up through the layer): compressive in the \
-        centre, tensile with a concentration at the contact edge, as in the classical adhesive contact; (c) the \
-        gap of the deformed surface near the contact against the undeformed tip's at the same depth: the \
-        neck-like profile (also drawn in (a)).";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        ("contact_radius_m", "radius where the gap is below sigma"),
-        ("depth_m", "depth h of the state"),
-        ("force_N", "force P of the state (compressive positive)"),
-        (
-            "peak_tension_MPa",
-            "largest tensile sigma_zz on the line of panel (b)",
-        ),
-        ("peak_tension_radius_m", "its radius"),
-        ("centre_stress_MPa", "sigma_zz at the axis on that line"),
-        ("unknowns_count", "displacement unknowns of the mesh"),
-    ];
-
     fn quick(p: &mut Self::Params) {
         p.step_over_zeta0 = p.step_over_zeta0.max(0.5);
         p.width = p.width.max(0.5);
-        p.grading = p.grading.max(0.4);
-        p.size_over_radius = p.size_over_radius.min(5.0);
+        p.bulk.coarsen(0.4, 5.0);
     }
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
@@ -703,8 +678,8 @@ impl Scene for Fig4_6 {
             &FeDiscretisation {
                 fine_radius: surface.params().fine_radius,
                 element_width: p.width,
-                grading: p.grading,
-                size_over_radius: p.size_over_radius,
+                grading: p.bulk.grading,
+                size_over_radius: p.bulk.size_over_radius,
                 quadrature_points: 4,
             },
         )?;

@@ -17,16 +17,25 @@ use crate::job::Job;
 use crate::models::axisymmetric::cycle::{CycleOptions, TipCycle, TipJump, TipState};
 use crate::models::lennard_jones::LennardJones;
 use crate::params::Range;
-use crate::scenes::Scene;
 use crate::scenes::groups::{
     ContactCriterion, DepthPath, ElasticTip, FeMesh, Interaction, SurfaceModel, Waviness,
 };
+use crate::scenes::{Scene, SceneHeader};
 
 /// The parameters shared by the roughness scenes (those of Fig. 4.7a with σ = 1.5 nm and
 /// |h_min|/R = 6e-4), with the scene's own amplitudes and extra fields appended.
 /// The scenes of one model take `model` (surface or fe, after the discretisation); the study
 /// of both models (`@fields`) takes the fields alone and names its model with `tip_model`.
 macro_rules! rough_tip_params {
+    // The scenes of this file: at one σ, the contact threshold σ (section 4.2.2).
+    ($(#[$meta:meta])* $name:ident, youngs_modulus = $e:expr, sigma = $sigma:expr, { $($extra:tt)* }) => {
+        rough_tip_params! { $(#[$meta])* $name, youngs_modulus = $e, {
+            from Interaction: sigma: f64 = $sigma;
+            /// The contact threshold (σ).
+            group contact: ContactCriterion { contact_gap: $sigma };
+            $($extra)*
+        } }
+    };
     ($(#[$meta:meta])* $name:ident, youngs_modulus = $e:expr, { $($extra:tt)* }) => {
         rough_tip_params! { @fields $(#[$meta])* $name, youngs_modulus = $e, {
             /// Model of the tip: surface (the axisymmetric surface model, seconds per cycle) or fe (the dissertation's finite-element model with the body force (4.15): 7 086 unknowns at σ = 1.5 nm and more at smaller σ, b growing as σ⁴; about 2 minutes per cycle, fig4.9a's six cycles 14 minutes on 2 shared cores; quick form seconds per cycle).
@@ -125,10 +134,7 @@ pub(super) use rough_tip_params;
 rough_tip_params! {
     /// Parameters of scene fig4.9a (section 4.5.2, the caption of Fig. 4.9: those of Fig. 4.7a
     /// with σ = 1.5 nm, |h_min|/R = 6e-4, A = 0, 0.9375 and 2.5 nm).
-    Fig4_9aParams, youngs_modulus = 2.2e6, {
-        from Interaction: sigma: f64 = 1.5e-9;
-        /// The contact threshold (σ).
-        group contact: ContactCriterion { contact_gap: 1.5e-9 };
+    Fig4_9aParams, youngs_modulus = 2.2e6, sigma = 1.5e-9, {
         /// Amplitude of the first cycle [m] (A/λ = 0).
         amplitude_1: f64 = 0.0, unit = "m", range = Range::between(0.0, 1.0e-6);
         /// Amplitude of the second cycle [m] (A/λ = 0.0075).
@@ -143,10 +149,7 @@ rough_tip_params! {
 rough_tip_params! {
     /// Parameters of scene fig4.11 (the caption of Fig. 4.11: those of Fig. 4.7a with
     /// σ = 1.5 nm and A = 0, 1.25, 2.5, 3.75 nm; the depth of Fig. 4.9a).
-    Fig4_11Params, youngs_modulus = 2.2e6, {
-        from Interaction: sigma: f64 = 1.5e-9;
-        /// The contact threshold (σ).
-        group contact: ContactCriterion { contact_gap: 1.5e-9 };
+    Fig4_11Params, youngs_modulus = 2.2e6, sigma = 1.5e-9, {
         /// Amplitude of configuration (a) [m].
         amplitude_1: f64 = 0.0, unit = "m", range = Range::between(0.0, 1.0e-6);
         /// Amplitude of configuration (b) [m].
@@ -163,10 +166,7 @@ rough_tip_params! {
 rough_tip_params! {
     /// Parameters of scene fig4.12 (the caption of Fig. 4.12: those of Fig. 4.9a with
     /// A = 1.25 nm and 3.125 nm, at ERRATA's E = 1.1 MPa for Fig. 4.9).
-    Fig4_12Params, youngs_modulus = 1.1e6, {
-        from Interaction: sigma: f64 = 1.5e-9;
-        /// The contact threshold (σ).
-        group contact: ContactCriterion { contact_gap: 1.5e-9 };
+    Fig4_12Params, youngs_modulus = 1.1e6, sigma = 1.5e-9, {
         /// Amplitude of the small-roughness tip, configurations (a)-(c) [m].
         amplitude_1: f64 = 1.25e-9, unit = "m", range = Range::between(0.0, 1.0e-6);
         /// Amplitude of the large-roughness tip, configurations (d)-(f) [m].
@@ -357,42 +357,41 @@ fn at_adhesive_force(cycle: &TipCycle) -> Option<&TipState> {
         .min_by(|a, b| a.force.total_cmp(&b.force))
 }
 
-/// Fig. 4.9a: P-h cycles of three amplitudes at the caption's modulus and at ERRATA's reading.
-pub struct Fig4_9a;
+crate::scene! {
+    /// Fig. 4.9a: P-h cycles of three amplitudes at the caption's modulus and at ERRATA's reading.
+    pub struct Fig4_9a {
+        id: "fig4.9a",
+        chapter: "4",
+        params: Fig4_9aParams,
+        title: "Roughness and adhesion: P-h cycles of three amplitudes",
+        caption: "Force against depth of a wavy tip (surface model, or with model = fe the dissertation's \
+            finite-element model) cycled to |h_min|/R = 6e-4 (the figure's notes give the depth that ran) for \
+            A/lambda = 0, 0.0075 and 0.02 (A = 0, 0.9375, 2.5 nm; sigma = 1.5 nm, the other parameters of Fig. 4.7a). \
+            (a) at the caption's E = 2.2 MPa, (b) at E = 1.1 MPa (ERRATA: the printed smooth-tip force exceeds the DMT \
+            bound at 2.2 MPa). The dissertation: P_adh/(2E*R^2) = 1.54e-5, 3.06e-5, 1.93e-5 and H/(2E*R^3) = 2.93e-9, \
+            12.43e-9, 7.7e-9: a small roughness raises both, a larger one lowers them again.",
+        results: &[
+            ("p_adh_1_norm", "P_adh/(2E*R^2), amplitude 1, panel (a)"),
+            ("p_adh_2_norm", "P_adh/(2E*R^2), amplitude 2, panel (a)"),
+            ("p_adh_3_norm", "P_adh/(2E*R^2), amplitude 3, panel (a)"),
+            ("hysteresis_1_norm", "H/(2E*R^3), amplitude 1, panel (a)"),
+            ("hysteresis_2_norm", "H/(2E*R^3), amplitude 2, panel (a)"),
+            ("hysteresis_3_norm", "H/(2E*R^3), amplitude 3, panel (a)"),
+            ("jumps_1_count", "jumps of cycle 1, panel (a)"),
+            ("jumps_2_count", "jumps of cycle 2, panel (a)"),
+            ("jumps_3_count", "jumps of cycle 3, panel (a)"),
+            ("p_adh_1_b_norm", "P_adh/(2E*R^2), amplitude 1, panel (b)"),
+            ("p_adh_2_b_norm", "P_adh/(2E*R^2), amplitude 2, panel (b)"),
+            ("p_adh_3_b_norm", "P_adh/(2E*R^2), amplitude 3, panel (b)"),
+            ("hysteresis_1_b_norm", "H/(2E*R^3), amplitude 1, panel (b)"),
+            ("hysteresis_2_b_norm", "H/(2E*R^3), amplitude 2, panel (b)"),
+            ("hysteresis_3_b_norm", "H/(2E*R^3), amplitude 3, panel (b)"),
+            ("dmt_bound_norm", "DMT bound pi w/(E*R) on P_adh/(2E*R^2), panel (a)"),
+        ],
+    }
+}
 
 impl Scene for Fig4_9a {
-    type Params = Fig4_9aParams;
-    const ID: &'static str = "fig4.9a";
-    const CHAPTER: &'static str = "4";
-    const TITLE: &'static str = "Roughness and adhesion: P-h cycles of three amplitudes";
-    const CAPTION: &'static str = "Force against depth of a wavy tip (surface model, or with model = fe the dissertation's \
-        finite-element model) cycled to |h_min|/R = 6e-4 (the figure's notes give the depth that ran) for \
-        A/lambda = 0, 0.0075 and 0.02 (A = 0, 0.9375, 2.5 nm; sigma = 1.5 nm, the other parameters of Fig. 4.7a). \
-        (a) at the caption's E = 2.2 MPa, (b) at E = 1.1 MPa (ERRATA: the printed smooth-tip force exceeds the DMT \
-        bound at 2.2 MPa). The dissertation: P_adh/(2E*R^2) = 1.54e-5, 3.06e-5, 1.93e-5 and H/(2E*R^3) = 2.93e-9, \
-        12.43e-9, 7.7e-9: a small roughness raises both, a larger one lowers them again.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        ("p_adh_1_norm", "P_adh/(2E*R^2), amplitude 1, panel (a)"),
-        ("p_adh_2_norm", "P_adh/(2E*R^2), amplitude 2, panel (a)"),
-        ("p_adh_3_norm", "P_adh/(2E*R^2), amplitude 3, panel (a)"),
-        ("hysteresis_1_norm", "H/(2E*R^3), amplitude 1, panel (a)"),
-        ("hysteresis_2_norm", "H/(2E*R^3), amplitude 2, panel (a)"),
-        ("hysteresis_3_norm", "H/(2E*R^3), amplitude 3, panel (a)"),
-        ("jumps_1_count", "jumps of cycle 1, panel (a)"),
-        ("jumps_2_count", "jumps of cycle 2, panel (a)"),
-        ("jumps_3_count", "jumps of cycle 3, panel (a)"),
-        ("p_adh_1_b_norm", "P_adh/(2E*R^2), amplitude 1, panel (b)"),
-        ("p_adh_2_b_norm", "P_adh/(2E*R^2), amplitude 2, panel (b)"),
-        ("p_adh_3_b_norm", "P_adh/(2E*R^2), amplitude 3, panel (b)"),
-        ("hysteresis_1_b_norm", "H/(2E*R^3), amplitude 1, panel (b)"),
-        ("hysteresis_2_b_norm", "H/(2E*R^3), amplitude 2, panel (b)"),
-        ("hysteresis_3_b_norm", "H/(2E*R^3), amplitude 3, panel (b)"),
-        (
-            "dmt_bound_norm",
-            "DMT bound pi w/(E*R) on P_adh/(2E*R^2), panel (a)",
-        ),
-    ];
-
     /// A shallow cycle (the loop and its jumps, not the caption's depth) with coarser steps.
     fn quick(p: &mut Self::Params) {
         p.shallow_quick();
@@ -500,46 +499,55 @@ impl Scene for Fig4_9a {
     }
 }
 
-/// Fig. 4.11: contact configurations at the adhesive force for four amplitudes.
-pub struct Fig4_11;
+/// The quick form and checks of the scenes with top views, Figs. 4.11 and 4.12 (items of
+/// their `Scene` impls). The cycles are cheap at σ = 1.5 nm (a coarse ring grid): quick only
+/// coarsens the maps (and the finite-element mesh).
+macro_rules! top_view_checks {
+    () => {
+        fn quick(p: &mut Self::Params) {
+            p.map_points = p.map_points.min(21);
+            p.mesh.quick();
+        }
+
+        fn validate(p: &Self::Params) -> Result<()> {
+            p.setup(p.tip.youngs_modulus, p.sigma, p.contact.contact_gap)
+                .map(|_| ())
+        }
+    };
+}
+
+crate::scene! {
+    /// Fig. 4.11: contact configurations at the adhesive force for four amplitudes.
+    pub struct Fig4_11 {
+        id: "fig4.11",
+        chapter: "4",
+        params: Fig4_11Params,
+        title: "Roughness and the topology of the contact at the adhesive force",
+        caption: "Top views of the gap (nm, clipped at 3 sigma) between the deformed wavy tip and the \
+            substrate at the state of the adhesive force P_adh of a cycle to |h_min|/R = 6e-4 (surface model, or with \
+            model = fe the finite-element model), for \
+            A = 0, 1.25, 2.5, 3.75 nm (sigma = 1.5 nm, the other parameters of Fig. 4.7a); the highlighted line is the \
+            contact edge (gap = sigma). The dissertation: P_adh is largest at A/lambda = 0.01, where the contact is \
+            still simply connected; beyond, the contact becomes multiply connected and the real contact area falls.",
+        results: &[
+            ("p_adh_1_norm", "P_adh/(2E*R^2), configuration (a)"),
+            ("p_adh_2_norm", "P_adh/(2E*R^2), configuration (b)"),
+            ("p_adh_3_norm", "P_adh/(2E*R^2), configuration (c)"),
+            ("p_adh_4_norm", "P_adh/(2E*R^2), configuration (d)"),
+            ("area_1_m2", "real contact area at P_adh, (a)"),
+            ("area_2_m2", "real contact area at P_adh, (b)"),
+            ("area_3_m2", "real contact area at P_adh, (c)"),
+            ("area_4_m2", "real contact area at P_adh, (d)"),
+            ("parts_1_count", "contact regions (disc + annuli) at P_adh, (a)"),
+            ("parts_2_count", "contact regions (disc + annuli) at P_adh, (b)"),
+            ("parts_3_count", "contact regions (disc + annuli) at P_adh, (c)"),
+            ("parts_4_count", "contact regions (disc + annuli) at P_adh, (d)"),
+        ],
+    }
+}
 
 impl Scene for Fig4_11 {
-    type Params = Fig4_11Params;
-    const ID: &'static str = "fig4.11";
-    const CHAPTER: &'static str = "4";
-    const TITLE: &'static str = "Roughness and the topology of the contact at the adhesive force";
-    const CAPTION: &'static str = "Top views of the gap (nm, clipped at 3 sigma) between the deformed wavy tip and the \
-        substrate at the state of the adhesive force P_adh of a cycle to |h_min|/R = 6e-4 (surface model, or with \
-        model = fe the finite-element model), for \
-        A = 0, 1.25, 2.5, 3.75 nm (sigma = 1.5 nm, the other parameters of Fig. 4.7a); the highlighted line is the \
-        contact edge (gap = sigma). The dissertation: P_adh is largest at A/lambda = 0.01, where the contact is \
-        still simply connected; beyond, the contact becomes multiply connected and the real contact area falls.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        ("p_adh_1_norm", "P_adh/(2E*R^2), configuration (a)"),
-        ("p_adh_2_norm", "P_adh/(2E*R^2), configuration (b)"),
-        ("p_adh_3_norm", "P_adh/(2E*R^2), configuration (c)"),
-        ("p_adh_4_norm", "P_adh/(2E*R^2), configuration (d)"),
-        ("area_1_m2", "real contact area at P_adh, (a)"),
-        ("area_2_m2", "real contact area at P_adh, (b)"),
-        ("area_3_m2", "real contact area at P_adh, (c)"),
-        ("area_4_m2", "real contact area at P_adh, (d)"),
-        ("parts_1_count", "contact regions (disc + annuli) at P_adh, (a)"),
-        ("parts_2_count", "contact regions (disc + annuli) at P_adh, (b)"),
-        ("parts_3_count", "contact regions (disc + annuli) at P_adh, (c)"),
-        ("parts_4_count", "contact regions (disc + annuli) at P_adh, (d)"),
-    ];
-
-    /// The cycles are cheap at σ = 1.5 nm (a coarse ring grid): quick only coarsens the maps
-    /// (and the finite-element mesh).
-    fn quick(p: &mut Self::Params) {
-        p.map_points = p.map_points.min(21);
-        p.mesh.quick();
-    }
-
-    fn validate(p: &Self::Params) -> Result<()> {
-        p.setup(p.tip.youngs_modulus, p.sigma, p.contact.contact_gap)
-            .map(|_| ())
-    }
+    top_view_checks!();
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
         let amplitudes = [p.amplitude_1, p.amplitude_2, p.amplitude_3, p.amplitude_4];
@@ -611,9 +619,6 @@ fn no_states(id: &'static str) -> Error {
     }
 }
 
-/// Fig. 4.12: consecutive pull-off configurations of a small and a large roughness.
-pub struct Fig4_12;
-
 /// The pull-off jumps of the unloading phase (the contact area drops), the final one
 /// included.
 fn pull_offs(cycle: &TipCycle) -> Vec<&TipJump> {
@@ -634,57 +639,34 @@ fn rings_detached(jump: &TipJump, wavelength: f64) -> f64 {
     by_radius.max(by_parts)
 }
 
+crate::scene! {
+    /// Fig. 4.12: consecutive pull-off configurations of a small and a large roughness.
+    pub struct Fig4_12 {
+        id: "fig4.12",
+        chapter: "4",
+        params: Fig4_12Params,
+        title: "Consecutive pull-off instabilities: cascade and one-by-one detachment",
+        caption: "Top views of the gap (nm, clipped at 3 sigma) at two consecutive pull-off \
+            instabilities on unloading, the last two that leave the tip in contact (surface model, or with model = fe \
+            the finite-element model; parameters of Fig. 4.9a at E = 1.1 MPa: the caption refers to Fig. 4.9a, whose \
+            printed smooth-tip force the caption's 2.2 MPa cannot give (ERRATA), while Fig. 4.11 refers to Fig. 4.7a, \
+            whose 2.2 MPa Fig. 4.7 reproduces): (a)-(c) A = 1.25 nm, \
+            (d)-(f) A = 3.125 nm; before the first of the two jumps, before the second, after the second. The \
+            dissertation: at small roughness the detachment of an asperity triggers its neighbour at once (strong \
+            coupling); at large roughness the asperities detach one by one (crack arrest and reinitiation).",
+        results: &[
+            ("pull_offs_1_count", "pull-off jumps on unloading, small roughness"),
+            ("pull_offs_2_count", "pull-off jumps on unloading, large roughness"),
+            ("rings_per_jump_1_count", "mean asperity rings detached per pull-off, small roughness"),
+            ("rings_per_jump_2_count", "mean asperity rings detached per pull-off, large roughness"),
+            ("cascades_1_count", "pull-offs detaching two or more rings at once, small roughness"),
+            ("cascades_2_count", "pull-offs detaching two or more rings at once, large roughness"),
+        ],
+    }
+}
+
 impl Scene for Fig4_12 {
-    type Params = Fig4_12Params;
-    const ID: &'static str = "fig4.12";
-    const CHAPTER: &'static str = "4";
-    const TITLE: &'static str = "Consecutive pull-off instabilities: cascade and one-by-one detachment";
-    const CAPTION: &'static str = "Top views of the gap (nm, clipped at 3 sigma) at two consecutive pull-off \
-        instabilities on unloading, the last two that leave the tip in contact (surface model, or with model = fe \
-        the finite-element model; parameters of Fig. 4.9a at E = 1.1 MPa: the caption refers to Fig. 4.9a, whose \
-        printed smooth-tip force the caption's 2.2 MPa cannot give (ERRATA), while Fig. 4.11 refers to Fig. 4.7a, \
-        whose 2.2 MPa Fig. 4.7 reproduces): (a)-(c) A = 1.25 nm, \
-        (d)-(f) A = 3.125 nm; before the first of the two jumps, before the second, after the second. The \
-        dissertation: at small roughness the detachment of an asperity triggers its neighbour at once (strong \
-        coupling); at large roughness the asperities detach one by one (crack arrest and reinitiation).";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        (
-            "pull_offs_1_count",
-            "pull-off jumps on unloading, small roughness",
-        ),
-        (
-            "pull_offs_2_count",
-            "pull-off jumps on unloading, large roughness",
-        ),
-        (
-            "rings_per_jump_1_count",
-            "mean asperity rings detached per pull-off, small roughness",
-        ),
-        (
-            "rings_per_jump_2_count",
-            "mean asperity rings detached per pull-off, large roughness",
-        ),
-        (
-            "cascades_1_count",
-            "pull-offs detaching two or more rings at once, small roughness",
-        ),
-        (
-            "cascades_2_count",
-            "pull-offs detaching two or more rings at once, large roughness",
-        ),
-    ];
-
-    /// The cycles are cheap at σ = 1.5 nm (a coarse ring grid): quick only coarsens the maps
-    /// (and the finite-element mesh).
-    fn quick(p: &mut Self::Params) {
-        p.map_points = p.map_points.min(21);
-        p.mesh.quick();
-    }
-
-    fn validate(p: &Self::Params) -> Result<()> {
-        p.setup(p.tip.youngs_modulus, p.sigma, p.contact.contact_gap)
-            .map(|_| ())
-    }
+    top_view_checks!();
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
         let amplitudes = [p.amplitude_1, p.amplitude_2];

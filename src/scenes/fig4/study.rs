@@ -26,9 +26,9 @@ use crate::error::{Error, Result};
 use crate::figure::{Axis, Figure, Panel, Series, Style};
 use crate::job::Job;
 use crate::params::Range;
-use crate::scenes::Scene;
 use crate::scenes::groups::{DepthPath, ElasticTip, FeMesh, Interaction, SurfaceModel, Waviness};
 use crate::scenes::sweep::Sweep;
+use crate::scenes::{Scene, SceneHeader};
 use crate::text::fmt_sig;
 
 rough_tip_params! {
@@ -117,75 +117,41 @@ impl Fig4_9bModelsParams {
     }
 }
 
-/// Fig. 4.9b's σ claim in both models and on a fixed mesh.
-pub struct Fig4_9bModels;
+crate::scene! {
+    /// Fig. 4.9b's σ claim in both models and on a fixed mesh.
+    pub struct Fig4_9bModels {
+        id: "fig4.9b-models",
+        chapter: "4",
+        params: Fig4_9bModelsParams,
+        title: "Adhesion against the interaction range: model or resolution?",
+        caption: "P_adh/(2E*R^2) (a) and H/(2E*R^3) (b) of the cycles of Fig. 4.9b (the parameters of \
+            Fig. 4.7a, E = 2.2 MPa, |h_min|/R = 6e-4 at the defaults; the notes give what ran) against the range sigma for \
+            A/lambda = 0 (dashed) and 0.0075 (solid) in three variants: (i) the surface model and (ii) the finite-element \
+            model, each converged in the surface-element width (ring_width b, b = zeta0^2 E*/w grows as sigma^4, at most \
+            max_width_over_wavelength lambda; the change under one more refinement is in the notes), and (iii) the \
+            finite-element model on one fixed mesh whose element width does not follow sigma (that of fixed_sigma). \
+            The dissertation: for the rough tip P_adh and H first rise with sigma, peak and fall. A rise that only (iii) \
+            shows is a resolution effect.",
+        results: &[
+            ("surface_p_adh_smallest_sigma_norm", "P_adh/(2E*R^2) of the rough tip at the smallest sigma, variant (i)"),
+            ("fe_p_adh_smallest_sigma_norm", "P_adh/(2E*R^2) of the rough tip at the smallest sigma, variant (ii)"),
+            ("fixed_p_adh_smallest_sigma_norm", "P_adh/(2E*R^2) of the rough tip at the smallest sigma, variant (iii)"),
+            ("surface_sigma_p_adh_max_nm", "sigma of the rough tip's largest P_adh, variant (i)"),
+            ("fe_sigma_p_adh_max_nm", "sigma of the rough tip's largest P_adh, variant (ii)"),
+            ("fixed_sigma_p_adh_max_nm", "sigma of the rough tip's largest P_adh, variant (iii)"),
+            ("surface_rises_count", "1 when the rough tip's P_adh rises from the smallest sigma to the next by more than the refinement change, variant (i)"),
+            ("fe_rises_count", "1 when the rough tip's P_adh rises from the smallest sigma to the next by more than the refinement change, variant (ii)"),
+            ("fixed_rises_count", "1 when the rough tip's P_adh rises from the smallest sigma to the next, variant (iii)"),
+            ("surface_refinement_change_max_norm", "largest relative change of P_adh under one more refinement, variant (i)"),
+            ("fe_refinement_change_max_norm", "largest relative change of P_adh under one more refinement, variant (ii)"),
+            ("fixed_difference_max_norm", "largest relative difference of P_adh of the fixed mesh from the converged finite elements"),
+            ("points_count", "cycles computed"),
+        ],
+        sweep: true,
+    }
+}
 
 impl Scene for Fig4_9bModels {
-    type Params = Fig4_9bModelsParams;
-    const ID: &'static str = "fig4.9b-models";
-    const CHAPTER: &'static str = "4";
-    const TITLE: &'static str = "Adhesion against the interaction range: model or resolution?";
-    const SWEEP: bool = true;
-    const CAPTION: &'static str = "P_adh/(2E*R^2) (a) and H/(2E*R^3) (b) of the cycles of Fig. 4.9b (the parameters of \
-        Fig. 4.7a, E = 2.2 MPa, |h_min|/R = 6e-4 at the defaults; the notes give what ran) against the range sigma for \
-        A/lambda = 0 (dashed) and 0.0075 (solid) in three variants: (i) the surface model and (ii) the finite-element \
-        model, each converged in the surface-element width (ring_width b, b = zeta0^2 E*/w grows as sigma^4, at most \
-        max_width_over_wavelength lambda; the change under one more refinement is in the notes), and (iii) the \
-        finite-element model on one fixed mesh whose element width does not follow sigma (that of fixed_sigma). \
-        The dissertation: for the rough tip P_adh and H first rise with sigma, peak and fall. A rise that only (iii) \
-        shows is a resolution effect.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        (
-            "surface_p_adh_smallest_sigma_norm",
-            "P_adh/(2E*R^2) of the rough tip at the smallest sigma, variant (i)",
-        ),
-        (
-            "fe_p_adh_smallest_sigma_norm",
-            "P_adh/(2E*R^2) of the rough tip at the smallest sigma, variant (ii)",
-        ),
-        (
-            "fixed_p_adh_smallest_sigma_norm",
-            "P_adh/(2E*R^2) of the rough tip at the smallest sigma, variant (iii)",
-        ),
-        (
-            "surface_sigma_p_adh_max_nm",
-            "sigma of the rough tip's largest P_adh, variant (i)",
-        ),
-        (
-            "fe_sigma_p_adh_max_nm",
-            "sigma of the rough tip's largest P_adh, variant (ii)",
-        ),
-        (
-            "fixed_sigma_p_adh_max_nm",
-            "sigma of the rough tip's largest P_adh, variant (iii)",
-        ),
-        (
-            "surface_rises_count",
-            "1 when the rough tip's P_adh rises from the smallest sigma to the next by more than the refinement change, variant (i)",
-        ),
-        (
-            "fe_rises_count",
-            "1 when the rough tip's P_adh rises from the smallest sigma to the next by more than the refinement change, variant (ii)",
-        ),
-        (
-            "fixed_rises_count",
-            "1 when the rough tip's P_adh rises from the smallest sigma to the next, variant (iii)",
-        ),
-        (
-            "surface_refinement_change_max_norm",
-            "largest relative change of P_adh under one more refinement, variant (i)",
-        ),
-        (
-            "fe_refinement_change_max_norm",
-            "largest relative change of P_adh under one more refinement, variant (ii)",
-        ),
-        (
-            "fixed_difference_max_norm",
-            "largest relative difference of P_adh of the fixed mesh from the converged finite elements",
-        ),
-        ("points_count", "cycles computed"),
-    ];
-
     /// σ = 2 and 3 nm only (few surface elements), shallow cycles on the quick mesh.
     fn quick(p: &mut Self::Params) {
         p.sigmas = vec![2.0e-9, 3.0e-9];

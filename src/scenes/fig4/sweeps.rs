@@ -8,11 +8,11 @@ use super::roughness::{MAX_WIDTH_OVER_WAVELENGTH, Setup, rough_tip_params};
 use crate::error::{Error, Result};
 use crate::figure::{Axis, Field, Figure, Marker, MarkerShape, Panel, Series, Style};
 use crate::job::Job;
-use crate::params::Range;
-use crate::scenes::Scene;
+use crate::params::{Range, require_not_below};
 use crate::scenes::fig4::TipModel;
 use crate::scenes::groups::{DepthPath, ElasticTip, FeMesh, Interaction, SurfaceModel, Waviness};
 use crate::scenes::sweep::Sweep;
+use crate::scenes::{Scene, SceneHeader};
 use crate::text::fmt_sig;
 
 /// The relative cost of a cycle at the ring-width scale b (b ∝ σ⁴, (4.6)-(4.7b)), against the
@@ -109,34 +109,36 @@ rough_tip_params! {
     }
 }
 
-/// Fig. 4.9b: P_adh and H against σ for three roughnesses.
-pub struct Fig4_9b;
+crate::scene! {
+    /// Fig. 4.9b: P_adh and H against σ for three roughnesses.
+    pub struct Fig4_9b {
+        id: "fig4.9b",
+        chapter: "4",
+        params: Fig4_9bParams,
+        title: "Adhesive force and loss against the interaction range",
+        caption: "P_adh/(2E*R^2) (a) and H/(2E*R^3) (b) of a wavy tip (surface model, or with model = fe \
+            the finite-element model; one cycle per point to |h_min|/R = 6e-4 at the defaults, the figure's notes give \
+            what ran) against the range sigma of the LJ potential for A/lambda = 0, 0.0075 and 0.02 \
+            (the other parameters of Fig. 4.7a; E = 2.2 MPa, ERRATA on Fig. 4.9). A sweep: sigma_points x 3 cycles. \
+            The dissertation: for the smooth tip both fall monotonically with sigma (the instabilities vanish as mu_T \
+            falls); for the rough tips they first rise, peak and then fall.",
+        results: &[
+            ("sigma_p_adh_max_1_nm", "sigma of the largest P_adh, curve 1"),
+            ("sigma_p_adh_max_2_nm", "sigma of the largest P_adh, curve 2"),
+            ("sigma_p_adh_max_3_nm", "sigma of the largest P_adh, curve 3"),
+            ("sigma_h_max_1_nm", "sigma of the largest H, curve 1"),
+            ("sigma_h_max_2_nm", "sigma of the largest H, curve 2"),
+            ("sigma_h_max_3_nm", "sigma of the largest H, curve 3"),
+            ("p_adh_max_1_norm", "largest P_adh/(2E*R^2), curve 1"),
+            ("p_adh_max_2_norm", "largest P_adh/(2E*R^2), curve 2"),
+            ("p_adh_max_3_norm", "largest P_adh/(2E*R^2), curve 3"),
+            ("points_count", "cycles computed"),
+        ],
+        sweep: true,
+    }
+}
 
 impl Scene for Fig4_9b {
-    type Params = Fig4_9bParams;
-    const ID: &'static str = "fig4.9b";
-    const CHAPTER: &'static str = "4";
-    const TITLE: &'static str = "Adhesive force and loss against the interaction range";
-    const SWEEP: bool = true;
-    const CAPTION: &'static str = "P_adh/(2E*R^2) (a) and H/(2E*R^3) (b) of a wavy tip (surface model, or with model = fe \
-        the finite-element model; one cycle per point to |h_min|/R = 6e-4 at the defaults, the figure's notes give \
-        what ran) against the range sigma of the LJ potential for A/lambda = 0, 0.0075 and 0.02 \
-        (the other parameters of Fig. 4.7a; E = 2.2 MPa, ERRATA on Fig. 4.9). A sweep: sigma_points x 3 cycles. \
-        The dissertation: for the smooth tip both fall monotonically with sigma (the instabilities vanish as mu_T \
-        falls); for the rough tips they first rise, peak and then fall.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        ("sigma_p_adh_max_1_nm", "sigma of the largest P_adh, curve 1"),
-        ("sigma_p_adh_max_2_nm", "sigma of the largest P_adh, curve 2"),
-        ("sigma_p_adh_max_3_nm", "sigma of the largest P_adh, curve 3"),
-        ("sigma_h_max_1_nm", "sigma of the largest H, curve 1"),
-        ("sigma_h_max_2_nm", "sigma of the largest H, curve 2"),
-        ("sigma_h_max_3_nm", "sigma of the largest H, curve 3"),
-        ("p_adh_max_1_norm", "largest P_adh/(2E*R^2), curve 1"),
-        ("p_adh_max_2_norm", "largest P_adh/(2E*R^2), curve 2"),
-        ("p_adh_max_3_norm", "largest P_adh/(2E*R^2), curve 3"),
-        ("points_count", "cycles computed"),
-    ];
-
     /// Three values of σ over the whole range (from 1 nm: where the text's rise would be), a
     /// shallow cycle in coarser steps.
     fn quick(p: &mut Self::Params) {
@@ -145,13 +147,7 @@ impl Scene for Fig4_9b {
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
-        if p.sigma_max < p.sigma_min {
-            return Err(Error::invalid(
-                "sigma_max",
-                p.sigma_max,
-                "must not be below sigma_min",
-            ));
-        }
+        require_not_below("sigma_max", p.sigma_max, "sigma_min", p.sigma_min)?;
         p.setup(p.tip.youngs_modulus, p.sigma_min, p.sigma_min)
             .map(|_| ())
     }
@@ -343,31 +339,33 @@ impl Fig4_10Params {
     }
 }
 
-/// Fig. 4.10: P_adh and H over (α, β).
-pub struct Fig4_10;
+crate::scene! {
+    /// Fig. 4.10: P_adh and H over (α, β).
+    pub struct Fig4_10 {
+        id: "fig4.10",
+        chapter: "4",
+        params: Fig4_10Params,
+        title: "Adhesive force and loss over roughness and interaction range",
+        caption: "P_adh/(2E*R^2) (a) and H/(2E*R^3) (b) of a wavy tip (surface model, or with model = fe \
+            the finite-element model; one cycle per point to |h_min|/R = 6e-4 at the defaults, the figure's notes give \
+            what ran) over alpha = A^2/(lambda w/E*) and beta = sigma^2/(lambda w/E*) of (4.27) (the \
+            other parameters of Fig. 4.7a, E = 2.2 MPa). A sweep of alpha_points x beta_points cycles; the default \
+            6 x 6 grid is coarse (about a minute on 2 cores): refine it for a paper figure. The diamond marks the \
+            grid's largest value, the cross the dissertation's optimum (0.1741, 0.4457) for both.",
+        results: &[
+            ("alpha_p_adh_max_norm", "alpha of the largest P_adh on the grid"),
+            ("beta_p_adh_max_norm", "beta of the largest P_adh on the grid"),
+            ("alpha_h_max_norm", "alpha of the largest H on the grid"),
+            ("beta_h_max_norm", "beta of the largest H on the grid"),
+            ("p_adh_max_norm", "largest P_adh/(2E*R^2) on the grid"),
+            ("h_max_norm", "largest H/(2E*R^3) on the grid"),
+            ("points_count", "cycles computed"),
+        ],
+        sweep: true,
+    }
+}
 
 impl Scene for Fig4_10 {
-    type Params = Fig4_10Params;
-    const ID: &'static str = "fig4.10";
-    const CHAPTER: &'static str = "4";
-    const TITLE: &'static str = "Adhesive force and loss over roughness and interaction range";
-    const SWEEP: bool = true;
-    const CAPTION: &'static str = "P_adh/(2E*R^2) (a) and H/(2E*R^3) (b) of a wavy tip (surface model, or with model = fe \
-        the finite-element model; one cycle per point to |h_min|/R = 6e-4 at the defaults, the figure's notes give \
-        what ran) over alpha = A^2/(lambda w/E*) and beta = sigma^2/(lambda w/E*) of (4.27) (the \
-        other parameters of Fig. 4.7a, E = 2.2 MPa). A sweep of alpha_points x beta_points cycles; the default \
-        6 x 6 grid is coarse (about a minute on 2 cores): refine it for a paper figure. The diamond marks the \
-        grid's largest value, the cross the dissertation's optimum (0.1741, 0.4457) for both.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        ("alpha_p_adh_max_norm", "alpha of the largest P_adh on the grid"),
-        ("beta_p_adh_max_norm", "beta of the largest P_adh on the grid"),
-        ("alpha_h_max_norm", "alpha of the largest H on the grid"),
-        ("beta_h_max_norm", "beta of the largest H on the grid"),
-        ("p_adh_max_norm", "largest P_adh/(2E*R^2) on the grid"),
-        ("h_max_norm", "largest H/(2E*R^3) on the grid"),
-        ("points_count", "cycles computed"),
-    ];
-
     /// A 3 x 3 grid over the whole range (β from the default's smallest, where the printed
     /// optimum's neighbourhood starts), a shallow cycle in coarser steps.
     fn quick(p: &mut Self::Params) {
@@ -377,13 +375,7 @@ impl Scene for Fig4_10 {
     }
 
     fn validate(p: &Self::Params) -> Result<()> {
-        if p.beta_max < p.beta_min {
-            return Err(Error::invalid(
-                "beta_max",
-                p.beta_max,
-                "must not be below beta_min",
-            ));
-        }
+        require_not_below("beta_max", p.beta_max, "beta_min", p.beta_min)?;
         let (sigma, _) = p.point(0.0, p.beta_min)?;
         if sigma < 0.5e-9 {
             return Err(Error::invalid(

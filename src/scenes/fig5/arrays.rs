@@ -1,13 +1,13 @@
 //! Arrays of uncoupled springs on random rough surfaces (sections 5.4-5.5): the
 //! force-displacement cycles of Fig. 5.7.
 
-use super::{efficiencies, k_bar_of_n, mean_std, uncoupled_samples, unit_surfaces};
+use super::ensemble::{efficiencies, k_bar_of_n, mean_std, uncoupled_samples, unit_surfaces};
 use crate::error::Result;
 use crate::figure::{Axis, Figure, Legend, Panel, Series, Style};
 use crate::job::Job;
 use crate::params::{Range, require_non_empty};
-use crate::scenes::Scene;
 use crate::scenes::groups::{ArrayCycle, SurfaceSamples};
+use crate::scenes::{Scene, SceneHeader};
 
 crate::param_choice! {
     /// Path for uncoupled arrays.
@@ -78,30 +78,26 @@ fn adhesive_window(full: &Panel) -> Panel {
     zoom
 }
 
-/// Fig. 5.7: force-displacement cycles of uncoupled spring arrays on rough surfaces.
-pub struct Fig5_7;
+crate::scene! {
+    /// Fig. 5.7: force-displacement cycles of uncoupled spring arrays on rough surfaces.
+    pub struct Fig5_7 {
+        id: "fig5.7",
+        chapter: "5",
+        params: Fig5_7Params,
+        title: "Spring-array force-displacement cycles on rough surfaces",
+        caption: "Total force P/(MN |P_m|) (positive in compression) against the displacement \
+            u/sigma over a loading-unloading cycle of 256 x 256 uncoupled springs, k_e = 2^-7 k_cr, on Gaussian \
+            rough surfaces of several sigma_rms/sigma, averaged over the samples: the sum of shifted single-spring \
+            branches (5.35). (a) The whole cycles (the roughest surface sets the range); (b) the tensile part, \
+            where the smoother surfaces' loops lie. Arrows: loading to the left, unloading to the right.",
+        results: &[
+            ("efficiency_first_norm", "adhesion efficiency (5.36) of the first roughness, sample mean"),
+            ("efficiency_last_norm", "adhesion efficiency (5.36) of the last roughness, sample mean"),
+        ],
+    }
+}
 
 impl Scene for Fig5_7 {
-    type Params = Fig5_7Params;
-    const ID: &'static str = "fig5.7";
-    const CHAPTER: &'static str = "5";
-    const TITLE: &'static str = "Spring-array force-displacement cycles on rough surfaces";
-    const CAPTION: &'static str = "Total force P/(MN |P_m|) (positive in compression) against the displacement \
-        u/sigma over a loading-unloading cycle of 256 x 256 uncoupled springs, k_e = 2^-7 k_cr, on Gaussian \
-        rough surfaces of several sigma_rms/sigma, averaged over the samples: the sum of shifted single-spring \
-        branches (5.35). (a) The whole cycles (the roughest surface sets the range); (b) the tensile part, \
-        where the smoother surfaces' loops lie. Arrows: loading to the left, unloading to the right.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        (
-            "efficiency_first_norm",
-            "adhesion efficiency (5.36) of the first roughness, sample mean",
-        ),
-        (
-            "efficiency_last_norm",
-            "adhesion efficiency (5.36) of the last roughness, sample mean",
-        ),
-    ];
-
     fn validate(p: &Self::Params) -> Result<()> {
         require_non_empty("roughness", &p.roughness)
     }

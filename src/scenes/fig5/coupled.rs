@@ -2,13 +2,13 @@
 //! ratio over the cycle (Fig. 5.11), and the accuracy of the coupled solver against its run
 //! time (Fig. 5.10-accuracy).
 
-use super::{cycle_window, k_bar_of_n};
-use crate::error::{Error, Result};
+use super::ensemble::{cycle_window, k_bar_of_n};
+use crate::error::Result;
 use crate::figure::{Axis, Figure, Panel, Series, Style};
 use crate::job::Job;
 use crate::params::{Range, require_non_empty};
-use crate::scenes::Scene;
 use crate::scenes::groups::{ArrayCycle, ArraySurface};
+use crate::scenes::{Scene, SceneHeader};
 
 crate::scene_params! {
     /// Parameters of scenes fig5.10 and fig5.11 (section 5.6).
@@ -125,42 +125,29 @@ macro_rules! coupling_study_checks {
     };
 }
 
-/// Fig. 5.10: force-displacement cycles for several coupling stiffnesses.
-pub struct Fig5_10;
+crate::scene! {
+    /// Fig. 5.10: force-displacement cycles for several coupling stiffnesses.
+    pub struct Fig5_10 {
+        id: "fig5.10",
+        chapter: "5",
+        params: CouplingParams,
+        title: "Coupled springs: force-displacement cycles",
+        caption: "Total force P/(MN |P_m|) (positive in compression) against u/sigma for coupling \
+            k_mu = 0, 2 k_e, 10 k_e; 256 x 1 springs, k_e = 2^-10 k_cr, sigma_rms/sigma = 100, L_c = 0.01; \
+            equilibria (5.31)-(5.34) by the stable sparse Newton solver, every accepted state with a \
+            positive-definite tangent.",
+        results: &[
+            ("efficiency_uncoupled_norm", "adhesion efficiency (5.36), first coupling"),
+            ("efficiency_strongest_norm", "adhesion efficiency (5.36), last coupling"),
+            ("hysteresis_uncoupled_norm", "energy lost over the cycle in units of MN |P_m| sigma, first coupling"),
+            ("hysteresis_strongest_norm", "as above, last coupling"),
+            ("jumps_uncoupled_count", "displacement steps with jumps, first coupling"),
+            ("all_states_stable_count", "1 if every accepted state had a positive-definite tangent, else 0"),
+        ],
+    }
+}
 
 impl Scene for Fig5_10 {
-    type Params = CouplingParams;
-    const ID: &'static str = "fig5.10";
-    const CHAPTER: &'static str = "5";
-    const TITLE: &'static str = "Coupled springs: force-displacement cycles";
-    const CAPTION: &'static str = "Total force P/(MN |P_m|) (positive in compression) against u/sigma for coupling \
-        k_mu = 0, 2 k_e, 10 k_e; 256 x 1 springs, k_e = 2^-10 k_cr, sigma_rms/sigma = 100, L_c = 0.01; \
-        equilibria (5.31)-(5.34) by the stable sparse Newton solver, every accepted state with a \
-        positive-definite tangent.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        (
-            "efficiency_uncoupled_norm",
-            "adhesion efficiency (5.36), first coupling",
-        ),
-        (
-            "efficiency_strongest_norm",
-            "adhesion efficiency (5.36), last coupling",
-        ),
-        (
-            "hysteresis_uncoupled_norm",
-            "energy lost over the cycle in units of MN |P_m| sigma, first coupling",
-        ),
-        ("hysteresis_strongest_norm", "as above, last coupling"),
-        (
-            "jumps_uncoupled_count",
-            "displacement steps with jumps, first coupling",
-        ),
-        (
-            "all_states_stable_count",
-            "1 if every accepted state had a positive-definite tangent, else 0",
-        ),
-    ];
-
     coupling_study_checks!();
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
@@ -228,29 +215,25 @@ fn travel_arrow(pts: &[(f64, f64)]) -> Option<((f64, f64), (f64, f64))> {
     Some((a, (a.0 + 1e-3 * (b.0 - a.0), a.1 + 1e-3 * (b.1 - a.1))))
 }
 
-/// Fig. 5.11: contact ratio over the cycle for several coupling stiffnesses.
-pub struct Fig5_11;
+crate::scene! {
+    /// Fig. 5.11: contact ratio over the cycle for several coupling stiffnesses.
+    pub struct Fig5_11 {
+        id: "fig5.11",
+        chapter: "5",
+        params: CouplingParams,
+        title: "Coupled springs: contact ratio over the cycle",
+        caption: "Contact ratio N_c/(MN), the fraction of springs in contact (gap below \
+            sigma), against u/sigma on loading (a) and unloading (b) for coupling k_mu = 0, 2 k_e, 10 k_e; the \
+            cycles of Fig. 5.10. Arrows give the direction of travel: u decreases on loading, increases on \
+            unloading.",
+        results: &[
+            ("max_contact_ratio_uncoupled_norm", "largest contact ratio over the cycle, first coupling"),
+            ("max_contact_ratio_strongest_norm", "largest contact ratio over the cycle, last coupling"),
+        ],
+    }
+}
 
 impl Scene for Fig5_11 {
-    type Params = CouplingParams;
-    const ID: &'static str = "fig5.11";
-    const CHAPTER: &'static str = "5";
-    const TITLE: &'static str = "Coupled springs: contact ratio over the cycle";
-    const CAPTION: &'static str = "Contact ratio N_c/(MN), the fraction of springs in contact (gap below \
-        sigma), against u/sigma on loading (a) and unloading (b) for coupling k_mu = 0, 2 k_e, 10 k_e; the \
-        cycles of Fig. 5.10. Arrows give the direction of travel: u decreases on loading, increases on \
-        unloading.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        (
-            "max_contact_ratio_uncoupled_norm",
-            "largest contact ratio over the cycle, first coupling",
-        ),
-        (
-            "max_contact_ratio_strongest_norm",
-            "largest contact ratio over the cycle, last coupling",
-        ),
-    ];
-
     coupling_study_checks!();
 
     fn run(p: &Self::Params, job: &Job) -> Result<Figure> {
@@ -322,42 +305,29 @@ crate::scene_params! {
     }
 }
 
-/// Fig. 5.10-accuracy: error of the adhesive force against run time.
-pub struct Fig5_10Accuracy;
+crate::scene! {
+    /// Fig. 5.10-accuracy: error of the adhesive force against run time.
+    pub struct Fig5_10Accuracy {
+        id: "fig5.10-accuracy",
+        chapter: "5",
+        params: Fig5_10AccuracyParams,
+        title: "Coupled springs: accuracy against run time",
+        caption: "Relative error of the adhesive force P_max (5.36) and of the hysteresis of the \
+            coupled cycle of Fig. 5.10 (k_mu = 2 k_e) against run time, over the displacement step (points along a \
+            line) and the Newton tolerance (one line each), relative to a fine reference run.",
+        results: &[
+            ("reference_time_s", "run time of the reference"),
+            ("reference_adhesive_force_norm", "P_max/(MN |P_m|) of the reference"),
+            ("coarsest_error_norm", "relative P_max error of the coarsest step at the tightest tolerance"),
+            ("finest_error_norm", "relative P_max error of the finest step at the tightest tolerance"),
+        ],
+    }
+}
 
 impl Scene for Fig5_10Accuracy {
-    type Params = Fig5_10AccuracyParams;
-    const ID: &'static str = "fig5.10-accuracy";
-    const CHAPTER: &'static str = "5";
-    const TITLE: &'static str = "Coupled springs: accuracy against run time";
-    const CAPTION: &'static str = "Relative error of the adhesive force P_max (5.36) and of the hysteresis of the \
-        coupled cycle of Fig. 5.10 (k_mu = 2 k_e) against run time, over the displacement step (points along a \
-        line) and the Newton tolerance (one line each), relative to a fine reference run.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        ("reference_time_s", "run time of the reference"),
-        (
-            "reference_adhesive_force_norm",
-            "P_max/(MN |P_m|) of the reference",
-        ),
-        (
-            "coarsest_error_norm",
-            "relative P_max error of the coarsest step at the tightest tolerance",
-        ),
-        (
-            "finest_error_norm",
-            "relative P_max error of the finest step at the tightest tolerance",
-        ),
-    ];
-
     fn validate(p: &Self::Params) -> Result<()> {
-        if p.steps.is_empty() || p.tolerances.is_empty() {
-            return Err(Error::invalid(
-                "steps",
-                "[]",
-                "steps and tolerances must not be empty",
-            ));
-        }
-        Ok(())
+        require_non_empty("steps", &p.steps)?;
+        require_non_empty("tolerances", &p.tolerances)
     }
 
     fn quick(p: &mut Self::Params) {

@@ -2,15 +2,15 @@
 //! stiffness (Fig. 5.8) and against the correlation length (Fig. 5.9), sweeps of many
 //! surface samples.
 
-use super::{efficiencies, k_bar_of_n, mean_std, uncoupled_samples, unit_surfaces};
-use crate::error::{Error, Result};
+use super::ensemble::{efficiencies, k_bar_of_n, mean_std, uncoupled_samples, unit_surfaces};
+use crate::error::Result;
 use crate::figure::{Axis, Figure, Panel, Series, Style, number};
 use crate::job::Job;
 use crate::numerics::curve::logspace;
 use crate::params::{Range, fmt_sig, require_below, require_non_empty};
-use crate::scenes::Scene;
 use crate::scenes::groups::{ArrayCycle, SurfaceSamples};
 use crate::scenes::sweep::Sweep;
+use crate::scenes::{Scene, SceneHeader};
 
 crate::scene_params! {
     /// Parameters of scene fig5.8 (section 5.5.2).
@@ -67,29 +67,25 @@ fn fit_verdict(exponents: &[f64], deviations: &[f64]) -> String {
     }
 }
 
-/// Fig. 5.8: adhesion efficiency against roughness for several stiffnesses, with (5.37).
-pub struct Fig5_8;
+crate::scene! {
+    /// Fig. 5.8: adhesion efficiency against roughness for several stiffnesses, with (5.37).
+    pub struct Fig5_8 {
+        id: "fig5.8",
+        chapter: "5",
+        params: Fig5_8Params,
+        title: "Adhesion efficiency vs roughness and stiffness",
+        caption: "Adhesion efficiency alpha_F = P_max/(MN P_m) (5.36) against sigma_rms/sigma for \
+            k_e/k_cr = 2^-n, n = 6..11, 256 x 256 uncoupled springs, mean and standard deviation over 15 surfaces \
+            (symbols, error bars) and the empirical fit exp(-4 sigma_rms/(sigma 2^n)) (5.37) (lines).",
+        results: &[
+            ("fit_rms_deviation_first_norm", "RMS over the roughness range of the simulated mean efficiency minus (5.37), first stiffness exponent"),
+            ("fit_rms_deviation_last_norm", "as above, last stiffness exponent"),
+            ("fit_rms_deviation_max_norm", "largest of these over the stiffness exponents"),
+        ],
+    }
+}
 
 impl Scene for Fig5_8 {
-    type Params = Fig5_8Params;
-    const ID: &'static str = "fig5.8";
-    const CHAPTER: &'static str = "5";
-    const TITLE: &'static str = "Adhesion efficiency vs roughness and stiffness";
-    const CAPTION: &'static str = "Adhesion efficiency alpha_F = P_max/(MN P_m) (5.36) against sigma_rms/sigma for \
-        k_e/k_cr = 2^-n, n = 6..11, 256 x 256 uncoupled springs, mean and standard deviation over 15 surfaces \
-        (symbols, error bars) and the empirical fit exp(-4 sigma_rms/(sigma 2^n)) (5.37) (lines).";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        (
-            "fit_rms_deviation_first_norm",
-            "RMS over the roughness range of the simulated mean efficiency minus (5.37), first stiffness exponent",
-        ),
-        ("fit_rms_deviation_last_norm", "as above, last stiffness exponent"),
-        (
-            "fit_rms_deviation_max_norm",
-            "largest of these over the stiffness exponents",
-        ),
-    ];
-
     fn validate(p: &Self::Params) -> Result<()> {
         require_below("roughness_min", p.roughness_min, "roughness_max", p.roughness_max)?;
         require_non_empty("stiffness_exponents", &p.stiffness_exponents)
@@ -238,30 +234,25 @@ fn efficiency_axis_top(top: f64) -> f64 {
     nice.min(1.0)
 }
 
-/// Fig. 5.9: adhesion efficiency against correlation length.
-pub struct Fig5_9;
+crate::scene! {
+    /// Fig. 5.9: adhesion efficiency against correlation length.
+    pub struct Fig5_9 {
+        id: "fig5.9",
+        chapter: "5",
+        params: Fig5_9Params,
+        title: "Adhesion efficiency vs correlation length",
+        caption: "Adhesion efficiency (5.36) against L_c/(100 um) for sigma_rms/sigma = 10 (a) and 50 \
+            (b), k_e = 2^-6 k_cr, 256 x 256 uncoupled springs; mean and standard deviation over 15 surfaces.",
+        results: &[
+            ("max_relative_spread_norm", "largest (max - min)/mean of the mean efficiency over the correlation lengths, over the panels"),
+        ],
+    }
+}
 
 impl Scene for Fig5_9 {
-    type Params = Fig5_9Params;
-    const ID: &'static str = "fig5.9";
-    const CHAPTER: &'static str = "5";
-    const TITLE: &'static str = "Adhesion efficiency vs correlation length";
-    const CAPTION: &'static str = "Adhesion efficiency (5.36) against L_c/(100 um) for sigma_rms/sigma = 10 (a) and 50 \
-        (b), k_e = 2^-6 k_cr, 256 x 256 uncoupled springs; mean and standard deviation over 15 surfaces.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[(
-        "max_relative_spread_norm",
-        "largest (max - min)/mean of the mean efficiency over the correlation lengths, over the panels",
-    )];
-
     fn validate(p: &Self::Params) -> Result<()> {
-        if p.roughness.is_empty() || p.correlation_lengths.is_empty() {
-            return Err(Error::invalid(
-                "roughness",
-                "[]",
-                "roughness and correlation_lengths must not be empty",
-            ));
-        }
-        Ok(())
+        require_non_empty("roughness", &p.roughness)?;
+        require_non_empty("correlation_lengths", &p.correlation_lengths)
     }
 
     fn quick(p: &mut Self::Params) {

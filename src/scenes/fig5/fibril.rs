@@ -6,7 +6,7 @@ use crate::job::Job;
 use crate::models::fibril::tilted_fibril_stiffness;
 use crate::numerics::curve::linspace;
 use crate::params::Range;
-use crate::scenes::Scene;
+use crate::scenes::{Scene, SceneHeader};
 
 crate::scene_params! {
     /// Parameters of scene fig5.2b (section 5.4.1).
@@ -18,29 +18,25 @@ crate::scene_params! {
     }
 }
 
-/// Fig. 5.2b: stiffness of a tilted fibril against the tilt angle, Eq. (5.11).
-pub struct Fig5_2b;
+crate::scene! {
+    /// Fig. 5.2b: stiffness of a tilted fibril against the tilt angle, Eq. (5.11).
+    pub struct Fig5_2b {
+        id: "fig5.2b",
+        chapter: "5",
+        params: Fig5_2bParams,
+        title: "Stiffness of a tilted fibril",
+        caption: "Stiffness k_f of a fibril tilted at angle theta to its backing, Eq. (5.11), \
+            in units of the axial stiffness pi R_f^2 E/l_f, for R_f/l_f = 1/10: pure bending at theta = 0, \
+            pure compression (stiffest) at theta = pi/2.",
+        results: &[
+            ("bending_stiffness_norm", "k_f(0) / (pi R_f^2 E / l_f) = 3 R_f^2 / (4 l_f^2)"),
+            ("compression_stiffness_norm", "k_f(pi/2) / (pi R_f^2 E / l_f) = 1"),
+            ("half_stiffness_angle_deg", "angle where k_f is half the axial stiffness"),
+        ],
+    }
+}
 
 impl Scene for Fig5_2b {
-    type Params = Fig5_2bParams;
-    const ID: &'static str = "fig5.2b";
-    const CHAPTER: &'static str = "5";
-    const TITLE: &'static str = "Stiffness of a tilted fibril";
-    const CAPTION: &'static str = "Stiffness k_f of a fibril tilted at angle theta to its backing, Eq. (5.11), \
-        in units of the axial stiffness pi R_f^2 E/l_f, for R_f/l_f = 1/10: pure bending at theta = 0, \
-        pure compression (stiffest) at theta = pi/2.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        (
-            "bending_stiffness_norm",
-            "k_f(0) / (pi R_f^2 E / l_f) = 3 R_f^2 / (4 l_f^2)",
-        ),
-        ("compression_stiffness_norm", "k_f(pi/2) / (pi R_f^2 E / l_f) = 1"),
-        (
-            "half_stiffness_angle_deg",
-            "angle where k_f is half the axial stiffness",
-        ),
-    ];
-
     fn quick(p: &mut Self::Params) {
         p.points = p.points.min(31);
     }

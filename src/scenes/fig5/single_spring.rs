@@ -8,7 +8,7 @@ use crate::job::Job;
 use crate::models::fibril::{K_CR_BAR, SingleSpring, SpringState};
 use crate::numerics::curve::{linspace, logspace};
 use crate::params::{Range, require_below, require_non_empty};
-use crate::scenes::Scene;
+use crate::scenes::{Scene, SceneHeader};
 
 /// The equilibrium curve ū(d̄) of (5.18) over a gap range, split into stable and unstable runs.
 fn equilibrium_runs(s: &SingleSpring, d_lo: f64, d_hi: f64, n: usize) -> Vec<(bool, Vec<SpringState>)> {
@@ -58,28 +58,24 @@ crate::scene_params! {
     }
 }
 
-/// Fig. 5.3: energy (5.16) and its first two derivatives (5.18), (5.20) against the gap.
-pub struct Fig5_3;
+crate::scene! {
+    /// Fig. 5.3: energy (5.16) and its first two derivatives (5.18), (5.20) against the gap.
+    pub struct Fig5_3 {
+        id: "fig5.3",
+        chapter: "5",
+        params: Fig5_3Params,
+        title: "Single-spring energy landscape",
+        caption: "Total energy (5.16), its first derivative (5.18) and second derivative (5.20) \
+            against the gap d/sigma for several displacements u/sigma: (a)-(c) k = 2 k_cr, one minimizer, \
+            always stable; (d)-(f) k = 0.5 k_cr, two minimizers between pull-in and pull-off.",
+        results: &[
+            ("soft_pull_in_u_norm", "pull-in displacement u/sigma of the soft case"),
+            ("soft_pull_off_u_norm", "pull-off displacement u/sigma of the soft case"),
+        ],
+    }
+}
 
 impl Scene for Fig5_3 {
-    type Params = Fig5_3Params;
-    const ID: &'static str = "fig5.3";
-    const CHAPTER: &'static str = "5";
-    const TITLE: &'static str = "Single-spring energy landscape";
-    const CAPTION: &'static str = "Total energy (5.16), its first derivative (5.18) and second derivative (5.20) \
-        against the gap d/sigma for several displacements u/sigma: (a)-(c) k = 2 k_cr, one minimizer, \
-        always stable; (d)-(f) k = 0.5 k_cr, two minimizers between pull-in and pull-off.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        (
-            "soft_pull_in_u_norm",
-            "pull-in displacement u/sigma of the soft case",
-        ),
-        (
-            "soft_pull_off_u_norm",
-            "pull-off displacement u/sigma of the soft case",
-        ),
-    ];
-
     fn validate(p: &Self::Params) -> Result<()> {
         require_below("gap_min", p.gap_min, "gap_max", p.gap_max)?;
         require_non_empty("displacements", &p.displacements)
@@ -179,31 +175,27 @@ crate::scene_params! {
     }
 }
 
-/// Fig. 5.4: gap and force over a loading-unloading cycle for several stiffnesses.
-pub struct Fig5_4;
+crate::scene! {
+    /// Fig. 5.4: gap and force over a loading-unloading cycle for several stiffnesses.
+    pub struct Fig5_4 {
+        id: "fig5.4",
+        chapter: "5",
+        params: Fig5_4Params,
+        title: "Single-spring loading-unloading cycle",
+        caption: "(a) Equilibrium gap d*/sigma and (b) force P sigma/(c w A_e) against the \
+            displacement u/sigma, (5.18)-(5.20), for k = 0.5, 1, 2 k_cr: solid stable, dashed unstable; \
+            the soft spring jumps in at pull-in (triangle) and out at pull-off (square). Force positive in compression.",
+        results: &[
+            ("pull_in_u_norm", "pull-in displacement of the first stiffness"),
+            ("pull_off_u_norm", "pull-off displacement of the first stiffness"),
+            ("pull_in_force_norm", "force just after pull-in, first stiffness"),
+            ("pull_off_force_norm", "force just before pull-off, first stiffness"),
+            ("hysteresis_norm", "energy lost over the cycle / (c w A_e), loop area, first stiffness"),
+        ],
+    }
+}
 
 impl Scene for Fig5_4 {
-    type Params = Fig5_4Params;
-    const ID: &'static str = "fig5.4";
-    const CHAPTER: &'static str = "5";
-    const TITLE: &'static str = "Single-spring loading-unloading cycle";
-    const CAPTION: &'static str = "(a) Equilibrium gap d*/sigma and (b) force P sigma/(c w A_e) against the \
-        displacement u/sigma, (5.18)-(5.20), for k = 0.5, 1, 2 k_cr: solid stable, dashed unstable; \
-        the soft spring jumps in at pull-in (triangle) and out at pull-off (square). Force positive in compression.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        ("pull_in_u_norm", "pull-in displacement of the first stiffness"),
-        ("pull_off_u_norm", "pull-off displacement of the first stiffness"),
-        ("pull_in_force_norm", "force just after pull-in, first stiffness"),
-        (
-            "pull_off_force_norm",
-            "force just before pull-off, first stiffness",
-        ),
-        (
-            "hysteresis_norm",
-            "energy lost over the cycle / (c w A_e), loop area, first stiffness",
-        ),
-    ];
-
     fn validate(p: &Self::Params) -> Result<()> {
         require_below("u_min", p.u_min, "u_max", p.u_max)?;
         require_non_empty("stiffness_ratios", &p.stiffness_ratios)
@@ -291,29 +283,25 @@ crate::scene_params! {
     }
 }
 
-/// Fig. 5.5: pull-in and pull-off forces and the hysteresis against the stiffness.
-pub struct Fig5_5;
+crate::scene! {
+    /// Fig. 5.5: pull-in and pull-off forces and the hysteresis against the stiffness.
+    pub struct Fig5_5 {
+        id: "fig5.5",
+        chapter: "5",
+        params: Fig5_5Params,
+        title: "Single-spring pull-in, pull-off and hysteresis vs stiffness",
+        caption: "(a) Pull-in force (just after the jump in) and pull-off force (just before \
+            the jump out), force positive in compression, and (b) the hysteretic energy loss, against the \
+            stiffness k; no instability and no loss for k >= k_cr = 0.3.",
+        results: &[
+            ("max_pull_in_force_magnitude_norm", "largest |pull-in force| over the stiffness range"),
+            ("max_pull_in_force_stiffness_norm", "stiffness k where |pull-in force| is largest"),
+            ("critical_stiffness_norm", "k_cr, maximum of -f''(d) in (5.20)"),
+        ],
+    }
+}
 
 impl Scene for Fig5_5 {
-    type Params = Fig5_5Params;
-    const ID: &'static str = "fig5.5";
-    const CHAPTER: &'static str = "5";
-    const TITLE: &'static str = "Single-spring pull-in, pull-off and hysteresis vs stiffness";
-    const CAPTION: &'static str = "(a) Pull-in force (just after the jump in) and pull-off force (just before \
-        the jump out), force positive in compression, and (b) the hysteretic energy loss, against the \
-        stiffness k; no instability and no loss for k >= k_cr = 0.3.";
-    const RESULTS: &'static [(&'static str, &'static str)] = &[
-        (
-            "max_pull_in_force_magnitude_norm",
-            "largest |pull-in force| over the stiffness range",
-        ),
-        (
-            "max_pull_in_force_stiffness_norm",
-            "stiffness k where |pull-in force| is largest",
-        ),
-        ("critical_stiffness_norm", "k_cr, maximum of -f''(d) in (5.20)"),
-    ];
-
     fn validate(p: &Self::Params) -> Result<()> {
         require_below("k_min", p.k_min, "k_max", p.k_max)
     }

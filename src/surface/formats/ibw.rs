@@ -14,9 +14,9 @@ use crate::error::{Error, Result};
 
 /// The layers of an Igor image wave.
 pub(crate) fn channels<'a>(bytes: &'a [u8], path: &'a Path) -> Result<Vec<Channel<'a>>> {
-    let version = crate::readers::igor_version(bytes)
+    let version = crate::readers::igor::version(bytes)
         .ok_or_else(|| Error::data_file(path, 0, "not an Igor binary wave"))?;
-    let wave = crate::readers::igor_wave(bytes, version, path)?;
+    let wave = crate::readers::igor::wave(bytes, version, path)?;
     let err = |m: String| Error::data_file(path, 0, format!(".ibw: {m}"));
     let d = wave.dims;
     if d[3] > 1 {
