@@ -9,8 +9,9 @@
 //! Adding a scene: declare it with [`crate::scene!`] (its id, chapter, title, caption, results
 //! and parameter struct) and implement [`Scene`] (its checks and run) beside it, in the
 //! chapter's file under `scenes/`; add it to that file's `SCENES` list, and add
-//! `presets/<id>.toml`. A scene made of many independent points also implements [`sweep::Sweep`] and is listed as `Swept::<S>::NEW`, which
-//! lets it run in shards (a job array on a cluster) and be merged.
+//! `presets/<id>.toml`. A scene made of many independent points also implements
+//! [`sweep::Sweep`] and is listed as `Swept::<S>::NEW`, which lets it run in shards (a job
+//! array on a cluster) and be merged.
 
 use std::marker::PhantomData;
 
