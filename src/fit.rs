@@ -965,7 +965,7 @@ pub fn fit_with(curve: &Curve, path: &Path, settings: &FitSettings) -> Result<Fi
         let (alpha, machine) = match settings.spring_constant {
             Some(k) if matches!(model, FitModel::Jkr | FitModel::MachineStiffness) => {
                 let x = x_for(k)?;
-                let pr: Predictions = predictions(&x)?;
+                let (pull_in, pull_off) = x.instabilities()?;
                 let rep = |i: &Instability, o: &Instability| InstabilityReport {
                     pull_in_force_n: i.after.force,
                     pull_in_depth_jump_m: i.depth_jump(),
@@ -973,7 +973,7 @@ pub fn fit_with(curve: &Curve, path: &Path, settings: &FitSettings) -> Result<Fi
                     pull_off_depth_jump_m: o.depth_jump(),
                     pull_off_depth_m: o.before.h,
                 };
-                (Some(x.alpha()), Some(rep(&pr.pull_in, &pr.pull_off)))
+                (Some(x.alpha()), Some(rep(&pull_in, &pull_off)))
             }
             _ => (None, None),
         };
