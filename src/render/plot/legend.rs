@@ -446,19 +446,21 @@ pub(super) fn densify(frame: &Frame, points: &[(f64, f64)]) -> Vec<(f64, f64)> {
     out
 }
 
-/// Split a note into lines of at most `limit` pixels at `font` px, at spaces (a word longer
-/// than the limit stays whole).
+/// Split a note or heading into lines of at most `limit` pixels at `font` px, at spaces (a
+/// word longer than the limit stays whole), never inside a value: not before or after `=` (or
+/// another relation), nor around the `×` of a power of ten, nor between a number and its unit,
+/// so that `h/R = −2.08 × 10⁻⁴` and `358 nm` stay on one line.
 pub(super) fn wrap(note: &str, font: f64, limit: f64) -> Vec<String> {
     let mut lines: Vec<String> = Vec::new();
     let mut line = String::new();
-    for word in note.split_whitespace() {
+    for word in unbreakable(note) {
         let candidate = if line.is_empty() {
-            word.to_string()
+            word.clone()
         } else {
             format!("{line} {word}")
         };
         if !line.is_empty() && crate::render::text::width(&candidate, font, false) > limit {
-            lines.push(std::mem::replace(&mut line, word.to_string()));
+            lines.push(std::mem::replace(&mut line, word));
         } else {
             line = candidate;
         }
@@ -467,6 +469,38 @@ pub(super) fn wrap(note: &str, font: f64, limit: f64) -> Vec<String> {
         lines.push(line);
     }
     lines
+}
+
+/// The words of a text, those that must share a line ([`wrap`]) joined by their space.
+fn unbreakable(text: &str) -> Vec<String> {
+    const RELATIONS: [&str; 9] = ["=", "≈", "≤", "≥", "<", ">", "±", "×", "~"];
+    const UNITS: [&str; 21] = [
+        "nm", "µm", "um", "mm", "m", "N", "nN", "µN", "mN", "Pa", "kPa", "MPa", "GPa", "J", "J/m²", "mJ/m²",
+        "%", "s", "b", "ζ0", "°",
+    ];
+    let number = |w: &str| {
+        let w = w.trim_start_matches(['−', '-', '+', '(']);
+        w.starts_with(|c: char| c.is_ascii_digit())
+            && w.chars()
+                .all(|c| c.is_ascii_digit() || ".⁰¹²³⁴⁵⁶⁷⁸⁹⁻".contains(c))
+    };
+    let unit = |w: &str| UNITS.contains(&w.trim_end_matches([',', ';', ':', '.', ')']));
+    let mut out: Vec<String> = Vec::new();
+    let mut prev: Option<&str> = None;
+    for word in text.split_whitespace() {
+        let glued = prev.is_some_and(|p| {
+            RELATIONS.iter().any(|r| p.ends_with(r) || word.starts_with(r)) || (number(p) && unit(word))
+        });
+        match out.last_mut() {
+            Some(last) if glued => {
+                last.push(' ');
+                last.push_str(word);
+            }
+            _ => out.push(word.to_string()),
+        }
+        prev = Some(word);
+    }
+    out
 }
 
 #[cfg(test)]
@@ -482,5 +516,24 @@ mod tests {
         for l in &lines {
             assert!(crate::render::text::width(l, 25.0, false) <= 300.0, "{l}");
         }
+    }
+
+    #[test]
+    fn values_are_not_split_by_the_wrapping() {
+        let heading = "A = 3.125 nm, h/R = −2.08 × 10⁻⁴, a = 378 nm";
+        for limit in [60.0, 150.0, 250.0, 400.0] {
+            let lines = wrap(heading, 25.0, limit);
+            assert_eq!(lines.join(" "), heading);
+            for l in &lines {
+                for cut in ["=", "×", "−2.08", "3.125", "378"] {
+                    assert!(!l.ends_with(cut), "{lines:?} breaks after {cut:?}");
+                }
+                for cut in ["=", "×", "10⁻⁴", "nm"] {
+                    assert!(!l.starts_with(cut), "{lines:?} breaks before {cut:?}");
+                }
+            }
+        }
+        // Ordinary words still wrap.
+        assert_eq!(unbreakable("the 2 rings at h/R = 1").len(), 5);
     }
 }
