@@ -521,12 +521,17 @@ pub fn round_log_levels(lo: f64, hi: f64, target: usize) -> Vec<f64> {
 /// fraction of the panel's span on each axis, about a pixel of a PNG's frame.
 pub const COINCIDENCE_TOL: f64 = 1.5e-3;
 
-/// A number for text drawn on a figure (notes, legends): `digits` significant digits (a number
-/// with more integer digits keeps them all), trailing zeros kept (they state the precision),
-/// and the typographic minus sign.
+/// A number for text drawn on a figure (notes, legends, headings): `digits` significant digits
+/// (a number with more integer digits keeps them all), trailing zeros kept (they state the
+/// precision), and the typographic minus sign; outside [10⁻³, 10⁵) a power of ten as print
+/// writes it (`−2.08 × 10⁻⁴`, never the `-2.08e-4` of Rust's `{:e}`).
 pub fn number(v: f64, digits: usize) -> String {
     if !v.is_finite() || v == 0.0 {
         return format!("{v}");
+    }
+    let digits = digits.max(1);
+    if !(1e-3..1e5).contains(&v.abs()) {
+        return scientific(&format!("{v:.prec$e}", prec = digits - 1));
     }
     let magnitude = v.abs().log10().floor() as i64;
     let decimals = (digits as i64 - 1 - magnitude).max(0) as usize;
@@ -545,6 +550,48 @@ pub fn number(v: f64, digits: usize) -> String {
         rounded
     };
     text.replace('-', "−")
+}
+
+/// A number for text drawn on a figure with all the digits it needs to read back as the same
+/// value (a tolerance the user set, `2.5e-7`), written as [`number`] writes it (`2.5 × 10⁻⁷`).
+pub fn exact_number(v: f64) -> String {
+    if !v.is_finite() || v == 0.0 {
+        return format!("{v}");
+    }
+    if !(1e-3..1e5).contains(&v.abs()) {
+        return scientific(&format!("{v:e}"));
+    }
+    format!("{v}").replace('-', "−")
+}
+
+/// Rust's e-notation (`-2.08e-4`) as print writes it: `−2.08 × 10⁻⁴`, and a bare power of ten
+/// for a mantissa of 1 (`1e-12` → `10⁻¹²`).
+fn scientific(e_notation: &str) -> String {
+    let (mantissa, exponent) = e_notation.split_once('e').unwrap_or((e_notation, "0"));
+    let power = power_of_ten(exponent.parse().unwrap_or(0));
+    match mantissa.trim_start_matches('-') {
+        "1" => format!("{}{power}", if mantissa.starts_with('-') { "−" } else { "" }),
+        _ => format!("{} × {power}", mantissa.replace('-', "−")),
+    }
+}
+
+/// `10ᵏ` with superscript digits and a superscript minus (`10⁻²`); `1` and `10` for k = 0, 1.
+pub fn power_of_ten(k: i64) -> String {
+    const SUP: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+    match k {
+        0 => "1".into(),
+        1 => "10".into(),
+        _ => {
+            let mut s = String::from("10");
+            if k < 0 {
+                s.push('⁻');
+            }
+            for c in k.unsigned_abs().to_string().chars() {
+                s.push(SUP[c.to_digit(10).unwrap_or(0) as usize]);
+            }
+            s
+        }
+    }
 }
 
 /// Distance from `p` to the polyline `line`.
@@ -952,6 +999,16 @@ mod tests {
         assert_eq!(number(15.260879, 3), "15.3");
         // Whole numbers keep their integer digits.
         assert_eq!(number(1234.6, 2), "1235");
+        // Outside [10⁻³, 10⁵): a power of ten, never e-notation, the mantissa's zeros kept.
+        assert_eq!(number(-2.0799e-4, 3), "−2.08 × 10⁻⁴");
+        assert_eq!(number(1.5e-9, 2), "1.5 × 10⁻⁹");
+        assert_eq!(number(3.0e-4, 3), "3.00 × 10⁻⁴");
+        assert_eq!(number(9.9996e-4, 3), "1.00 × 10⁻³");
+        assert_eq!(number(123_456.0, 3), "1.23 × 10⁵");
+        assert_eq!(number(1e-6, 1), "10⁻⁶");
+        assert_eq!(exact_number(2.5e-7), "2.5 × 10⁻⁷");
+        assert_eq!(exact_number(1e-15), "10⁻¹⁵");
+        assert_eq!(exact_number(-0.25), "−0.25");
     }
 
     #[test]

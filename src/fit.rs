@@ -1115,26 +1115,23 @@ pub fn fit_figure(curve: &Curve, report: &FitReport) -> Result<Figure> {
         .with_panel(panel)
         .with_panel(residual_panel);
     record_results(&mut fig, report);
+    let n = crate::figure::number;
+    let modulus = format!(
+        "plane-strain modulus = {} ± {} Pa, contact point {} ± {} nm",
+        n(e, 5),
+        n(report.plane_strain_modulus_pa.std_error, 3),
+        n(dc * 1e9, 3),
+        n(report.contact_point_m.std_error * 1e9, 2),
+    );
     fig.note(match report.work_of_adhesion_j_per_m2 {
         Some(w) => format!(
-            "w = {:.4e} ± {:.2e} J/m^2, plane-strain modulus = {:.4e} ± {:.2e} Pa, contact point {:.2} ± {:.2} nm, {} rows fitted, {} in contact",
-            w.value,
-            w.std_error,
-            e,
-            report.plane_strain_modulus_pa.std_error,
-            dc * 1e9,
-            report.contact_point_m.std_error * 1e9,
+            "w = {} ± {} J/m², {modulus}, {} rows fitted, {} in contact",
+            n(w.value, 5),
+            n(w.std_error, 3),
             report.points_used,
             report.points_in_contact
         ),
-        None => format!(
-            "plane-strain modulus = {:.4e} ± {:.2e} Pa, contact point {:.2} ± {:.2} nm, {} rows fitted",
-            e,
-            report.plane_strain_modulus_pa.std_error,
-            dc * 1e9,
-            report.contact_point_m.std_error * 1e9,
-            report.points_used
-        ),
+        None => format!("{modulus}, {} rows fitted", report.points_used),
     });
     fig.note(format!(
         "in-contact rows found by {}",

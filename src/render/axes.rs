@@ -1,6 +1,8 @@
 //! Axis ticks and number formatting shared by the plot and terminal renderers.
 
 use crate::figure::Scale;
+/// `10ᵏ` with a superscript exponent (also the power of ten of numbers in a figure's text).
+pub use crate::figure::power_of_ten;
 
 /// Tick positions (in data units) and their labels for an axis range.
 #[derive(Debug, Clone, PartialEq)]
@@ -150,25 +152,6 @@ pub fn ticks(lo: f64, hi: f64, scale: Scale, target: usize) -> Ticks {
                 labels,
                 minor,
             }
-        }
-    }
-}
-
-/// `10ᵏ` with a superscript exponent.
-pub fn power_of_ten(k: i64) -> String {
-    const SUP: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
-    match k {
-        0 => "1".into(),
-        1 => "10".into(),
-        _ => {
-            let mut s = String::from("10");
-            if k < 0 {
-                s.push('⁻');
-            }
-            for c in k.unsigned_abs().to_string().chars() {
-                s.push(SUP[c.to_digit(10).unwrap_or(0) as usize]);
-            }
-            s
         }
     }
 }

@@ -260,8 +260,8 @@ crate::scene! {
         chapter: "2",
         params: Fig2_4Params,
         title: "Spherical tip with machine stiffness: states vs stage displacement",
-        caption: "Contact radius (b), indentation depth (c) and force (d) vs stage displacement \
-            for a spherical tip, Eqs. (2.34)-(2.36): stationary points (circles), solution points (dots), \
+        caption: "Contact radius (a), indentation depth (b) and force (c) vs stage displacement \
+            (the dissertation's panels (b)-(d); its geometry sketch (a) is not drawn) for a spherical tip, Eqs. (2.34)-(2.36): stationary points (circles), solution points (dots), \
             the pull-in at zero stage displacement (triangles) and the pull-off at the fold a_o (squares).",
         results: BRANCH_RESULTS,
     }
@@ -295,8 +295,8 @@ crate::scene! {
         chapter: "2",
         params: Fig2_6Params,
         title: "Conical tip with machine stiffness: states vs stage displacement",
-        caption: "Contact radius (b), indentation depth (c) and force (d) vs stage displacement \
-            for a conical tip, Eqs. (2.44)-(2.46): stationary points (circles), solution points (dots), \
+        caption: "Contact radius (a), indentation depth (b) and force (c) vs stage displacement \
+            (the dissertation's panels (b)-(d); its geometry sketch (a) is not drawn) for a conical tip, Eqs. (2.44)-(2.46): stationary points (circles), solution points (dots), \
             the pull-in (triangles) and the pull-off (squares).",
         results: BRANCH_RESULTS,
     }
@@ -689,7 +689,7 @@ impl Scene for Fig2_5Accuracy {
                     .collect(),
             ),
             (
-                "Gauss-Legendre order (tolerance 1e-14)",
+                "Gauss-Legendre order (tolerance 10⁻¹⁴)",
                 "Gauss-Legendre order n",
                 orders
                     .iter()
@@ -786,8 +786,9 @@ impl Scene for Fig2_5Accuracy {
             fig.panels.push(by_time.titled("(d)", "error against run time"));
         }
         fig.result("reference_time_s", if p.time_runs { reference_time } else { 0.0 });
+        let floor = crate::figure::exact_number(floor);
         fig.note(format!(
-            "reference: Brent to 1e-15 and a 100-point Gauss-Legendre rule; errors below {floor:e} are drawn at {floor:e}"
+            "reference: Brent to 10⁻¹⁵ and a 100-point Gauss-Legendre rule; errors below {floor} are drawn at {floor}"
         ));
         job.progress(1.0, "done");
         Ok(fig)

@@ -284,8 +284,10 @@ impl Scene for Fig3_4 {
             );
             let loss = losses_a[p.chis_a.iter().position(|&c| c == last.1).unwrap_or(0)];
             fig.note(format!(
-                "(a): the curve chi = {} starts at Z0, h/R = {:.3}, outside the frame; its pull-in and pull-off lie there (loss {:.2e})",
-                last.1, last.0, loss
+                "(a): the curve χ = {} starts at Z0, h/R = {}, outside the frame; its pull-in and pull-off lie there (loss {})",
+                last.1,
+                crate::figure::number(last.0, 3),
+                crate::figure::number(loss, 3)
             ));
             // On the figure too: the reader sees the curve run out of the frame.
             a.annotate(format!(
@@ -617,7 +619,7 @@ impl Scene for Fig3_5Accuracy {
         b.add(Series::new("empirical (3.6)", Style::Scatter, vec![(emp_cost, emp_max)]).with_color(0));
         b.add(
             Series::new(
-                "quadrature (3.4), tolerance 1e-11",
+                "quadrature (3.4), tolerance 10⁻¹¹",
                 Style::Scatter,
                 vec![(exact_cost, 1e-11)],
             )
@@ -659,7 +661,7 @@ impl Scene for Fig3_5Accuracy {
         c.add(Series::new("empirical (3.6)", Style::Scatter, vec![(emp_time, grid_emp_err)]).with_color(0));
         c.add(
             Series::new(
-                "quadrature at every node, tolerance 1e-7",
+                "quadrature at every node, tolerance 10⁻⁷",
                 Style::Scatter,
                 vec![(quad_time, 1e-7)],
             )

@@ -334,7 +334,7 @@ crate::scene! {
         title: "Smooth tip: Lennard-Jones surface model against Maugis-Dugdale",
         caption: "Displacement-controlled cycle of a smooth paraboloidal tip (R = 5 um, E = 4.4 MPa, \
             nu = 0.25) against a rigid flat with the Lennard-Jones interaction (C6 = 3, C12 = 1, sigma = 1 nm, \
-            A_H = 2e-21 J), computed with the axisymmetric surface model (the body force (4.15) integrated \
+            A_H = 2 × 10⁻²¹ J), computed with the axisymmetric surface model (the body force (4.15) integrated \
             through a column is the traction (4.19)) or, with model = fe, the dissertation's finite-element \
             model (section 4.2.2), against the Maugis-Dugdale curve (3.3) at the same \
             ell and chi (4.25): (a) P-h, (b) P-a with a the radius where the gap is below sigma. The model's \
@@ -516,7 +516,7 @@ impl Scene for Fig4_5 {
             f64::from(u8::from(cycle.stats.all_stable)),
         );
         fig.note(format!(
-            "{}; {} states, jumps located to 1e-3 ζ0; every state certified stable: {}.",
+            "{}; {} states, jumps located to 10⁻³ ζ0; every state certified stable: {}.",
             tip.describe(p.surface.ring_width, p.surface.quadrature_points),
             cycle.stats.states,
             cycle.stats.all_stable
@@ -595,10 +595,10 @@ crate::scene! {
         params: Fig4_7Params,
         title: "Wavy tip: depth-dependent hysteresis",
         caption: "Displacement-controlled cycles of a wavy tip (4.10) (R = 10 um, E = 2.2 MPa, nu = 0.25, \
-            A = 1.25 nm, lambda = 0.125 um; C6 = 3, C12 = 1, sigma = 1 nm, A_H = 1e-21 J) with the axisymmetric \
-            surface model (model = fe: the dissertation's finite-element model): (a) cycles to |h_min|/R = 1.5e-4 (thin) and 7e-4 (thick): more asperity-level \
+            A = 1.25 nm, lambda = 0.125 um; C6 = 3, C12 = 1, sigma = 1 nm, A_H = 10⁻²¹ J) with the axisymmetric \
+            surface model (model = fe: the dissertation's finite-element model): (a) cycles to |h_min|/R = 1.5 × 10⁻⁴ (thin) and 7 × 10⁻⁴ (thick): more asperity-level \
             instabilities and more loss for the deeper cycle (DDH); A, B: the states before and after the pull-in \
-            nearest h/R = -4e-4; C, D: the loading and unloading states at h/R = 6e-5; (b) the deep cycle against \
+            nearest h/R = −4 × 10⁻⁴; C, D: the loading and unloading states at h/R = 6 × 10⁻⁵; (b) the deep cycle against \
             the wavy JKR theory (4.26) (ERRATA reading, ell printed as chi), stable solid, unstable dashed.",
         results: &[
             ("adhesive_force_1_norm", "P_adh/(2E*R^2) of the shallow cycle"),
@@ -807,8 +807,8 @@ crate::scene! {
         caption: "Gap between the deformed wavy tip and the substrate against the radius at the states \
             of Fig. 4.7a on the deep cycle (surface model, or the finite-element model with model = fe; only the \
             deep cycle's |h_min| is used): (a) A and B \
-            just before and after a pull-in near h/R = -4e-4, the contact grows across an asperity by a finite \
-            amount; (b) C (loading) and D (unloading) at the same depth h/R = 6e-5, two metastable states with \
+            just before and after a pull-in near h/R = −4 × 10⁻⁴, the contact grows across an asperity by a finite \
+            amount; (b) C (loading) and D (unloading) at the same depth h/R = 6 × 10⁻⁵, two metastable states with \
             different contact regions. The dotted line is the contact threshold sigma (section 4.2.2).",
         results: &[
             ("contact_radius_a_nm", "contact radius at A"),
@@ -891,9 +891,9 @@ impl Scene for Fig4_8 {
                 panel.add(
                     Series::new(
                         format!(
-                            "{} (h/R = {:.2e}, a = {:.0} nm)",
+                            "{} (h/R = {}, a = {:.0} nm)",
                             labels[n],
-                            s.depth / p.tip.radius,
+                            crate::figure::number(s.depth / p.tip.radius, 3),
                             s.contact.radius() * 1e9
                         ),
                         Style::Stable,

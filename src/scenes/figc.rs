@@ -242,7 +242,7 @@ crate::scene! {
         title: "Numerical vs analytical PSD of generated surfaces",
         caption: "Isotropic PSD (B.1.10) of generated surfaces (points) against the analytic \
             Gaussian PSD (C.1.3) (line), sigma_rms = 10, L_c = 0.01 (a) and 0.05 (b) of the period. \
-            The PSD is shown down to 1e-10 of its plateau.",
+            The PSD is shown down to 10⁻¹⁰ of its plateau.",
         results: &[
             ("psd_log_rms_error_a_norm", "RMS of ln(C_numerical / C_analytic ring average) over the plotted rings, panel (a)"),
             ("psd_log_rms_error_b_norm", "RMS of ln(C_numerical / C_analytic ring average) over the plotted rings, panel (b)"),
@@ -371,7 +371,7 @@ crate::scene! {
         title: "Power spectrum of a rough surface and its fit to (3.16)",
         caption: "Isotropic PSD (B.1.8)-(B.1.10) of a height map (a user's, or one generated with \
             (3.16), (3.17) on a 2 um x 2 um, 256 x 256 grid as the scan of Fig. 3.7c) and its least-squares fit of \
-            (3.16) in log space (sigma_rms, L_c, n; q0 fixed at 1e8 1/m as in the text). Spectral moments (3.8), \
+            (3.16) in log space (sigma_rms, L_c, n; q0 fixed at 10⁸ 1/m as in the text). Spectral moments (3.8), \
             Nayak's alpha and the asperity density (3.9) of the map; peak density and nearest-peak distance (B.4).",
         results: &[
             ("sigma_rms_m", "RMS height of the map"),
@@ -541,8 +541,12 @@ impl Scene for Fig3_7d {
         }
         if !generated {
             fig.note(format!(
-                "Height map {}: {} x {} points, {:.4e} m x {:.4e} m.",
-                p.surface, map.nx, map.ny, map.lx, map.ly
+                "Height map {}: {} × {} points, {} m × {} m.",
+                p.surface,
+                map.nx,
+                map.ny,
+                crate::figure::number(map.lx, 5),
+                crate::figure::number(map.ly, 5)
             ));
         }
         job.progress(1.0, "done");

@@ -528,3 +528,90 @@ fn pdf_export_keeps_the_labels_as_text_with_the_font_embedded() {
         }
     }
 }
+
+/// Where a text writes a number as Rust's `{:e}` does (`1.5e-9`, `2E+3`) or with an ASCII
+/// hyphen for its minus sign (`-2.08`, `(-4`, `=-1`), rather than as the figures' number
+/// formatter (`adhesion::figure::number`) writes it (`−2.08 × 10⁻⁴`). A hyphen between two
+/// numbers or words (`1-3 nm`, `(2.34)-(2.36)`, `n = 9-11`) is a range or a compound, not a
+/// sign.
+fn misprinted_numbers(text: &str) -> Vec<String> {
+    let chars: Vec<char> = text.chars().collect();
+    let mut found = Vec::new();
+    let around = |i: usize| -> String {
+        chars[i.saturating_sub(12)..(i + 12).min(chars.len())]
+            .iter()
+            .collect()
+    };
+    for i in 0..chars.len() {
+        let digit = |k: usize| chars.get(k).is_some_and(char::is_ascii_digit);
+        // e-notation: a digit, e or E, an optional sign, a digit.
+        if digit(i) && matches!(chars.get(i + 1), Some('e' | 'E')) {
+            let k = i + 2 + usize::from(matches!(chars.get(i + 2), Some('-' | '+' | '−')));
+            if digit(k) {
+                found.push(format!("e-notation in …{}…", around(i)));
+            }
+        }
+        // A hyphen as a minus sign: at the start or after a space, bracket or relation.
+        if chars[i] == '-' && digit(i + 1) && (i == 0 || " ([=<>,;:".contains(chars[i - 1])) {
+            found.push(format!("ASCII hyphen as minus in …{}…", around(i)));
+        }
+    }
+    found
+}
+
+#[test]
+fn misprinted_numbers_are_found_and_ranges_are_not() {
+    for bad in ["h/R = -2.08e-4", "tolerance 1.5e-9", "2E+3 points", "loss (-4.1)"] {
+        assert!(!misprinted_numbers(bad).is_empty(), "{bad}");
+    }
+    for good in [
+        "h/R = −2.08 × 10⁻⁴",
+        "1-3 nm",
+        "Eqs. (2.34)-(2.36)",
+        "n = 9-11",
+        "fig4.5e",
+        "P/(2E*R²)",
+        "Gauss-Legendre",
+        "C6 = 3, C12 = 1",
+    ] {
+        assert_eq!(misprinted_numbers(good), Vec::<String>::new(), "{good}");
+    }
+}
+
+/// Scenes whose caption and notes are still written with e-notation (`A_H = 2e-21 J`) or an
+/// ASCII hyphen for a minus sign (`H: -0.22 %`) in their scene's file: only what they draw is
+/// checked, and for e-notation only.
+const TEXTS_LEFT_AS_TYPED: [&str; 3] = ["fig4.4", "fig4.5-models", "fig4.6"];
+
+/// Every text a quick figure draws (title, notes, panel headings, axis titles, legends, marker
+/// and field names) and every scene's caption writes its numbers as the figures' formatter
+/// does: no e-notation, no ASCII hyphen for a minus sign. The quick-form note is exempt: it
+/// lists the changed parameters as a preset writes them (`depth_over_radius = 1e-4`), and the
+/// full figure does not carry it.
+#[test]
+fn figure_texts_print_numbers_as_print_does() {
+    let mut failures = Vec::new();
+    for (id, fig) in quick_figures() {
+        let left = TEXTS_LEFT_AS_TYPED.contains(id);
+        for label in labels(fig) {
+            if label.starts_with("quick form: ") {
+                continue;
+            }
+            for f in misprinted_numbers(&label) {
+                if !(left && f.starts_with("ASCII hyphen")) {
+                    failures.push(format!("{id}: {f} in {label:?}"));
+                }
+            }
+        }
+    }
+    for s in scenes::all() {
+        let info = s.info();
+        if TEXTS_LEFT_AS_TYPED.contains(&info.id) {
+            continue;
+        }
+        for f in misprinted_numbers(info.caption) {
+            failures.push(format!("{} caption: {f}", info.id));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

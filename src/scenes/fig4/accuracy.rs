@@ -16,7 +16,7 @@ use std::time::Instant;
 
 use super::{material, tip_for};
 use crate::error::{Error, Result};
-use crate::figure::{Axis, Figure, Marker, MarkerShape, Panel, Series, Style};
+use crate::figure::{Axis, Figure, Marker, MarkerShape, Panel, Series, Style, exact_number, number};
 use crate::job::Job;
 use crate::models::axisymmetric::cycle::{CycleOptions, run_cycle};
 use crate::models::lennard_jones::LennardJones;
@@ -458,7 +458,7 @@ crate::scene! {
         params: Fig4_5AccuracyParams,
         title: "Smooth tip: accuracy against speed of the surface model",
         caption: "The displacement-controlled cycle of the smooth tip of Fig. 4.5 (R = 5 um, E = 4.4 MPa, \
-            nu = 0.25, C6 = 3, C12 = 1, sigma = 1 nm, A_H = 2e-21 J; from 12 zeta0 apart to 3 zeta0 deep) with the \
+            nu = 0.25, C6 = 3, C12 = 1, sigma = 1 nm, A_H = 2 × 10⁻²¹ J; from 12 zeta0 apart to 3 zeta0 deep) with the \
             axisymmetric surface model over its discretisation: ring width h in units of b = zeta0^2 E*/w, depth step, \
             Gauss points per interval of the interaction (4.4). The exact cycle has two jumps (pull-in, pull-off); \
             every further jump is spurious, the contact edge hopping from ring to ring. (a) relative error of the \
@@ -614,12 +614,13 @@ fn report(fig: &mut Figure, p: &Fig4_5AccuracyParams, s: &Sweep, lj: &LennardJon
         "b = ζ0²E*/w = {b_nm:.2} nm, ζ0 = {:.3} nm. Reference of the width sweeps: rings of {} b at the default \
          step; of the step sweep: steps of {} ζ0 at {} b. The errors do not fall monotonically, so the reference \
          is the finest grid itself, not a Richardson extrapolation. Jumps located to {} ζ0; errors below \
-         {ERROR_FLOOR:e} are drawn at {ERROR_FLOOR:e}.",
+         {floor} are drawn at {floor}.",
         zeta0 * 1e9,
         s.finest_width(),
         s.finest_step(),
         s.default.width,
-        p.refine_over_zeta0
+        p.refine_over_zeta0,
+        floor = exact_number(ERROR_FLOOR),
     ));
     let cost = if s.wall_clock {
         format!(
@@ -633,8 +634,8 @@ fn report(fig: &mut Figure, p: &Fig4_5AccuracyParams, s: &Sweep, lj: &LennardJon
         )
     };
     fig.note(format!(
-        "Defaults ({} b, {} ζ0, {} Gauss points): {} spurious jumps; P_adh within {dp:.1e} and H within {dh:.1e} of \
-         the finest rings, within {sp:.1e} and {sh:.1e} of the finest step; {cost}. The coarsest ring width \
+        "Defaults ({} b, {} ζ0, {} Gauss points): {} spurious jumps; P_adh within {dp} and H within {dh} of \
+         the finest rings, within {sp} and {sh} of the finest step; {cost}. The coarsest ring width \
          without spurious jumps is {clean} b: on coarser rings the contact edge hops from ring to ring, about \
          one ring per jump, a sawtooth of fake instabilities that adds fake loss ({} spurious jumps, H {:.0} % \
          off at {} b). The hopping is set by the ring width against the edge zone b, not by the quadrature: \
@@ -648,6 +649,10 @@ fn report(fig: &mut Figure, p: &Fig4_5AccuracyParams, s: &Sweep, lj: &LennardJon
         s.widths[0],
         fewest,
         fewest_run.spurious,
+        dp = number(dp, 2),
+        dh = number(dh, 2),
+        sp = number(sp, 2),
+        sh = number(sh, 2),
     ));
     fig.note(
         "P_adh is the most tensile force of the visited states: its error in the step is that of sampling a \
@@ -659,7 +664,7 @@ fn report(fig: &mut Figure, p: &Fig4_5AccuracyParams, s: &Sweep, lj: &LennardJon
             "The finest rings show {} spurious jump(s) as well. With the default sweep (0.125 b) it is a false \
              alarm of the jump test 0.002 ζ0 before the pull-off fold, where the contact edge moves so fast \
              that a ring's displacement changes by half the interaction range within the location tolerance; \
-             located to 1e-5 ζ0 it is gone, while the hop at 0.35 b stays.",
+             located to 10⁻⁵ ζ0 it is gone, while the hop at 0.35 b stays.",
             reference.spurious
         ));
     }

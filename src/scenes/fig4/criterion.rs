@@ -370,7 +370,7 @@ crate::scene! {
             the roots of (4.23) (parabolic tip, Boussinesq point load; pull-in red, pull-off blue; solid with the \
             printed traction (4.19), dotted with the consistent one) and, as circles, the gap at the apex of the last \
             state before the pull-in and pull-off jumps of displacement-controlled cycles of the smooth tip of Fig. 4.5 \
-            (R = 5 um, C6 = 3, C12 = 1, sigma = 1 nm, A_H = 2e-21 J) with the axisymmetric surface model, mu_T set \
+            (R = 5 um, C6 = 3, C12 = 1, sigma = 1 nm, A_H = 2 × 10⁻²¹ J) with the axisymmetric surface model, mu_T set \
             through E* by (1.8). (b) Relative error (4.24) between the deformed gap profile just before the pull-in \
             at mu_T = 5 and the parabola through its apex.",
         results: &[
@@ -851,13 +851,13 @@ impl Analysis<'_> {
         fig.note(format!(
             "Surface model, smooth tip of Fig. 4.5 (R = {} µm); μ_T set through E* = (R w^2/(μ_T^3 ζ0^3))^(1/2), \
              (1.8), at fixed w and ζ0 = {:.3} nm; cycles from (2 μ_T + 5) ζ0 apart to {} ζ0, steps of {} ζ0, \
-             jumps located to {:.0e} ζ0; {}-{} rings (at most {} b, at least {} across √(2Rζ0)). z_c is the gap \
+             jumps located to {} ζ0; {}-{} rings (at most {} b, at least {} across √(2Rζ0)). z_c is the gap \
              at the apex of the last state before the jump.",
             p.radius * 1e6,
             zeta0 * 1e9,
-            p.h_min_over_zeta0,
+            crate::figure::exact_number(p.h_min_over_zeta0),
             p.step_over_zeta0,
-            p.refine_over_zeta0,
+            crate::figure::exact_number(p.refine_over_zeta0),
             rings.clone().min().unwrap_or(0),
             rings.max().unwrap_or(0),
             p.ring_width,
@@ -942,7 +942,7 @@ impl Analysis<'_> {
                  Read with z0 the undeformed apex gap, the maximum is at the centre but is u(0)/z_c = {:.0} %: before the \
                  pull-in the apex has moved {:.2} ζ0 towards the substrate, at z_c = {:.2} ζ0, so the deformation is \
                  not small against the gap. The estimate itself says so: (4.21) at the pull-in root of (4.23) gives \
-                 u(0)/z_c = {:.2} (its attractive term alone, Δz ∝ z0^(-5/2) with dΔz/dz0 = -1 (4.22), gives 2/5).",
+                 u(0)/z_c = {:.2} (its attractive term alone, Δz ∝ z0^(−5/2) with dΔz/dz0 = −1 (4.22), gives 2/5).",
                 100.0 * err_max,
                 r_max * 1e9,
                 r_max / zone,

@@ -12,7 +12,7 @@ use rayon::prelude::*;
 
 use super::{ModelChoice, SceneTip, TipModel, draw_cycle};
 use crate::error::{Error, Result};
-use crate::figure::{Axis, Field, Figure, Panel};
+use crate::figure::{Axis, Field, Figure, Panel, number};
 use crate::job::Job;
 use crate::models::axisymmetric::cycle::{CycleOptions, TipCycle, TipJump, TipState};
 use crate::models::lennard_jones::LennardJones;
@@ -365,11 +365,11 @@ crate::scene! {
         params: Fig4_9aParams,
         title: "Roughness and adhesion: P-h cycles of three amplitudes",
         caption: "Force against depth of a wavy tip (surface model, or with model = fe the dissertation's \
-            finite-element model) cycled to |h_min|/R = 6e-4 (the figure's notes give the depth that ran) for \
+            finite-element model) cycled to |h_min|/R = 6 × 10⁻⁴ (the figure's notes give the depth that ran) for \
             A/lambda = 0, 0.0075 and 0.02 (A = 0, 0.9375, 2.5 nm; sigma = 1.5 nm, the other parameters of Fig. 4.7a). \
             (a) at the caption's E = 2.2 MPa, (b) at E = 1.1 MPa (ERRATA: the printed smooth-tip force exceeds the DMT \
-            bound at 2.2 MPa). The dissertation: P_adh/(2E*R^2) = 1.54e-5, 3.06e-5, 1.93e-5 and H/(2E*R^3) = 2.93e-9, \
-            12.43e-9, 7.7e-9: a small roughness raises both, a larger one lowers them again.",
+            bound at 2.2 MPa). The dissertation: P_adh/(2E*R^2) = 1.54 × 10⁻⁵, 3.06 × 10⁻⁵, 1.93 × 10⁻⁵ and H/(2E*R^3) = 2.93 × 10⁻⁹, \
+            12.43 × 10⁻⁹, 7.7 × 10⁻⁹: a small roughness raises both, a larger one lowers them again.",
         results: &[
             ("p_adh_1_norm", "P_adh/(2E*R^2), amplitude 1, panel (a)"),
             ("p_adh_2_norm", "P_adh/(2E*R^2), amplitude 2, panel (a)"),
@@ -454,11 +454,11 @@ impl Scene for Fig4_9a {
             .titled(label, format!("E = {:.2} MPa, {}", e * 1e-6, cycles[0].0.label()));
             if k == 0 {
                 fig.note(format!(
-                    "{}; cycles to |h_min|/R = {:.2e} in steps of {} ζ0.",
+                    "{}; cycles to |h_min|/R = {} in steps of {} ζ0.",
                     cycles[0]
                         .0
                         .describe(setup.surface.ring_width, setup.surface.quadrature_points),
-                    setup.depth / setup.radius,
+                    number(setup.depth / setup.radius, 3),
                     setup.step_over_zeta0
                 ));
             }
@@ -476,9 +476,11 @@ impl Scene for Fig4_9a {
                     fig.result(format!("jumps_{}_count", i + 1), cycle.jumps.len() as f64);
                 }
                 summary.push(format!(
-                    "{name}: P_adh/(2E*R²) = {padh:.3e} (printed {:.2e}), H/(2E*R³) = {h:.3e} (printed {:.2e}), {} jumps",
-                    printed[i].0,
-                    printed[i].1,
+                    "{name}: P_adh/(2E*R²) = {} (printed {}), H/(2E*R³) = {} (printed {}), {} jumps",
+                    number(padh, 4),
+                    number(printed[i].0, 3),
+                    number(h, 4),
+                    number(printed[i].1, 3),
                     cycle.jumps.len()
                 ));
             }
@@ -488,8 +490,9 @@ impl Scene for Fig4_9a {
                 fig.result("dmt_bound_norm", dmt);
             }
             fig.note(format!(
-                "{label} E = {:.2} MPa (DMT bound on P_adh/(2E*R²): {dmt:.3e}): {}.",
+                "{label} E = {:.2} MPa (DMT bound on P_adh/(2E*R²): {}): {}.",
                 e * 1e-6,
+                number(dmt, 4),
                 summary.join("; ")
             ));
             fig.panels.push(panel);
@@ -524,7 +527,7 @@ crate::scene! {
         params: Fig4_11Params,
         title: "Roughness and the topology of the contact at the adhesive force",
         caption: "Top views of the gap (nm, clipped at 3 sigma) between the deformed wavy tip and the \
-            substrate at the state of the adhesive force P_adh of a cycle to |h_min|/R = 6e-4 (surface model, or with \
+            substrate at the state of the adhesive force P_adh of a cycle to |h_min|/R = 6 × 10⁻⁴ (surface model, or with \
             model = fe the finite-element model), for \
             A = 0, 1.25, 2.5, 3.75 nm (sigma = 1.5 nm, the other parameters of Fig. 4.7a); the highlighted line is the \
             contact edge (gap = sigma). The dissertation: P_adh is largest at A/lambda = 0.01, where the contact is \
@@ -571,7 +574,11 @@ impl Scene for Fig4_11 {
             let mut panel = Panel::new(Axis::linear("x", "nm"), Axis::linear("y", "nm"))
                 .titled(
                     ["(a)", "(b)", "(c)", "(d)"][i],
-                    format!("A/λ = {:.3}: P_adh/(2E*R²) = {padh:.2e}", a / p.wavelength),
+                    format!(
+                        "A/λ = {:.3}: P_adh/(2E*R²) = {}",
+                        a / p.wavelength,
+                        number(padh, 3)
+                    ),
                 )
                 .with_equal_aspect();
             panel.field = Some(top_view(
@@ -690,7 +697,7 @@ impl Scene for Fig4_12 {
             let list: Vec<String> = offs
                 .iter()
                 .zip(&rings)
-                .map(|(j, r)| format!("{r:.0} at h/R = {:.2e}", j.before.depth / setup.radius))
+                .map(|(j, r)| format!("{r:.0} at h/R = {}", number(j.before.depth / setup.radius, 3)))
                 .collect();
             notes.push(format!(
                 "A = {:.3} nm: {} pull-offs detaching {} ring(s)",
@@ -717,9 +724,9 @@ impl Scene for Fig4_12 {
                     .titled(
                         labels[k][n],
                         format!(
-                            "A = {:.3} nm, h/R = {:.2e}, a = {:.0} nm",
+                            "A = {:.3} nm, h/R = {}, a = {:.0} nm",
                             a * 1e9,
-                            s.depth / setup.radius,
+                            number(s.depth / setup.radius, 3),
                             s.contact.radius() * 1e9
                         ),
                     )

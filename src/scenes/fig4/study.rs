@@ -23,7 +23,7 @@ use super::TipModel;
 use super::roughness::{Setup, rough_tip_params};
 use super::sweeps::adhesion_of;
 use crate::error::{Error, Result};
-use crate::figure::{Axis, Figure, Panel, Series, Style};
+use crate::figure::{Axis, Figure, Panel, Series, Style, number};
 use crate::job::Job;
 use crate::params::Range;
 use crate::scenes::groups::{DepthPath, ElasticTip, FeMesh, Interaction, SurfaceModel, Waviness};
@@ -125,7 +125,7 @@ crate::scene! {
         params: Fig4_9bModelsParams,
         title: "Adhesion against the interaction range: model or resolution?",
         caption: "P_adh/(2E*R^2) (a) and H/(2E*R^3) (b) of the cycles of Fig. 4.9b (the parameters of \
-            Fig. 4.7a, E = 2.2 MPa, |h_min|/R = 6e-4 at the defaults; the notes give what ran) against the range sigma for \
+            Fig. 4.7a, E = 2.2 MPa, |h_min|/R = 6 × 10⁻⁴ at the defaults; the notes give what ran) against the range sigma for \
             A/lambda = 0 (dashed) and 0.0075 (solid) in three variants: (i) the surface model and (ii) the finite-element \
             model, each converged in the surface-element width (ring_width b, b = zeta0^2 E*/w grows as sigma^4, at most \
             max_width_over_wavelength lambda; the change under one more refinement is in the notes), and (iii) the \
@@ -310,12 +310,12 @@ impl Sweep for Fig4_9bModels {
             s.surface.ring_width * s.radial_unit()
         };
         fig.note(format!(
-            "Ran: σ = {} nm, A/λ = {}; cycles to |h_min|/R = {:.2e} from {} ζ0 in steps of {} ζ0; (i), (ii) on \
+            "Ran: σ = {} nm, A/λ = {}; cycles to |h_min|/R = {} from {} ζ0 in steps of {} ζ0; (i), (ii) on \
              surface elements of min({} b, {} λ) and refined by {}; (iii) on elements of {:.2} nm at every σ; the \
              finite-element tip {} R wide and high, bulk grading {}.",
             p.sigmas.iter().map(|s| fmt_sig(s * 1e9)).collect::<Vec<_>>().join(", "),
             p.amplitude_ratios.iter().map(|r| r.to_string()).collect::<Vec<_>>().join(", "),
-            p.depth_over_radius,
+            number(p.depth_over_radius, 3),
             p.h_start_over_zeta0,
             p.step_over_zeta0,
             p.surface.ring_width,
@@ -331,7 +331,13 @@ impl Sweep for Fig4_9bModels {
                     let cell = |v: usize| {
                         let (pa, dp) = variant(c, i, v, 0);
                         let (h, dh) = variant(c, i, v, 1);
-                        format!("{pa:.3e} ({:.1} %), H {h:.3e} ({:.1} %)", 100.0 * dp, 100.0 * dh)
+                        format!(
+                            "{} ({:.1} %), H {} ({:.1} %)",
+                            number(pa, 4),
+                            100.0 * dp,
+                            number(h, 4),
+                            100.0 * dh
+                        )
                     };
                     format!(
                         "σ = {} nm: (i) {}; (ii) {}; (iii) {}",

@@ -38,9 +38,9 @@ pub(super) fn adhesion_of(setup: &Setup, amplitude: f64, job: &Job) -> Result<(f
 /// gives the defaults).
 fn ran_note(setup: &Setup, grid: &str) -> String {
     format!(
-        "Ran: {grid}; one cycle per point to |h_min|/R = {:.2e} from {} ζ0 in steps of {} ζ0; {} with {} b surface \
+        "Ran: {grid}; one cycle per point to |h_min|/R = {} from {} ζ0 in steps of {} ζ0; {} with {} b surface \
          elements (b ∝ σ⁴) and {} Gauss points.",
-        setup.depth / setup.radius,
+        crate::figure::number(setup.depth / setup.radius, 3),
         setup.h_start_over_zeta0,
         setup.step_over_zeta0,
         match setup.choice.model {
@@ -117,7 +117,7 @@ crate::scene! {
         params: Fig4_9bParams,
         title: "Adhesive force and loss against the interaction range",
         caption: "P_adh/(2E*R^2) (a) and H/(2E*R^3) (b) of a wavy tip (surface model, or with model = fe \
-            the finite-element model; one cycle per point to |h_min|/R = 6e-4 at the defaults, the figure's notes give \
+            the finite-element model; one cycle per point to |h_min|/R = 6 × 10⁻⁴ at the defaults, the figure's notes give \
             what ran) against the range sigma of the LJ potential for A/lambda = 0, 0.0075 and 0.02 \
             (the other parameters of Fig. 4.7a; E = 2.2 MPa, ERRATA on Fig. 4.9). A sweep: sigma_points x 3 cycles. \
             The dissertation: for the smooth tip both fall monotonically with sigma (the instabilities vanish as mu_T \
@@ -347,7 +347,7 @@ crate::scene! {
         params: Fig4_10Params,
         title: "Adhesive force and loss over roughness and interaction range",
         caption: "P_adh/(2E*R^2) (a) and H/(2E*R^3) (b) of a wavy tip (surface model, or with model = fe \
-            the finite-element model; one cycle per point to |h_min|/R = 6e-4 at the defaults, the figure's notes give \
+            the finite-element model; one cycle per point to |h_min|/R = 6 × 10⁻⁴ at the defaults, the figure's notes give \
             what ran) over alpha = A^2/(lambda w/E*) and beta = sigma^2/(lambda w/E*) of (4.27) (the \
             other parameters of Fig. 4.7a, E = 2.2 MPa). A sweep of alpha_points x beta_points cycles; the default \
             6 x 6 grid is coarse (about a minute on 2 cores): refine it for a paper figure. The diamond marks the \

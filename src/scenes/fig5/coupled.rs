@@ -391,7 +391,7 @@ impl Scene for Fig5_10Accuracy {
             let mut hp = Vec::new();
             for (k, &steps) in p.steps.iter().enumerate() {
                 job.check()?;
-                let what = format!("tolerance {tol:e}, {steps} steps");
+                let what = format!("tolerance {}, {steps} steps", crate::figure::exact_number(tol));
                 let (cy, time, iters) = run(steps as usize, tol, &parts[1 + c * p.steps.len() + k], &what)?;
                 let x = if p.wall_clock { time } else { iters as f64 };
                 let ef = ((cy.max_tensile_force() - p_ref) / p_ref).abs().max(1e-16);
@@ -405,7 +405,7 @@ impl Scene for Fig5_10Accuracy {
                     finest = ef;
                 }
             }
-            let name = format!("tolerance {tol:e}");
+            let name = format!("tolerance {}", crate::figure::exact_number(tol));
             force_panel.add(Series::new(&name, Style::Stable, fp).with_color(c));
             hyst_panel.add(Series::new(&name, Style::Stable, hp).with_color(c));
         }

@@ -76,7 +76,7 @@ crate::scene! {
         title: "Adhesion efficiency vs roughness and stiffness",
         caption: "Adhesion efficiency alpha_F = P_max/(MN P_m) (5.36) against sigma_rms/sigma for \
             k_e/k_cr = 2^-n, n = 6..11, 256 x 256 uncoupled springs, mean and standard deviation over 15 surfaces \
-            (symbols, error bars) and the empirical fit exp(-4 sigma_rms/(sigma 2^n)) (5.37) (lines).",
+            (symbols, error bars) and the empirical fit exp(−4 sigma_rms/(sigma 2^n)) (5.37) (lines).",
         results: &[
             ("fit_rms_deviation_first_norm", "RMS over the roughness range of the simulated mean efficiency minus (5.37), first stiffness exponent"),
             ("fit_rms_deviation_last_norm", "as above, last stiffness exponent"),
@@ -189,9 +189,6 @@ impl Sweep for Fig5_8 {
         ));
         panel.annotate(fit_verdict(&p.stiffness_exponents, &deviations));
         fig.panels.push(panel);
-        fig.note(
-            "symbols: simulation mean over the samples, bars: one standard deviation; lines: Eq. (5.37)",
-        );
         job.progress(1.0, "done");
         Ok(fig)
     }
