@@ -71,11 +71,11 @@ crate::scene_params! {
         group path: DepthPath;
         /// The discretisation of the surface model.
         group surface: SurfaceModel help {
-            ring_width: "Ring width (surface model) or width of the surface elements (finite elements) in units of b = ζ0²E*/w (0.25 and below: the contact edge does not hop from ring to ring).",
+            ring_width: "Ring width (surface model) or width of the surface elements (finite elements) in units of b = ζ0²E*/w (surface model, 0.25 and below: the contact edge does not hop from ring to ring; the finite-element cycle hops at 0.25, not at 0.15).",
         };
         /// The contact threshold.
         group contact: ContactCriterion;
-        /// Model of the tip: surface (the axisymmetric surface model, a few seconds) or fe (the dissertation's finite-element model with the body force (4.15): 22 282 unknowns at the defaults, about 50 s per cycle on 2 cores).
+        /// Model of the tip: surface (the axisymmetric surface model, a few seconds) or fe (the dissertation's finite-element model with the body force (4.15): 15 112 unknowns at the defaults, 24 542 at ring_width 0.15, about a minute per cycle on 2 cores).
         model: TipModel = TipModel::Surface, unit = "", range = Range::any();
         /// The mesh of the finite-element model.
         group mesh: FeMesh;
@@ -546,7 +546,7 @@ crate::scene_params! {
         group surface: SurfaceModel;
         /// The contact threshold.
         group contact: ContactCriterion;
-        /// Model of the tip: surface (the axisymmetric surface model, seconds) or fe (the dissertation's finite-element model with the body force (4.15): about 25 000 unknowns at the defaults and several minutes per figure on 2 cores).
+        /// Model of the tip: surface (the axisymmetric surface model, seconds) or fe (the dissertation's finite-element model with the body force (4.15): about 20 000 unknowns at the defaults and several minutes per figure on 2 cores).
         model: TipModel = TipModel::Surface, unit = "", range = Range::any();
         /// The mesh of the finite-element model.
         group mesh: FeMesh;

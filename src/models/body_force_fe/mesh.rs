@@ -32,7 +32,7 @@ pub struct MeshSpec {
     /// Height h0 of the tip (the top face is the bottom face raised by h0).
     pub h0: f64,
     /// Element width h along the surface of the fine zone (an upper bound: the mesh uses
-    /// r0/(n 2^k) ≤ h).
+    /// r0/(n 2^k) ≤ h with 8 ≤ n ≤ 16, which lies within (8/9 h, h] where r0 ≥ 8 h).
     pub width: f64,
     /// Radius r_f of the fine zone.
     pub fine_radius: f64,
@@ -140,7 +140,9 @@ impl Mesh {
                 format!("must exceed the fine zone's radius {:.4e}", spec.fine_radius),
             ));
         }
-        // Root cells of side N = 2^k finest widths, n_r of them across r0.
+        // Root cells of side N = 2^k finest widths, n_r ∈ [8, 16] of them across r0 (fewer
+        // where r0 spans fewer than 8 widths), so that the finest width r0/(n_r N) is the
+        // requested width to within 1/8 (see [`root_cells`]).
         let ratio = spec.r0 / spec.width;
         if !(ratio.is_finite() && ratio < 2f64.powi(40)) {
             return Err(Error::invalid(
@@ -149,9 +151,7 @@ impl Mesh {
                 "is too small for the tip radius r0",
             ));
         }
-        let k = ratio.log2().floor().max(0.0) as u32;
-        let side: u64 = 1 << k;
-        let n_r = (ratio / side as f64).ceil().max(1.0) as u64;
+        let (side, n_r) = root_cells(ratio);
         let h = spec.r0 / (n_r * side) as f64;
         let mut stretch = Stretch::new(h, spec.first_layer.min(h), spec.layer_growth);
         if spec.h0 <= stretch.t_star {
@@ -314,6 +314,20 @@ impl Mesh {
     }
 }
 
+/// The root cells of a quadtree whose finest cells are r0/(n_r N) ≤ w wide, for `ratio` =
+/// r0/w: their side N = 2^k (in finest widths) and their number n_r across r0.
+///
+/// With N = 2^(k−3) for 2^k ≤ ratio < 2^(k+1), n_r = ⌈ratio/N⌉ lies in [8, 16] and
+/// ratio ≤ n_r N < ratio + N ≤ (9/8) ratio: the finest width lies within (8/9 w, w]. Where r0
+/// spans fewer than 8 widths, N = 1 and the width is r0/⌈ratio⌉, the widest uniform one not
+/// above w.
+fn root_cells(ratio: f64) -> (u64, u64) {
+    let k = ratio.log2().floor().max(3.0) as u32 - 3;
+    let side: u64 = 1 << k;
+    let n_r = (ratio / side as f64).ceil().max(1.0) as u64;
+    (side, n_r)
+}
+
 /// Split leaves until neighbours across an edge differ by at most one level.
 fn balance(leaves: &mut HashSet<Cell>, width: u64, height: u64, root: u64) {
     // The leaf containing the finest cell (x, y).
@@ -421,8 +435,9 @@ mod tests {
         };
         let n_side = (0..mesh.nodes.len()).filter(|&k| on_side(k)).count();
         assert_eq!(boundary, n_side, "boundary edges vs boundary nodes");
-        // The fine zone has uniform surface elements of the requested width.
-        assert!((mesh.width - 400.0 / 512.0).abs() < 1e-12);
+        // The fine zone has uniform surface elements of the requested width: 13 root cells of
+        // 32 widths across r0 = 400.
+        assert!((mesh.width - 400.0 / 416.0).abs() < 1e-12);
         let first_gap = mesh.nodes[mesh.surface[1]][0] - mesh.nodes[mesh.surface[0]][0];
         assert!((first_gap - mesh.width).abs() < 1e-12);
     }
@@ -438,6 +453,65 @@ mod tests {
         assert!((t1 / 0.1 - 1.0).abs() < 0.15, "first layer {t1}");
         assert!((t2 / t1 - 1.3).abs() < 0.05, "growth {}", t2 / t1);
         assert!((on_axis.last().unwrap() - 400.0).abs() < 1e-9);
+    }
+
+    /// The finest width is the requested one to within 1/8, (8/9 w, w], for widths at and
+    /// between powers of two of r0, and the surface nodes of the fine zone are that far apart.
+    /// At r0 = 200 µm, 6.2 and 7.8 nm (once both 6.10 nm) give different meshes.
+    #[test]
+    fn the_finest_width_is_the_requested_one_to_within_an_eighth() {
+        for r0 in [400.0, 1000.0, 2.0e5] {
+            for w in [0.3, 0.5, 1.0, 1.7, 3.3, 6.2, 7.8, 12.5, 24.0] {
+                let s = MeshSpec {
+                    r0,
+                    h0: r0,
+                    width: w,
+                    fine_radius: 40.0,
+                    ..spec()
+                };
+                let mesh = Mesh::new(&s, |r| r * r / 2000.0).unwrap();
+                let h = mesh.width;
+                assert!(
+                    h <= w * (1.0 + 1e-12) && h > w * 8.0 / 9.0,
+                    "r0 {r0}, width {w}: finest {h}"
+                );
+                let gap = mesh.nodes[mesh.surface[1]][0] - mesh.nodes[mesh.surface[0]][0];
+                assert!((gap / h - 1.0).abs() < 1e-9, "r0 {r0}, width {w}: gap {gap}");
+            }
+        }
+        let at = |w: f64| {
+            Mesh::new(
+                &MeshSpec {
+                    r0: 2.0e5,
+                    h0: 2.0e5,
+                    width: w,
+                    fine_radius: 200.0,
+                    ..spec()
+                },
+                |_| 0.0,
+            )
+            .unwrap()
+        };
+        let (fine, coarse) = (at(6.2), at(7.8));
+        assert!((fine.width - 2.0e5 / 32768.0).abs() < 1e-9, "{}", fine.width);
+        assert!((coarse.width - 2.0e5 / 26624.0).abs() < 1e-9, "{}", coarse.width);
+        assert!(
+            fine.nodes.len() > coarse.nodes.len(),
+            "{} nodes at 6.2 against {} at 7.8",
+            fine.nodes.len(),
+            coarse.nodes.len()
+        );
+    }
+
+    /// A tip spanning fewer than 8 widths gets the widest uniform width not above the request.
+    #[test]
+    fn a_narrow_tip_gets_the_widest_uniform_width_not_above_the_request() {
+        for (ratio, side, n_r) in [(0.5, 1, 1), (1.0, 1, 1), (3.2, 1, 4), (7.9, 1, 8), (8.0, 1, 8)] {
+            assert_eq!(root_cells(ratio), (side, n_r), "ratio {ratio}");
+        }
+        assert_eq!(root_cells(16.0), (2, 8));
+        assert_eq!(root_cells(17.0), (2, 9));
+        assert_eq!(root_cells(31.9), (2, 16));
     }
 
     #[test]

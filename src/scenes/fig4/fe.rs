@@ -300,8 +300,8 @@ crate::scene_params! {
         group path: DepthPath help {
             h_start_over_zeta0: "Start (and end) of the cycle in units of ζ0.",
         };
-        /// Ring width of the surface model and element width of the finite-element model over the contact zone, in units of b = ζ0²E*/w.
-        width: f64 = 0.25, unit = "", range = Range::between(0.05, 2.0);
+        /// Ring width of the surface model and element width of the finite-element model over the contact zone, in units of b = ζ0²E*/w (the finite-element cycle's receding contact edge hops from ring to ring at 0.25, not at 0.15).
+        width: f64 = 0.15, unit = "", range = Range::between(0.05, 2.0);
         /// The bulk of the finite-element mesh.
         group bulk: FeBulk;
         /// Gradings of the mesh-convergence runs (shallow cycles to h = 0).
@@ -612,8 +612,8 @@ crate::scene_params! {
         /// Depth of the state shown, in units of ζ0 (after the pull-in, which happens near +4 ζ0 at the defaults).
         depth_over_zeta0: f64 = 0.0, unit = "", range = Range::between(-20.0, 20.0);
         from DepthPath: step_over_zeta0: f64 = 0.25, help = "Depth step of the loading in units of ζ0.";
-        /// Element width over the contact zone in units of b = ζ0²E*/w.
-        width: f64 = 0.25, unit = "", range = Range::between(0.05, 2.0);
+        /// Element width over the contact zone in units of b = ζ0²E*/w (that of fig4.5-models, whose finite-element cycle hops from ring to ring on unloading at 0.25, not at 0.15).
+        width: f64 = 0.15, unit = "", range = Range::between(0.05, 2.0);
         /// The bulk of the mesh.
         group bulk: FeBulk help {
             size_over_radius: "Radius and height of the tip in units of R.",
