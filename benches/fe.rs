@@ -1,8 +1,8 @@
 //! Finite-element speed (chapter 4): assembly, factorisation and solve of a 199 712-triangle
 //! axisymmetric elasticity problem (the size of `benches/fe_skfem.py`, run there with
 //! scikit-fem for comparison), the set-up of the finite-element tip of Fig. 4.5, and one
-//! finite-element cycle of Fig. 4.5's smooth tip to 15 ζ0 (timed over 3 runs, median: a cycle
-//! takes minutes, too long for criterion's ten samples). Whether condensing the bulk onto the
+//! finite-element cycle of Fig. 4.5's smooth tip to 15 ζ0 (criterion group `fe-cycle`, ten
+//! samples of one cycle each: about ten minutes). Whether condensing the bulk onto the
 //! surface layers (a Schur complement) would make the Newton steps cheaper: `benches/fe_schur.rs`
 //! (it does not).
 //!
@@ -42,6 +42,31 @@
 //! bisections (319 minimisations for 121 targets and 8 jumps: the contact edge hopping node
 //! by node raises the jump measure against the tangent, and each false alarm costs a half
 //! step and a retry).
+//!
+//! Where the bench cycle's wall time goes (instrumented run, quiet machine, 54.6 s in the
+//! minimisations): numeric factorisations 23.0 s (1 965, 11.7 ms each, sequential), solves
+//! 11.4 s (4 274, 2.6 ms each: the factor has 1.18 million entries, 9.4 MB, and a solve
+//! streams it twice), gradients 7.2 s (4 294), line searches 5.7 s, Hessian values 3.6 s,
+//! tangent predictor 3.1 s. Of the 4 291 Newton iterations 1 756 start with a gradient above
+//! 10 (the edge nodes settling on the wall, with line searches halving the steps) and 1 540
+//! below 10⁻² (the chord tail). Tried and measured:
+//! - faer's parallel supernodal factorisation (`Par::rayon`) on the 2 cores: slower, 18.0 ms
+//!   against 11.7 ms per factorisation (the supernodes of a two-dimensional mesh are too
+//!   small for the threads to pay);
+//! - a nested-dissection ordering from the node coordinates (median splits, the smaller
+//!   separator of the two axes) instead of AMD: 2.11 million factor entries against 1.18
+//!   million, factorisation 18.0 ms against 9.7 ms; AMD kept;
+//! - relaxing the unknowns far out of balance locally before each global step, as the
+//!   iterative path does (the finite-element energy along a coordinate and of a region, the
+//!   region solved with the global Hessian's couplings): 16 % fewer factorisations but 5-30 %
+//!   more Newton iterations and no gain in time (a relaxed region pushes its held neighbours
+//!   out of balance, and the chord tail alternates with relaxations); not kept;
+//! - single-precision directions far from convergence (largest gradient component above
+//!   10⁻³), as the dense path already takes them: the same path (P_adh to 12 digits, the
+//!   same two jumps, H to 1e-10), 10 % less wall time in back-to-back runs under load
+//!   (78-79 s against 86-90 s at a load of 6); kept (`FeTip` opts in).
+//! A threefold speed-up is not in reach of these: it needs fewer Newton iterations per load
+//! step (the bouncing phase) or fewer minimisations (the false alarms of the jump measure).
 
 mod common;
 
