@@ -26,8 +26,9 @@
 //! the factorisation of an accepted state serves both its stability test and the first step of
 //! a continuation that restarts from it (identical Hessian values are detected, not assumed).
 //! A continuation step therefore costs about one factorisation when no spring jumps.
-//! Far from convergence a dense Hessian is factorised in single precision for the direction
-//! only (half the cost; the direction's error does not limit the iteration there), and a step
+//! Far from convergence a dense Hessian (and, where the caller asks, a sparse one) is
+//! factorised in single precision for the direction only (half the cost; the direction's error
+//! does not limit the iteration there), and a step
 //! whose promised decrease lies below the energy's roundoff is taken in full rather than shrunk
 //! to nothing by the line search. A caller may watch the iterations
 //! ([`StableNewton::minimize_watched`]): to cancel a long minimisation, or to stop a trial as
@@ -256,6 +257,9 @@ pub struct StableNewton {
     /// Whether a minimisation on the direct path starts with chord steps on the last
     /// positive-definite factorisation (see [`StableNewton::set_warm_start`]).
     warm: bool,
+    /// Whether Newton directions far from convergence come from single-precision sparse
+    /// factorisations (see [`StableNewton::set_single_precision_directions`]).
+    single_sparse: bool,
 }
 
 impl StableNewton {
@@ -327,6 +331,7 @@ impl StableNewton {
             linear: LinearSolver::Auto,
             loaded: None,
             warm: false,
+            single_sparse: false,
         })
     }
 
@@ -348,6 +353,15 @@ impl StableNewton {
     /// chord steps would postpone the first look at the Hessian.
     pub fn set_warm_start(&mut self, on: bool) {
         self.warm = on;
+    }
+
+    /// Whether the direct path takes the Newton directions far from convergence (largest
+    /// gradient component above 10⁴ times its tolerance) from a single-precision sparse
+    /// factorisation: half the memory traffic of the double-precision one. The acceptance,
+    /// every stability test and every cached factor still rest on double precision, so only
+    /// the iterates before convergence change. Off by default (dense Hessians always do it).
+    pub fn set_single_precision_directions(&mut self, on: bool) {
+        self.single_sparse = on;
     }
 
     /// Whether minimisations start warm ([`Self::set_warm_start`]).

@@ -161,6 +161,11 @@ pub trait CycleModel: Controlled {
     fn warm_start(&self) -> bool {
         false
     }
+    /// Whether Newton directions far from convergence come from single-precision sparse
+    /// factorisations ([`StableNewton::set_single_precision_directions`]); by default not.
+    fn single_precision_directions(&self) -> bool {
+        false
+    }
     /// Seconds of one core an accepted state of a cycle costs, about; `None` where no
     /// estimate is known. [`run_cycle`] refuses a cycle estimated above
     /// [`MAX_CYCLE_SECONDS`].
@@ -347,6 +352,7 @@ fn walk<M: CycleModel>(
     let mut solver = StableNewton::new(&start_energy)?;
     solver.set_linear(newton.linear);
     solver.set_warm_start(tip.warm_start());
+    solver.set_single_precision_directions(tip.single_precision_directions());
     let mut u = vec![0.0; tip.unknowns()];
     let progress = RefCell::new(progress);
     let reported = Cell::new(0.0);
