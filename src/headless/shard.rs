@@ -557,6 +557,41 @@ mod tests {
         }
     }
 
+    // The computing time is stored as a JSON number and read back into the checksum's text:
+    // it must read back to the same bits (serde_json's `float_roundtrip`), or a point whose
+    // time has 17 significant digits reads as damaged (7.7244911179999995 s did).
+    #[test]
+    fn point_files_read_back_whatever_their_computing_time() {
+        let mut x: u64 = 0x2545_F491_4F6C_DD1D;
+        let mut times = vec![7.724_491_117_999_999_5, 0.0, 1e-9, 123.456, 1e9];
+        for _ in 0..2_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            times.push((x >> 11) as f64 / (1u64 << 53) as f64 * 1e4);
+        }
+        let expected = Expected {
+            scene: "fig4.9b-models",
+            point: 37,
+            params_hash: "8903454df41e0df3",
+            len: 2,
+            nan_allowed: false,
+        };
+        for t in times {
+            let text = point_text(
+                "fig4.9b-models",
+                37,
+                "a point",
+                "8903454df41e0df3",
+                t,
+                &[1.5e-5, 7.9e-9],
+            );
+            let (values, seconds) = parse_point(&text, &expected).unwrap_or_else(|e| panic!("{t:e} s: {e}"));
+            assert_eq!(seconds.to_bits(), t.to_bits(), "{t:e}");
+            assert_eq!(values, vec![1.5e-5, 7.9e-9]);
+        }
+    }
+
     #[test]
     fn shard_specs_are_checked() {
         assert_eq!("2/4".parse::<Shard>(), Ok(Shard { index: 2, count: 4 }));
