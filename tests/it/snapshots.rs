@@ -578,11 +578,6 @@ fn misprinted_numbers_are_found_and_ranges_are_not() {
     }
 }
 
-/// Scenes whose caption and notes are still written with e-notation (`A_H = 2e-21 J`) or an
-/// ASCII hyphen for a minus sign (`H: -0.22 %`) in their scene's file: only what they draw is
-/// checked, and for e-notation only.
-const TEXTS_LEFT_AS_TYPED: [&str; 3] = ["fig4.4", "fig4.5-models", "fig4.6"];
-
 /// Every text a quick figure draws (title, notes, panel headings, axis titles, legends, marker
 /// and field names) and every scene's caption writes its numbers as the figures' formatter
 /// does: no e-notation, no ASCII hyphen for a minus sign. The quick-form note is exempt: it
@@ -592,23 +587,17 @@ const TEXTS_LEFT_AS_TYPED: [&str; 3] = ["fig4.4", "fig4.5-models", "fig4.6"];
 fn figure_texts_print_numbers_as_print_does() {
     let mut failures = Vec::new();
     for (id, fig) in quick_figures() {
-        let left = TEXTS_LEFT_AS_TYPED.contains(id);
         for label in labels(fig) {
             if label.starts_with("quick form: ") {
                 continue;
             }
             for f in misprinted_numbers(&label) {
-                if !(left && f.starts_with("ASCII hyphen")) {
-                    failures.push(format!("{id}: {f} in {label:?}"));
-                }
+                failures.push(format!("{id}: {f} in {label:?}"));
             }
         }
     }
     for s in scenes::all() {
         let info = s.info();
-        if TEXTS_LEFT_AS_TYPED.contains(&info.id) {
-            continue;
-        }
         for f in misprinted_numbers(info.caption) {
             failures.push(format!("{} caption: {f}", info.id));
         }

@@ -102,7 +102,7 @@ crate::scene! {
         params: Fig4_4Params,
         title: "Adhesionless finite-element contact against Hertz",
         caption: "Finite-element model of the tip (axisymmetric linear triangles, the repulsive \
-            body force of (4.15) with C6 = 0; R = 10 um, E = 1.1 MPa, nu = 0.25, C12 = 1, sigma = 1 nm, A_H = 2e-21 J) \
+            body force of (4.15) with C6 = 0; R = 10 um, E = 1.1 MPa, nu = 0.25, C12 = 1, sigma = 1 nm, A_H = 2 × 10⁻²¹ J) \
             pressed against the rigid flat, against Hertz (3.3 with ell = chi = 0): (a) force against penetration, \
             (b) force against contact radius (gap below sigma, section 4.2.2). The soft repulsive wall has no sharp \
             surface: Hertz is drawn from one wall position fitted at the deepest state. No jump occurs.",
@@ -345,7 +345,7 @@ crate::scene! {
         params: Fig4_5ModelsParams,
         title: "Smooth tip: finite-element model against the surface model",
         caption: "The cycle of Fig. 4.5 (R = 5 um, E = 4.4 MPa, nu = 0.25, C6 = 3, C12 = 1, sigma = 1 nm, \
-            A_H = 2e-21 J) computed with the dissertation's finite-element model (an axisymmetric tip with the body \
+            A_H = 2 × 10⁻²¹ J) computed with the dissertation's finite-element model (an axisymmetric tip with the body \
             force (4.15)) and with the surface model that draws the other chapter 4 figures (the body force \
             integrated through a column, the traction (4.19)). (a) P-h cycles of both; with convergence_study = 1 \
             (the default; not in the quick form, which draws (a) alone) the adhesive force of \
@@ -589,11 +589,11 @@ impl Scene for Fig4_5Models {
             f64::from(u8::from(fe.cycle.stats.all_stable && bem.cycle.stats.all_stable)),
         );
         fig.note(format!(
-            "P_adh/(pi w R): finite elements {:.4}, surface model {:.4} ({:+.2} %); H: {:+.2} %; run time {:.1} s against {:.1} s.",
+            "P_adh/(pi w R): finite elements {:.4}, surface model {:.4} ({} %); H: {} %; run time {:.1} s against {:.1} s.",
             -fa / force_scale,
             -sa / force_scale,
-            100.0 * (fa / sa - 1.0),
-            100.0 * (fh / sh - 1.0),
+            signed_percent(100.0 * (fa / sa - 1.0)),
+            signed_percent(100.0 * (fh / sh - 1.0)),
             fe.seconds,
             bem.seconds
         ));
@@ -888,4 +888,9 @@ impl Scene for Fig4_6 {
         job.progress(1.0, "done");
         Ok(fig)
     }
+}
+
+/// A signed percentage with two decimals and a true minus sign ("+3.05", "−0.22").
+fn signed_percent(v: f64) -> String {
+    format!("{v:+.2}").replace('-', "−")
 }

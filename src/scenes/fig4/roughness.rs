@@ -38,7 +38,7 @@ macro_rules! rough_tip_params {
     };
     ($(#[$meta:meta])* $name:ident, youngs_modulus = $e:expr, { $($extra:tt)* }) => {
         rough_tip_params! { @fields $(#[$meta])* $name, youngs_modulus = $e, {
-            /// Model of the tip: surface (the axisymmetric surface model, seconds per cycle) or fe (the dissertation's finite-element model with the body force (4.15): 7 086 unknowns at σ = 1.5 nm and more at smaller σ, b growing as σ⁴; about 2 minutes per cycle, fig4.9a's six cycles 14 minutes on 2 shared cores; quick form seconds per cycle).
+            /// Model of the tip: surface (the axisymmetric surface model, seconds per cycle) or fe (the dissertation's finite-element model with the body force (4.15): 7 154 unknowns at σ = 1.5 nm and more at smaller σ, b growing as σ⁴; seconds to a minute per cycle, fig4.9a's six cycles 63 s on one core; quick form seconds per cycle).
             model: TipModel = TipModel::Surface, unit = "", range = Range::any();
             $($extra)*
         } }
