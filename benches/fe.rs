@@ -44,8 +44,14 @@
 //! by node raises the jump measure against the tangent, and each false alarm costs a half
 //! step and a retry).
 //!
-//! Where the bench cycle's wall time goes (instrumented run, quiet machine, 54.6 s in the
-//! minimisations): numeric factorisations 23.0 s (1 965, 11.7 ms each, sequential), solves
+//! Criterion median of the cycle (quiet machine, 2 cores): **56.25 s** on the 24 542-unknown
+//! mesh of surface elements 0.1375 b (the width 0.15 b honoured), single-precision directions
+//! on; P_adh −8.327541477632e-9 N, 2 jumps, 369 minimisations, 4 369 Newton iterations, 2 507
+//! factorisations. Before the mesh honoured its width the same cycle ran on 22 266 unknowns
+//! (0.155 b for a requested 0.25 b) in 51 s.
+//!
+//! Where the bench cycle's wall time goes (instrumented run on the 22 266-unknown mesh, quiet
+//! machine, 54.6 s in the minimisations): numeric factorisations 23.0 s (1 965, 11.7 ms each, sequential), solves
 //! 11.4 s (4 274, 2.6 ms each: the factor has 1.18 million entries, 9.4 MB, and a solve
 //! streams it twice), gradients 7.2 s (4 294), line searches 5.7 s, Hessian values 3.6 s,
 //! tangent predictor 3.1 s. Of the 4 291 Newton iterations 1 756 start with a gradient above
