@@ -72,6 +72,7 @@
 //!   10⁻³), as the dense path already takes them: the same path (P_adh to 12 digits, the
 //!   same two jumps, H to 1e-10), 10 % less wall time in back-to-back runs under load
 //!   (78-79 s against 86-90 s at a load of 6); kept (`FeTip` opts in).
+//!
 //! A threefold speed-up is not in reach of these: it needs fewer Newton iterations per load
 //! step (the bouncing phase) or fewer minimisations (the false alarms of the jump measure).
 
