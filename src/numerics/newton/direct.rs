@@ -161,6 +161,43 @@ fn dense_llt<T: faer::traits::RealField + Copy + std::ops::AddAssign>(
     .is_ok()
 }
 
+/// The numeric sparse LLᵀ factorisation (sequential, the symbolic analysis of `newton`) of the
+/// matrix with `values` in pattern order (shift slots included), into `storage` where it is
+/// large enough: `Ok(Ok(factor values))`, `Ok(Err(storage))` when the matrix is not positive
+/// definite, `Err` when it cannot be assembled. Serves the double-precision factorisations and
+/// the single-precision directions alike.
+fn sparse_llt<T: faer::traits::RealField + Copy>(
+    newton: &StableNewton,
+    values: &[T],
+    storage: Option<Vec<T>>,
+) -> std::result::Result<std::result::Result<Vec<T>, Vec<T>>, String> {
+    let mat = SparseColMat::<usize, T>::new_from_argsort(newton.symbolic.clone(), &newton.argsort, values)
+        .map_err(|e| format!("assembling the Hessian: {e:?}"))?;
+    let symbolic = &newton.llt;
+    let len = symbolic.len_val();
+    let mut factor = match storage {
+        Some(mut v) if v.capacity() >= len => {
+            v.resize(len, T::zero_impl());
+            v
+        }
+        _ => vec![T::zero_impl(); len],
+    };
+    let params: Spec<LltParams, T> = Default::default();
+    let mut buf = MemBuffer::new(symbolic.factorize_numeric_llt_scratch::<T>(Par::Seq, params));
+    let ok = symbolic
+        .factorize_numeric_llt(
+            &mut factor,
+            mat.as_ref(),
+            Side::Lower,
+            LltRegularization::default(),
+            Par::Seq,
+            MemStack::new(&mut buf),
+            params,
+        )
+        .is_ok();
+    Ok(if ok { Ok(factor) } else { Err(factor) })
+}
+
 impl StableNewton {
     /// Dense Cholesky factorisation of the values (pattern entries summed into the lower
     /// triangle); `None` if not positive definite.
@@ -215,35 +252,14 @@ impl StableNewton {
         let mut single: Vec<f32> = self.values[..n_pattern].iter().map(|&v| v as f32).collect();
         // The shift slots (after the pattern) are not part of H.
         single.resize(self.values.len(), 0.0);
-        let mat = SparseColMat::<usize, f32>::new_from_argsort(self.symbolic.clone(), &self.argsort, &single)
-            .ok()?;
-        let symbolic = &self.llt;
-        let mut values = match self.spare_single.take() {
-            Some(mut v) if v.capacity() >= symbolic.len_val() => {
-                v.resize(symbolic.len_val(), 0.0);
-                v
-            }
-            _ => vec![0.0; symbolic.len_val()],
-        };
         self.computed += 1;
-        let params: Spec<LltParams, f32> = Default::default();
-        let mut buf = MemBuffer::new(symbolic.factorize_numeric_llt_scratch::<f32>(Par::Seq, params));
-        let ok = symbolic
-            .factorize_numeric_llt(
-                &mut values,
-                mat.as_ref(),
-                Side::Lower,
-                LltRegularization::default(),
-                Par::Seq,
-                MemStack::new(&mut buf),
-                params,
-            )
-            .is_ok();
-        if ok {
-            Some(Arc::new(Cholesky::SparseSingle(symbolic.clone(), values)))
-        } else {
-            self.spare_single = Some(values);
-            None
+        let spare = self.spare_single.take();
+        match sparse_llt(self, &single, spare).ok()? {
+            Ok(values) => Some(Arc::new(Cholesky::SparseSingle(self.llt.clone(), values))),
+            Err(storage) => {
+                self.spare_single = Some(storage);
+                None
+            }
         }
     }
 
@@ -267,37 +283,16 @@ impl StableNewton {
             self.dense = Some(layout);
             l
         } else {
-            let mat = SparseColMat::new_from_argsort(self.symbolic.clone(), &self.argsort, &self.values)
-                .map_err(|e| Error::Unresolvable {
-                    model: "stable Newton",
-                    reason: format!("assembling the Hessian: {e:?}"),
-                })?;
-            let symbolic = &self.llt;
-            let mut values = match self.spare.take() {
-                Some(mut v) if v.capacity() >= symbolic.len_val() => {
-                    v.resize(symbolic.len_val(), 0.0);
-                    v
+            let spare = self.spare.take();
+            match sparse_llt(self, &self.values, spare).map_err(|reason| Error::Unresolvable {
+                model: "stable Newton",
+                reason,
+            })? {
+                Ok(values) => Some(Arc::new(Cholesky::Sparse(self.llt.clone(), values))),
+                Err(storage) => {
+                    self.spare = Some(storage);
+                    None
                 }
-                _ => vec![0.0; symbolic.len_val()],
-            };
-            let params: Spec<LltParams, f64> = Default::default();
-            let mut buf = MemBuffer::new(symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, params));
-            let ok = symbolic
-                .factorize_numeric_llt(
-                    &mut values,
-                    mat.as_ref(),
-                    Side::Lower,
-                    LltRegularization::default(),
-                    Par::Seq,
-                    MemStack::new(&mut buf),
-                    params,
-                )
-                .is_ok();
-            if ok {
-                Some(Arc::new(Cholesky::Sparse(symbolic.clone(), values)))
-            } else {
-                self.spare = Some(values);
-                None
             }
         };
         if shift == 0.0 {
