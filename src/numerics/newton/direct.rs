@@ -75,45 +75,38 @@ pub(in crate::numerics) enum Cholesky {
 impl Cholesky {
     /// Overwrite `rhs` with `H⁻¹ rhs`.
     pub(super) fn solve(&self, rhs: &mut [f64]) {
-        let n = rhs.len();
-        let m = faer::MatMut::from_column_major_slice_mut(rhs, n, 1);
         match self {
-            Self::Sparse(symbolic, values) => {
-                let mut buf = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
-                LltRef::new(symbolic, values).solve_in_place_with_conj(
-                    Conj::No,
-                    m,
-                    Par::Seq,
-                    MemStack::new(&mut buf),
-                );
-            }
-            Self::Dense(l) => {
-                let l = faer::MatRef::from_column_major_slice(l, n, n);
-                let mut buf = MemBuffer::new(faer::dyn_stack::StackReq::EMPTY);
-                solve_in_place_with_conj(l, Conj::No, m, Par::Seq, MemStack::new(&mut buf));
-            }
-            Self::SparseSingle(symbolic, values) => {
-                let mut single: Vec<f32> = rhs.iter().map(|&v| v as f32).collect();
-                let m = faer::MatMut::from_column_major_slice_mut(&mut single, n, 1);
-                let mut buf = MemBuffer::new(symbolic.solve_in_place_scratch::<f32>(1, Par::Seq));
-                LltRef::new(symbolic, values).solve_in_place_with_conj(
-                    Conj::No,
-                    m,
-                    Par::Seq,
-                    MemStack::new(&mut buf),
-                );
-                rhs.iter_mut().zip(&single).for_each(|(r, s)| *r = f64::from(*s));
-            }
-            Self::DenseSingle(l) => {
-                let l = faer::MatRef::from_column_major_slice(l, n, n);
-                let mut single: Vec<f32> = rhs.iter().map(|&v| v as f32).collect();
-                let m = faer::MatMut::from_column_major_slice_mut(&mut single, n, 1);
-                let mut buf = MemBuffer::new(faer::dyn_stack::StackReq::EMPTY);
-                solve_in_place_with_conj(l, Conj::No, m, Par::Seq, MemStack::new(&mut buf));
-                rhs.iter_mut().zip(&single).for_each(|(r, s)| *r = f64::from(*s));
-            }
+            Self::Sparse(symbolic, values) => sparse_solve(symbolic, values, rhs),
+            Self::Dense(l) => dense_solve(l, rhs),
+            Self::SparseSingle(symbolic, values) => in_single(rhs, |r| sparse_solve(symbolic, values, r)),
+            Self::DenseSingle(l) => in_single(rhs, |r| dense_solve(l, r)),
         }
     }
+}
+
+/// Overwrite `rhs` with `(L Lᵀ)⁻¹ rhs` for a sparse factor `L` (values in the layout of
+/// `symbolic`), sequentially.
+fn sparse_solve<T: faer::traits::RealField>(symbolic: &SymbolicCholesky<usize>, values: &[T], rhs: &mut [T]) {
+    let n = rhs.len();
+    let m = faer::MatMut::from_column_major_slice_mut(rhs, n, 1);
+    let mut buf = MemBuffer::new(symbolic.solve_in_place_scratch::<T>(1, Par::Seq));
+    LltRef::new(symbolic, values).solve_in_place_with_conj(Conj::No, m, Par::Seq, MemStack::new(&mut buf));
+}
+
+/// Overwrite `rhs` with `(L Lᵀ)⁻¹ rhs` for a dense column-major factor `L` (lower triangle).
+fn dense_solve<T: faer::traits::RealField>(l: &[T], rhs: &mut [T]) {
+    let n = rhs.len();
+    let l = faer::MatRef::from_column_major_slice(l, n, n);
+    let m = faer::MatMut::from_column_major_slice_mut(rhs, n, 1);
+    let mut buf = MemBuffer::new(faer::dyn_stack::StackReq::EMPTY);
+    solve_in_place_with_conj(l, Conj::No, m, Par::Seq, MemStack::new(&mut buf));
+}
+
+/// `solve` applied to `rhs` in single precision: rounded in, widened back.
+fn in_single(rhs: &mut [f64], solve: impl FnOnce(&mut [f32])) {
+    let mut single: Vec<f32> = rhs.iter().map(|&v| v as f32).collect();
+    solve(&mut single);
+    rhs.iter_mut().zip(&single).for_each(|(r, s)| *r = f64::from(*s));
 }
 
 /// Where a pattern is this full (stored lower-triangle entries over n(n+1)/2), the Hessian is
