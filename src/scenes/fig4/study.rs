@@ -32,6 +32,10 @@ use crate::scenes::sweep::Sweep;
 use crate::scenes::{Scene, SceneHeader};
 use crate::text::fmt_sig;
 
+/// A loop area H below this fraction of P_adh × |h_min| (both normalised) is no loop: the
+/// cycle had no jump, and H is the trace of the Newton tolerance between the two branches.
+const NO_LOOP: f64 = 1e-6;
+
 rough_tip_params! {
     @fields
     /// Parameters of scene fig4.9b-models (the cycles of Fig. 4.9b: those of Fig. 4.7a with σ
@@ -332,13 +336,14 @@ impl Sweep for Fig4_9bModels {
                     let cell = |v: usize| {
                         let (pa, dp) = variant(c, i, v, 0);
                         let (h, dh) = variant(c, i, v, 1);
-                        format!(
-                            "{} ({:.1} %), H {} ({:.1} %)",
-                            number(pa, 4),
-                            100.0 * dp,
-                            number(h, 4),
-                            100.0 * dh
-                        )
+                        // A cycle without jumps has no loop: its H is the Newton tolerance's
+                        // trace (±10⁻²⁰ here), whose relative change means nothing.
+                        let hysteresis = if h.abs() < NO_LOOP * pa.abs() * p.depth_over_radius.abs() {
+                            "H 0 (no loop)".to_string()
+                        } else {
+                            format!("H {} ({:.1} %)", number(h, 4), 100.0 * dh)
+                        };
+                        format!("{} ({:.1} %), {hysteresis}", number(pa, 4), 100.0 * dp)
                     };
                     format!(
                         "σ = {} nm: (i) {}; (ii) {}; (iii) {}",
