@@ -103,11 +103,11 @@
 
 mod common;
 
-use common::fig4_5_fe;
+use common::{fe_cycle_options, fig4_5_fe};
 use std::f64::consts::PI;
 use std::hint::black_box;
 
-use adhesion::models::axisymmetric::cycle::{CycleOptions, run_cycle};
+use adhesion::models::axisymmetric::cycle::run_cycle;
 use adhesion::models::body_force_fe::assembly::{FIXED, assemble, held_top_dofs};
 use adhesion::models::body_force_fe::element::elasticity_matrix;
 use adhesion::models::body_force_fe::mesh::Mesh;
@@ -201,15 +201,7 @@ fn main() {
     if std::env::var_os("FE_BENCH_SKIP_CYCLE").is_none() {
         let tip = FeTip::new(&fig4_5_fe()).expect("tip");
         let z = tip.scales().length;
-        let opts = CycleOptions {
-            h_start: 12.0 * z,
-            h_min: -15.0 * z,
-            step: 0.2 * z,
-            refine_to: 1e-3 * z,
-            contact_gap: 1e-9,
-            keep_profiles: false,
-            unload_to: None,
-        };
+        let opts = fe_cycle_options(z, -15.0, 0.2);
         let cycle = run_cycle(&tip, &opts, |_| Ok(())).expect("cycle");
         println!(
             "fe/fig4.5 cycle to 15 zeta0 ({} unknowns): P_adh {:.12e} N, {} jumps, {} minimisations, {} Newton iterations, {} factorisations",

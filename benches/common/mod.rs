@@ -1,5 +1,6 @@
 //! What the finite-element benchmarks share.
 
+use adhesion::models::axisymmetric::cycle::CycleOptions;
 use adhesion::models::axisymmetric::tip::TipParams;
 use adhesion::models::body_force_fe::tip::FeTipParams;
 
@@ -18,5 +19,21 @@ pub fn fig4_5_fe() -> FeTipParams {
         r0: 1e-4,
         h0: 1e-4,
         ..FeTipParams::default()
+    }
+}
+
+/// The cycles the finite-element benchmark times and its path tests check: from 12 ζ0 apart to
+/// `h_min` ζ0 in steps of `step` ζ0, jumps located to 1e-3 ζ0 (`z`: ζ0 in metres). The bench
+/// cycle is `fe_cycle_options(z, -15.0, 0.2)`.
+#[allow(dead_code)] // not every target that shares this module runs a cycle
+pub fn fe_cycle_options(z: f64, h_min: f64, step: f64) -> CycleOptions {
+    CycleOptions {
+        h_start: 12.0 * z,
+        h_min: h_min * z,
+        step: step * z,
+        refine_to: 1e-3 * z,
+        contact_gap: 1e-9,
+        keep_profiles: false,
+        unload_to: None,
     }
 }

@@ -15,7 +15,7 @@ use std::time::Instant;
 // Fig. 4.5's finite-element tip as the benchmarks build it.
 #[path = "../../benches/common/mod.rs"]
 mod common;
-use common::fig4_5_fe;
+use common::{fe_cycle_options, fig4_5_fe};
 
 /// A loading path from `start` to `end` (in units of the normal length) in steps of `step`,
 /// with one unloading step.
@@ -570,16 +570,7 @@ fn fig4_5_finite_element_model_agrees_with_the_surface_model_in_quick_form() {
 fn fe_cycle_path(params: &FeTipParams, h_min: f64, step: f64) -> (f64, Vec<(bool, f64, f64)>, bool) {
     let tip = FeTip::new(params).expect("tip");
     let z = tip.scales().length;
-    let opts = CycleOptions {
-        h_start: 12.0 * z,
-        h_min: h_min * z,
-        step: step * z,
-        refine_to: 1e-3 * z,
-        contact_gap: 1e-9,
-        keep_profiles: false,
-        unload_to: None,
-    };
-    let cycle = run_cycle(&tip, &opts, |_| Ok(())).expect("cycle");
+    let cycle = run_cycle(&tip, &fe_cycle_options(z, h_min, step), |_| Ok(())).expect("cycle");
     eprintln!("{} unknowns, {} triangles", tip.len(), tip.elements());
     let jumps = cycle
         .jumps

@@ -379,7 +379,8 @@ impl StableNewton {
             chord = None;
             self.load_hessian(energy, x);
             // Far from convergence a single-precision factorisation serves the direction
-            // (dense Hessians); the acceptance below always rests on a double-precision one.
+            // (dense Hessians, and sparse ones where the caller asked); the acceptance below
+            // always rests on a double-precision one.
             let single = if gnorm > SINGLE_PRECISION_ABOVE * opts.gradient_tol {
                 self.factor_single()
             } else {
