@@ -100,6 +100,30 @@
 //! contact instead of twelve: a solver that takes the contact edge's column onto the wall in
 //! one move (a nonlinear elimination of those unknowns inside the global step, or a predictor
 //! that knows the wall), not a cheaper linear algebra.
+//!
+//! How far a better predictor could go (bench mesh and the 15 112-unknown variant, instrumented
+//! single runs, quiet machine): the bench cycle's 53.0 s split by the kind of minimisation:
+//! 279 load steps started on the tangent and converged, 32.0 s (115 ms, 11.3 iterations and
+//! 4.6 factorisations each); everything the jumps and the false alarms cost, 21.0 s (40 %): 8
+//! load steps that ran out of their 40 trial iterations (6.5 s; the jump into contact alone
+//! 2.0 s with 150 factorisations, then each contact-edge node peeling off in the unloading,
+//! about 0.65 s), 66 bisection trials (6.3 s), 8 landings (5.7 s; the jump into contact 3.4 s,
+//! 91 iterations and 239 factorisations), 8 steps without the tangent (2.4 s). Of the 2 509
+//! factorisations, 466 are failed attempts in the 164 iterations with an indefinite Hessian
+//! (single precision, then double, then 1.85 shifts on average). An oracle measured the bound
+//! of a perfect predictor: each converged tangent step of the variant was run again from the
+//! tangent's prediction with every unknown the step moved by more than `t` (in ζ0) set to its
+//! converged value, on a copy of the solver as it stood before the step. t = 0.03: 9.8
+//! iterations, 2.6 factorisations, 44 ms against 11.5, 4.4 and 60 ms; t = 0.001 (every unknown
+//! within 10⁻³ ζ0 of the answer): 4.8 iterations, 1.8 factorisations, 29 ms. A perfect
+//! predictor therefore halves the converged steps at best (32 s to about 16 s on the bench
+//! mesh), and with the jumps' 21 s unchanged the cycle stays above 35 s; under 15 s needs the
+//! jumps' machinery three times cheaper as well, while the path (the bisection states it
+//! records) stays the same. Tried as well, not kept: a load step without the tangent
+//! treated as beyond the fold at its first indefinite Hessian, as the bisection trials are
+//! (same P_adh and jumps, 422 minimisations against 369, 61.4 s against 53.4 s); the gradient
+//! tolerance 10⁻⁵ or 10⁻⁶ instead of 10⁻⁷ (variant: 32.1 and 31.5 s against 32.1 s; P_adh to
+//! 6e-12; the tail's chord steps are cheap, the factorisations stay).
 
 mod common;
 
