@@ -78,18 +78,14 @@ use adhesion::models::body_force_fe::assembly::{FIXED, held_top_dofs};
 use adhesion::models::body_force_fe::tip::FeTip;
 use adhesion::numerics::loading::Controlled;
 use adhesion::numerics::newton::{Energy, LinearSolver, NewtonOptions, StableNewton};
+use adhesion::numerics::sparse_llt::SparseLlt;
 use criterion::Criterion;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::{
     LltParams, LltRegularization, cholesky_in_place, cholesky_in_place_scratch,
 };
 use faer::linalg::cholesky::llt::solve::solve_in_place_with_conj;
-use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::linalg::cholesky::{
-    CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering, factorize_symbolic_cholesky,
-};
-use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
-use faer::{Conj, MatMut, MatRef, Par, Side, Spec};
+use faer::{Conj, MatMut, MatRef, Par, Spec};
 
 /// The conclusion of the measurement (printed at the end; numbers in the doc comment).
 const CONCLUSION: &str = "Conclusion (fig4.5, 2 loaded cores): the condensation does not pay. \
@@ -97,76 +93,8 @@ A step within 1e-2 of Newton's needs the body tangent on n_s = 6114 u_z dofs (do
 10 zeta0 into the tip); its dense LLT costs about 130 times the sparse refactorisation of the \
 full Hessian, which dense LLT matches only up to n_s of about 1100-1200.";
 
-/// faer's supernodal threshold as `StableNewton` sets it (`SUPERNODAL_THRESHOLD`).
-const SUPERNODAL: f64 = 0.25;
-
 /// Columns per block of the multi-right-hand-side solve that forms S.
 const BLOCK: usize = 128;
-
-/// A symmetric sparse matrix (lower triangle `pattern`, `values`) with its symbolic Cholesky
-/// factorisation, as `StableNewton` analyses it.
-struct Sparse {
-    n: usize,
-    symbolic: SymbolicSparseColMat<usize>,
-    argsort: faer::sparse::Argsort<usize>,
-    llt: SymbolicCholesky<usize>,
-}
-
-impl Sparse {
-    fn analyse(n: usize, pattern: &[(usize, usize)]) -> Self {
-        let pairs: Vec<Pair<usize, usize>> = pattern.iter().map(|&(r, c)| Pair::new(r, c)).collect();
-        let (symbolic, argsort) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs).expect("pattern");
-        let llt = factorize_symbolic_cholesky(
-            symbolic.as_ref(),
-            Side::Lower,
-            SymmetricOrdering::Amd,
-            CholeskySymbolicParams {
-                supernodal_flop_ratio_threshold: SupernodalThreshold(SUPERNODAL),
-                ..Default::default()
-            },
-        )
-        .expect("symbolic");
-        Self {
-            n,
-            symbolic,
-            argsort,
-            llt,
-        }
-    }
-
-    /// The numeric factor of `values` (sequential, as the solver does); whether it is
-    /// positive definite.
-    fn factorise(&self, values: &[f64], factor: &mut Vec<f64>) -> bool {
-        let mat =
-            SparseColMat::new_from_argsort(self.symbolic.clone(), &self.argsort, values).expect("matrix");
-        factor.resize(self.llt.len_val(), 0.0);
-        let params: Spec<LltParams, f64> = Default::default();
-        let mut buf = MemBuffer::new(self.llt.factorize_numeric_llt_scratch::<f64>(Par::Seq, params));
-        self.llt
-            .factorize_numeric_llt(
-                factor,
-                mat.as_ref(),
-                Side::Lower,
-                LltRegularization::default(),
-                Par::Seq,
-                MemStack::new(&mut buf),
-                params,
-            )
-            .is_ok()
-    }
-
-    /// Overwrite the columns of `rhs` (n × k, column-major) with A⁻¹ rhs.
-    fn solve(&self, factor: &[f64], rhs: &mut [f64]) {
-        let k = rhs.len() / self.n;
-        let mut buf = MemBuffer::new(self.llt.solve_in_place_scratch::<f64>(k, Par::Seq));
-        LltRef::new(&self.llt, factor).solve_in_place_with_conj(
-            Conj::No,
-            MatMut::from_column_major_slice_mut(rhs, self.n, k),
-            Par::Seq,
-            MemStack::new(&mut buf),
-        );
-    }
-}
 
 /// Dense Cholesky factorisation in place of the column-major n × n `a` (lower triangle).
 fn dense_llt(a: &mut [f64], n: usize) {
@@ -199,7 +127,7 @@ struct Condensed {
     place: Vec<Result<usize, usize>>,
     n_s: usize,
     n_b: usize,
-    bulk: Sparse,
+    bulk: SparseLlt,
     bulk_factor: Vec<f64>,
     /// K_bs by s column: (b index, value).
     coupling: Vec<Vec<(usize, f64)>>,
@@ -250,14 +178,13 @@ impl Condensed {
             }
         }
         let t = Instant::now();
-        let bulk = Sparse::analyse(n_b, &bb_pattern);
+        let bulk = SparseLlt::analyse(n_b, &bb_pattern).expect("pattern");
         let symbolic = t.elapsed().as_secs_f64();
         let t = Instant::now();
-        let mut bulk_factor = Vec::new();
-        assert!(
-            bulk.factorise(&bb_values, &mut bulk_factor),
-            "K_bb positive definite"
-        );
+        let bulk_factor = bulk
+            .factorise(&bb_values, None)
+            .expect("matrix")
+            .expect("K_bb positive definite");
         let numeric = t.elapsed().as_secs_f64();
         (
             Self {
@@ -420,9 +347,11 @@ fn main() {
         }
     }
 
-    let full = Sparse::analyse(n, &pattern);
-    let mut full_factor = Vec::new();
-    assert!(full.factorise(&h_deep, &mut full_factor));
+    let full = SparseLlt::analyse(n, &pattern).expect("pattern");
+    let mut full_factor = full
+        .factorise(&h_deep, None)
+        .expect("matrix")
+        .expect("positive definite");
     // The right-hand side: the gradient of the deep state at the next load step (unloading
     // by 0.2 zeta0, the cycle's step), the first Newton step's.
     let mut g = vec![0.0; n];
@@ -443,10 +372,9 @@ fn main() {
             .enumerate()
             .map(|(at, &(r, c))| if in_s[r] && in_s[c] { h_deep[at] } else { k[at] })
             .collect();
-        let mut factor = Vec::new();
-        if !full.factorise(&dropped, &mut factor) {
+        let Ok(factor) = full.factorise(&dropped, None).expect("matrix") else {
             return f64::INFINITY;
-        }
+        };
         let mut p: Vec<f64> = g.iter().map(|v| -v).collect();
         full.solve(&factor, &mut p);
         max_diff(&p, &p_full) / inf_norm(&p_full)
@@ -536,8 +464,8 @@ fn main() {
     );
     println!(
         "memory: full factor {:.1} MB, K_bb factor {:.1} MB, S {:.1} MB (+ its factor {:.1} MB)",
-        full.llt.len_val() as f64 * 8e-6,
-        cond.bulk.llt.len_val() as f64 * 8e-6,
+        full.factor_len() as f64 * 8e-6,
+        cond.bulk.factor_len() as f64 * 8e-6,
         (n_s * n_s) as f64 * 8e-6,
         (n_s * n_s) as f64 * 8e-6,
     );
@@ -549,7 +477,10 @@ fn main() {
     });
     group.bench_function(format!("full sparse refactorise + solve ({n} unknowns)"), |b| {
         b.iter(|| {
-            assert!(full.factorise(black_box(&h_deep), &mut full_factor));
+            full_factor = full
+                .factorise(black_box(&h_deep), Some(std::mem::take(&mut full_factor)))
+                .expect("matrix")
+                .expect("positive definite");
             let mut p: Vec<f64> = g.iter().map(|v| -v).collect();
             full.solve(&full_factor, &mut p);
             black_box(p)
@@ -562,8 +493,11 @@ fn main() {
     group.bench_function(format!("K_bb factorise, symbolic + numeric (n_b = {n_b})"), |b| {
         let mut factor = Vec::new();
         b.iter(|| {
-            let bulk = Sparse::analyse(n_b, &cond.bb_pattern);
-            assert!(bulk.factorise(&cond.bb_values, &mut factor));
+            let bulk = SparseLlt::analyse(n_b, &cond.bb_pattern).expect("pattern");
+            factor = bulk
+                .factorise(&cond.bb_values, Some(std::mem::take(&mut factor)))
+                .expect("matrix")
+                .expect("positive definite");
             black_box(&factor);
         })
     });

@@ -3,7 +3,7 @@
 //! least squares (Levenberg-Marquardt), cubic splines for tabulated data, FFTs, special
 //! functions (Struve H₀, H₁), and the stable Newton minimiser of non-convex energies with its
 //! sparse linear algebra (conjugate gradients with a definiteness certificate, envelope Cholesky
-//! factorisations of small blocks).
+//! factorisations of small blocks, sparse Cholesky factorisations of whole Hessians).
 //!
 //! Models call these; they know nothing about contact mechanics, figures or front ends.
 
@@ -17,5 +17,6 @@ pub mod newton;
 pub mod pcg;
 pub mod quadrature;
 pub mod roots;
+pub mod sparse_llt;
 pub mod special;
 pub mod spline;

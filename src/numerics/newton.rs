@@ -56,18 +56,14 @@
 //! descents). Each file holds the unit tests of its code; the test energies they share (chains
 //! of double wells) are in `newton/wells.rs`.
 
-use faer::Side;
 use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::linalg::cholesky::{
-    CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering, factorize_symbolic_cholesky,
-};
-use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
+use faer::sparse::SparseColMat;
 
 use std::sync::Arc;
 
 use crate::error::{Error, Result};
 use crate::numerics::pcg::{SymmetricPattern, inf_norm};
+use crate::numerics::sparse_llt::SparseLlt;
 
 mod direct;
 mod iterative;
@@ -198,22 +194,14 @@ impl NewtonReport {
     }
 }
 
-/// faer's choice between its simplicial and supernodal sparse Cholesky, scaled: the supernodal
-/// factorisation is taken from a quarter of faer's default ratio of flops to factor entries.
-/// The Hessian of a finite-element mesh (fill in dense blocks) then factorises supernodally,
-/// 2.5 times faster than simplicially (22 000 unknowns: 10.7 ms against 26.9 ms), while the
-/// chains and arrays of springs keep the simplicial one.
-const SUPERNODAL_THRESHOLD: f64 = 0.25;
-
 /// A numeric Cholesky factorisation, shared between the cache and its users.
 type Factor = Arc<direct::Cholesky>;
 
 /// The sparse Hessian of an [`Energy`] with its symbolic Cholesky factorisation.
 pub struct StableNewton {
     n: usize,
-    symbolic: SymbolicSparseColMat<usize>,
-    argsort: faer::sparse::Argsort<usize>,
-    llt: Arc<SymbolicCholesky<usize>>,
+    /// The symbolic analysis of the Hessian's pattern (shift slots included).
+    sparse: Arc<SparseLlt>,
     /// For a mostly full pattern: each value's column-major position in a dense n × n matrix
     /// (the direct path then factorises densely, see `newton/direct.rs`).
     dense: Option<Vec<usize>>,
@@ -295,26 +283,11 @@ impl StableNewton {
             )));
         }
         let rows = SymmetricPattern::from_lower(n, &pattern[..n_pattern]);
-        let pairs: Vec<Pair<usize, usize>> = pattern.iter().map(|&(r, c)| Pair::new(r, c)).collect();
-        let (symbolic, argsort) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs)
-            .map_err(|e| fail(format!("sparsity pattern: {e:?}")))?;
-        let llt = factorize_symbolic_cholesky(
-            symbolic.as_ref(),
-            Side::Lower,
-            SymmetricOrdering::Amd,
-            CholeskySymbolicParams {
-                supernodal_flop_ratio_threshold: SupernodalThreshold(SUPERNODAL_THRESHOLD),
-                ..Default::default()
-            },
-        )
-        .map(Arc::new)
-        .map_err(|e| fail(format!("symbolic factorisation: {e:?}")))?;
+        let sparse = Arc::new(SparseLlt::analyse(n, &pattern).map_err(fail)?);
         let dense = direct::dense_layout(n, &pattern, n_pattern);
         Ok(Self {
             n,
-            symbolic,
-            argsort,
-            llt,
+            sparse,
             dense,
             spare: None,
             spare_single: None,

@@ -36,14 +36,13 @@
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::{LltParams, LltRegularization, cholesky_in_place};
 use faer::linalg::cholesky::llt::solve::solve_in_place_with_conj;
-use faer::sparse::SparseColMat;
-use faer::sparse::linalg::cholesky::{LltRef, SymbolicCholesky};
-use faer::{Conj, Par, Side, Spec};
+use faer::{Conj, Par, Spec};
 use std::sync::Arc;
 
 use super::{Energy, Factor, NewtonOptions, NewtonReport, StableNewton, Watch, backtrack};
 use crate::error::{Error, Result};
 use crate::numerics::pcg::{dot, inf_norm};
+use crate::numerics::sparse_llt::SparseLlt;
 
 /// Chord steps (an earlier factorisation reused) continue while each cuts the largest
 /// gradient component by at least this factor; otherwise the Hessian is factorised again.
@@ -63,34 +62,25 @@ const SINGLE_PRECISION_ABOVE: f64 = 1e4;
 /// matrix, factorised in place).
 pub(in crate::numerics) enum Cholesky {
     /// The factor's values in the layout of the symbolic analysis.
-    Sparse(Arc<SymbolicCholesky<usize>>, Vec<f64>),
+    Sparse(Arc<SparseLlt>, Vec<f64>),
     /// Column-major n × n, L in the lower triangle.
     Dense(Vec<f64>),
     /// As `Dense`, in single precision (a Newton direction far from convergence only).
     DenseSingle(Vec<f32>),
     /// As `Sparse`, in single precision (a Newton direction far from convergence only).
-    SparseSingle(Arc<SymbolicCholesky<usize>>, Vec<f32>),
+    SparseSingle(Arc<SparseLlt>, Vec<f32>),
 }
 
 impl Cholesky {
     /// Overwrite `rhs` with `H⁻¹ rhs`.
     pub(super) fn solve(&self, rhs: &mut [f64]) {
         match self {
-            Self::Sparse(symbolic, values) => sparse_solve(symbolic, values, rhs),
+            Self::Sparse(sparse, values) => sparse.solve(values, rhs),
             Self::Dense(l) => dense_solve(l, rhs),
-            Self::SparseSingle(symbolic, values) => in_single(rhs, |r| sparse_solve(symbolic, values, r)),
+            Self::SparseSingle(sparse, values) => in_single(rhs, |r| sparse.solve(values, r)),
             Self::DenseSingle(l) => in_single(rhs, |r| dense_solve(l, r)),
         }
     }
-}
-
-/// Overwrite `rhs` with `(L Lᵀ)⁻¹ rhs` for a sparse factor `L` (values in the layout of
-/// `symbolic`), sequentially.
-fn sparse_solve<T: faer::traits::RealField>(symbolic: &SymbolicCholesky<usize>, values: &[T], rhs: &mut [T]) {
-    let n = rhs.len();
-    let m = faer::MatMut::from_column_major_slice_mut(rhs, n, 1);
-    let mut buf = MemBuffer::new(symbolic.solve_in_place_scratch::<T>(1, Par::Seq));
-    LltRef::new(symbolic, values).solve_in_place_with_conj(Conj::No, m, Par::Seq, MemStack::new(&mut buf));
 }
 
 /// Overwrite `rhs` with `(L Lᵀ)⁻¹ rhs` for a dense column-major factor `L` (lower triangle).
@@ -154,43 +144,6 @@ fn dense_llt<T: faer::traits::RealField + Copy + std::ops::AddAssign>(
     .is_ok()
 }
 
-/// The numeric sparse LLᵀ factorisation (sequential, the symbolic analysis of `newton`) of the
-/// matrix with `values` in pattern order (shift slots included), into `storage` where it is
-/// large enough: `Ok(Ok(factor values))`, `Ok(Err(storage))` when the matrix is not positive
-/// definite, `Err` when it cannot be assembled. Serves the double-precision factorisations and
-/// the single-precision directions alike.
-fn sparse_llt<T: faer::traits::RealField + Copy>(
-    newton: &StableNewton,
-    values: &[T],
-    storage: Option<Vec<T>>,
-) -> std::result::Result<std::result::Result<Vec<T>, Vec<T>>, String> {
-    let mat = SparseColMat::<usize, T>::new_from_argsort(newton.symbolic.clone(), &newton.argsort, values)
-        .map_err(|e| format!("assembling the Hessian: {e:?}"))?;
-    let symbolic = &newton.llt;
-    let len = symbolic.len_val();
-    let mut factor = match storage {
-        Some(mut v) if v.capacity() >= len => {
-            v.resize(len, T::zero_impl());
-            v
-        }
-        _ => vec![T::zero_impl(); len],
-    };
-    let params: Spec<LltParams, T> = Default::default();
-    let mut buf = MemBuffer::new(symbolic.factorize_numeric_llt_scratch::<T>(Par::Seq, params));
-    let ok = symbolic
-        .factorize_numeric_llt(
-            &mut factor,
-            mat.as_ref(),
-            Side::Lower,
-            LltRegularization::default(),
-            Par::Seq,
-            MemStack::new(&mut buf),
-            params,
-        )
-        .is_ok();
-    Ok(if ok { Ok(factor) } else { Err(factor) })
-}
-
 impl StableNewton {
     /// Dense Cholesky factorisation of the values (pattern entries summed into the lower
     /// triangle); `None` if not positive definite.
@@ -247,8 +200,8 @@ impl StableNewton {
         single.resize(self.values.len(), 0.0);
         self.computed += 1;
         let spare = self.spare_single.take();
-        match sparse_llt(self, &single, spare).ok()? {
-            Ok(values) => Some(Arc::new(Cholesky::SparseSingle(self.llt.clone(), values))),
+        match self.sparse.factorise(&single, spare).ok()? {
+            Ok(values) => Some(Arc::new(Cholesky::SparseSingle(self.sparse.clone(), values))),
             Err(storage) => {
                 self.spare_single = Some(storage);
                 None
@@ -277,11 +230,14 @@ impl StableNewton {
             l
         } else {
             let spare = self.spare.take();
-            match sparse_llt(self, &self.values, spare).map_err(|reason| Error::Unresolvable {
-                model: "stable Newton",
-                reason,
-            })? {
-                Ok(values) => Some(Arc::new(Cholesky::Sparse(self.llt.clone(), values))),
+            match self
+                .sparse
+                .factorise(&self.values, spare)
+                .map_err(|reason| Error::Unresolvable {
+                    model: "stable Newton",
+                    reason,
+                })? {
+                Ok(values) => Some(Arc::new(Cholesky::Sparse(self.sparse.clone(), values))),
                 Err(storage) => {
                     self.spare = Some(storage);
                     None
