@@ -4,7 +4,9 @@
 //! finite-element cycle of Fig. 4.5's smooth tip to 15 ζ0 (criterion group `fe-cycle`, ten
 //! samples of one cycle each: about ten minutes). Whether condensing the bulk onto the
 //! surface layers (a Schur complement) would make the Newton steps cheaper: `benches/fe_schur.rs`
-//! (it does not).
+//! (it does not); whether another Newton method (a nonlinear elimination of the contact
+//! edge) would make the load steps cheap enough for a cycle under 15 s:
+//! `benches/fe_elimination.rs` (it would not).
 //!
 //! Where the cycle's time goes (measured on the coarse variant of
 //! `fe_cycle_on_a_coarse_mesh_keeps_its_path_with_warm_load_steps`, 6 810 unknowns then, 7 183
@@ -124,6 +126,21 @@
 //! (same P_adh and jumps, 422 minimisations against 369, 61.4 s against 53.4 s); the gradient
 //! tolerance 10⁻⁵ or 10⁻⁶ instead of 10⁻⁷ (variant: 32.1 and 31.5 s against 32.1 s; P_adh to
 //! 6e-12; the tail's chord steps are cheap, the factorisations stay).
+//!
+//! Whether another Newton method could take a converged load step for much less:
+//! `benches/fe_elimination.rs` runs consecutive accepted steps of this cycle again from the
+//! tangent's prediction by Newton with a fresh factorisation per iteration (7.0 iterations and
+//! factorisations per step), by a nonlinear elimination of the contact edge's column (4.2
+//! global iterations and factorisations) and by the elimination with chord steps (9.7
+//! iterations, 2.1 factorisations and the certifying one). Priced at the measured unit costs,
+//! the 279 converged steps would take 21-24 s instead of 32 s, above 15 s before any jump;
+//! even a floor of one certifying factorisation and three cheap iterations per step (7.5 s)
+//! would leave 7.5 s for the jumps, which take 21 s. A cycle under 15 s on this mesh, at this
+//! depth step and tolerance, on 2 cores, is therefore out of reach of a better nonlinear
+//! solver: it needs linear algebra several times cheaper (the Hessian changes in every element
+//! the body force reaches, so no part of the factor can be reused exactly, and a Schur
+//! complement onto that band is dense, see `benches/fe_schur.rs`) and jumps three times
+//! cheaper.
 
 mod common;
 
