@@ -56,13 +56,15 @@
 mod common;
 
 use common::{fe_cycle_options, fig4_5_fe};
+use std::borrow::Cow;
 use std::collections::HashMap;
 use std::time::Instant;
 
-use adhesion::models::axisymmetric::cycle::{TipState, run_cycle};
+use adhesion::models::axisymmetric::cycle::{CycleOptions, TipState, run_cycle};
 use adhesion::models::body_force_fe::tip::{FeEnergy, FeTip};
 use adhesion::numerics::loading::Controlled;
 use adhesion::numerics::newton::Energy;
+use adhesion::numerics::pcg::inf_norm;
 use adhesion::numerics::sparse_llt::SparseLlt;
 use nalgebra::{DMatrix, DVector};
 
@@ -77,8 +79,10 @@ const CHORD_CONTRACTION: f64 = 0.25;
 /// Iterations before a method is taken to have failed (none does).
 const MAX_ITERATIONS: usize = 80;
 
-fn largest(v: &[f64]) -> f64 {
-    v.iter().fold(0.0, |m, x| m.max(x.abs()))
+/// The next shift of a factorisation that failed with `shift`: 10⁻⁶ of `scale` (the largest
+/// diagonal entry), then ten times the last.
+fn next_shift(shift: f64, scale: f64) -> f64 {
+    if shift == 0.0 { 1e-6 * scale } else { 10.0 * shift }
 }
 
 /// The methods compared.
@@ -127,22 +131,23 @@ impl Step<'_> {
                 Ok(factor) => return factor,
                 Err(s) => storage = Some(s),
             }
-            shift = if shift == 0.0 { 1e-6 * scale } else { 10.0 * shift };
+            shift = next_shift(shift, scale);
         }
     }
 
     /// Minimise over the unknowns `set` with all others held (dense Newton with the Armijo
-    /// search) to a largest gradient component below `LOCAL_TOL`.
+    /// search) to a largest gradient component below `LOCAL_TOL`; nothing moves (and no
+    /// energy is evaluated) where `set` is in balance already.
     fn minimise_locally(&mut self, u: &mut [f64], set: &[usize]) {
         let place: HashMap<usize, usize> = set.iter().enumerate().map(|(a, &i)| (i, a)).collect();
         let (n, m) = (u.len(), set.len());
         let mut g = vec![0.0; n];
         let mut values = vec![0.0; self.pattern.len()];
-        let mut e = self.energy.energy(u);
+        let mut e = None;
         for _ in 0..MAX_ITERATIONS {
             self.energy.gradient(u, &mut g);
             let g_set: Vec<f64> = set.iter().map(|&i| g[i]).collect();
-            if largest(&g_set) < LOCAL_TOL {
+            if inf_norm(&g_set) < LOCAL_TOL {
                 return;
             }
             self.counts.local += 1;
@@ -163,11 +168,12 @@ impl Step<'_> {
                 if let Some(ch) = shifted.cholesky() {
                     break ch.solve(&rhs);
                 }
-                shift = if shift == 0.0 { 1e-6 * scale } else { 10.0 * shift };
+                shift = next_shift(shift, scale);
             };
             let mut full = vec![0.0; n];
             set.iter().zip(p.iter()).for_each(|(&i, &pi)| full[i] = pi);
-            e = self.line_search(u, &full, &g, e, None);
+            let before = *e.get_or_insert_with(|| self.energy.energy(u));
+            e = Some(self.line_search(u, &full, &g, before, None));
         }
     }
 
@@ -178,17 +184,13 @@ impl Step<'_> {
         let slope: f64 = p.iter().zip(g).map(|(a, b)| a * b).sum();
         let mut t = 1.0;
         let mut trial = vec![0.0; u.len()];
-        let mut g_trial = vec![0.0; u.len()];
         loop {
             trial
                 .iter_mut()
                 .zip(u.iter().zip(p))
                 .for_each(|(x, (a, b))| *x = a + t * b);
             if let Some(set) = set {
-                self.energy.gradient(&trial, &mut g_trial);
-                if set.iter().any(|&i| g_trial[i].abs() > LOCAL_TOL) {
-                    self.minimise_locally(&mut trial, set);
-                }
+                self.minimise_locally(&mut trial, set);
             }
             let e_trial = self.energy.energy(&trial);
             if e_trial <= e + 1e-4 * t * slope || (t * slope).abs() < 1e-13 * e.abs() || t < 1e-8 {
@@ -222,16 +224,16 @@ impl Step<'_> {
             self.minimise_locally(u, set);
         }
         let mut e = self.energy.energy(u);
-        let mut factor = previous.to_vec();
+        let mut factor = Cow::Borrowed(previous);
         let mut last = f64::INFINITY;
         for _ in 0..MAX_ITERATIONS {
             self.energy.gradient(u, &mut g);
-            let norm = largest(&g);
+            let norm = inf_norm(&g);
             if norm < GRADIENT_TOL {
                 break;
             }
             if method != Method::EliminatedChord || norm > CHORD_CONTRACTION * last {
-                factor = self.factor(u);
+                factor = Cow::Owned(self.factor(u));
             }
             last = norm;
             self.counts.iterations += 1;
@@ -267,7 +269,7 @@ fn main() {
     let start = Instant::now();
     let cycle = run_cycle(
         &tip,
-        &adhesion::models::axisymmetric::cycle::CycleOptions {
+        &CycleOptions {
             keep_profiles: true,
             ..opts
         },
@@ -327,9 +329,9 @@ fn main() {
         for (method, total) in methods.iter().zip(totals.iter_mut()) {
             let mut step = Step {
                 energy: tip.energy_at(to),
+                counts: Counts::default(),
                 ..first
             };
-            step.counts = Counts::default();
             let mut u = predicted.clone();
             let c = step.converge(&mut u, *method, &previous, &neighbours);
             let apart = reference
